@@ -44,6 +44,7 @@ struct BvhNode {
 
   [[nodiscard]] bool is_leaf() const { return count != 0; }
 };
+static_assert(sizeof(BvhNode) == 160, "BvhNode layout changed: check traversal cache behaviour");
 
 struct BvhStats {
   std::size_t triangles = 0;             ///< triangles in the mesh
@@ -105,5 +106,10 @@ struct LeafPair {
 TraversalStats overlapping_leaves(const Model& a, const Transform& pose_a, const Model& b,
                                   const Transform& pose_b, Scalar delta,
                                   std::vector<LeafPair>& out);
+
+/// The paper's Sphere-OBB baseline verdict: true when some pair of leaves has overlapping sphere
+/// and OBB (grown by delta). Stops at the first such pair. Thread-safe.
+bool leaves_overlap(const Model& a, const Transform& pose_a, const Model& b,
+                    const Transform& pose_b, Scalar delta);
 
 }  // namespace antcd

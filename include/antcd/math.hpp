@@ -1,8 +1,9 @@
 // antcd/math.hpp — scalar type, vector aliases and rigid transforms.
 //
 // antcd uses one scalar type everywhere (double). A Transform maps points from a model's own frame
-// ("local" or "model" frame) into the world frame: p_world = R * p_local + t. R is a proper rotation
-// (orthonormal, det = +1). All lengths are in the units of the mesh files; antcd never rescales.
+// ("local" or "model" frame) into the world frame: p_world = R * p_local + t. R is a proper
+// rotation (orthonormal, det = +1). All lengths are in the units of the mesh files; antcd never
+// rescales.
 #pragma once
 
 #include <Eigen/Core>

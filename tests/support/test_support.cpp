@@ -39,21 +39,20 @@ Transform random_pose(std::mt19937_64& rng, Scalar extent) {
   return t;
 }
 
-std::vector<std::pair<std::uint32_t, std::uint32_t>> brute_force_pairs(const Mesh& a,
-                                                                       const Transform& pa,
-                                                                       const Mesh& b,
-                                                                       const Transform& pb,
-                                                                       Scalar delta) {
+std::vector<std::pair<std::uint32_t, std::uint32_t>> brute_force_pairs(
+    const Mesh& a, const Transform& pa, const Mesh& b, const Transform& pb, Scalar delta) {
   std::vector<std::pair<std::uint32_t, std::uint32_t>> out;
   std::vector<Vec3> va, vb;
   for (const Vec3& v : a.vertices) va.push_back(pa.apply(v));
   for (const Vec3& v : b.vertices) vb.push_back(pb.apply(v));
   for (std::uint32_t i = 0; i < a.triangles.size(); ++i) {
     const auto& ta = a.triangles[i];
-    if (geometry::is_degenerate_triangle(a.vertices[ta[0]], a.vertices[ta[1]], a.vertices[ta[2]])) continue;
+    if (geometry::is_degenerate_triangle(a.vertices[ta[0]], a.vertices[ta[1]], a.vertices[ta[2]]))
+      continue;
     for (std::uint32_t j = 0; j < b.triangles.size(); ++j) {
       const auto& tb = b.triangles[j];
-      if (geometry::is_degenerate_triangle(b.vertices[tb[0]], b.vertices[tb[1]], b.vertices[tb[2]])) continue;
+      if (geometry::is_degenerate_triangle(b.vertices[tb[0]], b.vertices[tb[1]], b.vertices[tb[2]]))
+        continue;
       if (geometry::triangles_within(va[ta[0]], va[ta[1]], va[ta[2]], vb[tb[0]], vb[tb[1]],
                                      vb[tb[2]], delta)) {
         out.emplace_back(i, j);

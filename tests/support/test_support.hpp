@@ -26,10 +26,7 @@ Transform random_pose(std::mt19937_64& rng, Scalar extent);
 
 /// Brute force over all pairs of non-degenerate triangles: the set of (triangle_a, triangle_b)
 /// pairs within delta, sorted.
-std::vector<std::pair<std::uint32_t, std::uint32_t>> brute_force_pairs(const Mesh& a,
-                                                                       const Transform& pa,
-                                                                       const Mesh& b,
-                                                                       const Transform& pb,
-                                                                       Scalar delta);
+std::vector<std::pair<std::uint32_t, std::uint32_t>> brute_force_pairs(
+    const Mesh& a, const Transform& pa, const Mesh& b, const Transform& pb, Scalar delta);
 
 }  // namespace antcd::test

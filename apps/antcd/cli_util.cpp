@@ -1,0 +1,57 @@
+#include "cli_util.hpp"
+
+#include <antcd/mesh.hpp>
+
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+#include <vector>
+
+namespace antcd::cli {
+
+Transform parse_pose(const std::string& text, const std::string& option) {
+  std::vector<Scalar> values;
+  std::stringstream in(text);
+  std::string item;
+  while (std::getline(in, item, ',')) {
+    std::size_t used = 0;
+    double v = 0;
+    try {
+      v = std::stod(item, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    while (used < item.size() && std::isspace(static_cast<unsigned char>(item[used]))) ++used;
+    if (used == 0 || used != item.size()) {
+      throw UsageError(option + ": '" + item +
+                       "' is not a number (expected tx,ty,tz[,qw,qx,qy,qz])");
+    }
+    if (!std::isfinite(v)) throw UsageError(option + ": non-finite value '" + item + "'");
+    values.push_back(v);
+  }
+  if (values.size() != 3 && values.size() != 7) {
+    throw UsageError(option + ": expected 3 numbers (tx,ty,tz) or 7 (tx,ty,tz,qw,qx,qy,qz), got " +
+                     std::to_string(values.size()));
+  }
+  const Vec3 t(values[0], values[1], values[2]);
+  if (values.size() == 3) return Transform{Mat3::Identity(), t};
+  const Scalar norm = std::sqrt(values[3] * values[3] + values[4] * values[4] +
+                                values[5] * values[5] + values[6] * values[6]);
+  if (std::abs(norm - 1.0) > 1e-3) {
+    throw UsageError(option + ": quaternion (w,x,y,z) has length " + std::to_string(norm) +
+                     ", expected 1 (within 1e-3)");
+  }
+  return Transform::from_quaternion(t, values[3], values[4], values[5], values[6]);
+}
+
+CovarianceMethod parse_covariance(const std::string& text) {
+  if (text == "area") return CovarianceMethod::AreaWeightedCentroid;
+  if (text == "vertex") return CovarianceMethod::VertexMean;
+  throw UsageError("--covariance: expected 'area' or 'vertex', got '" + text + "'");
+}
+
+Model load_model(const std::filesystem::path& path, const BuildOptions& options) {
+  return Model(load_mesh(path), options, path.string());
+}
+
+}  // namespace antcd::cli

@@ -1,0 +1,187 @@
+// antcd run / scene generate / compare: scenes in motion and their metrics.
+#include <antcd/io.hpp>
+#include <antcd/scene.hpp>
+
+#include <unistd.h>
+
+#include <cstdio>
+#include <iostream>
+#include <memory>
+
+#include "cli_util.hpp"
+#include "production_line.hpp"
+#include "run_result.hpp"
+
+namespace antcd::cli {
+
+namespace {
+
+struct RunOptions {
+  std::string scene;
+  std::string method = "exact";
+  double delta = 0;
+  double feature_delta = 0;
+  std::uint64_t seed = 1;
+  int threads = 1;
+  std::size_t samples = 1000;
+  std::uint32_t iterations = 100;
+  std::uint32_t agents = 60;
+  bool feature_truth = false;
+  std::string out;
+};
+
+void print_progress(std::size_t done, std::size_t total) {
+  const int width = 40;
+  const int filled = static_cast<int>(width * done / total);
+  std::fprintf(stderr, "\r[%.*s%*s] %zu/%zu frames", filled,
+               "########################################", width - filled, "", done, total);
+  if (done == total) std::fprintf(stderr, "\n");
+  std::fflush(stderr);
+}
+
+int run_run(const RunOptions& o) {
+  SceneQuery query;
+  query.method = parse_method(o.method);
+  query.delta = o.delta;
+  query.feature_delta = o.feature_delta;
+  query.seed = o.seed;
+  query.threads = o.threads;
+  query.samples_per_side = o.samples;
+  query.iterations = o.iterations;
+  query.agents = o.agents;
+  query.count_feature_truth = o.feature_truth;
+  const Scene scene(load_scene(o.scene));
+  const bool tty = isatty(STDERR_FILENO) != 0;
+  const experiments::RunResult result =
+      experiments::run_scene(scene, query, o.scene,
+                             tty ? std::function<void(std::size_t, std::size_t)>(print_progress)
+                                 : std::function<void(std::size_t, std::size_t)>());
+  if (!o.out.empty()) {
+    write_file_atomic(o.out, experiments::to_json(result));
+    return 0;
+  }
+  std::size_t colliding = 0;
+  std::size_t candidates = 0;
+  std::vector<double> times;
+  for (const auto& f : result.frames) {
+    colliding += f.pairs.size();
+    candidates += f.candidates.size();
+    times.push_back(f.time_ms);
+  }
+  std::printf("scene: %s (%zu objects, %zu models, %zu frames)\n", o.scene.c_str(),
+              scene.object_count(), scene.model_count(), result.frames.size());
+  std::printf("method: %s, delta %g, seed %llu, threads %d\n", result.method.c_str(), o.delta,
+              static_cast<unsigned long long>(o.seed), o.threads);
+  std::printf("build: %.1f ms\n", result.build_ms);
+  std::printf("frames: total %.1f ms, mean %.3f ms, p99 %.3f ms\n", result.total_ms,
+              result.total_ms / static_cast<double>(result.frames.size()),
+              experiments::quantile(times, 0.99));
+  std::printf(
+      "colliding pairs: %zu over all frames (%.2f per frame), broad-phase candidates %.2f per "
+      "frame\n",
+      colliding, static_cast<double>(colliding) / static_cast<double>(result.frames.size()),
+      static_cast<double>(candidates) / static_cast<double>(result.frames.size()));
+  return 0;
+}
+
+struct GenerateOptions {
+  std::string out;
+  std::size_t objects = 90;
+  std::size_t vertices = 750;
+  std::size_t frames = 300;
+  std::uint64_t seed = 1;
+  std::vector<std::string> meshes;
+};
+
+int run_generate(const GenerateOptions& o) {
+  experiments::ProductionLineOptions options;
+  options.objects = o.objects;
+  options.vertices = o.vertices;
+  options.frames = o.frames;
+  options.seed = o.seed;
+  for (const auto& m : o.meshes) options.mesh_files.emplace_back(m);
+  const auto generated = experiments::generate_production_line(options);
+  const auto path = experiments::write_scene(generated, o.out);
+  std::printf("wrote %s (%zu objects, %zu meshes, %zu frames)\n", path.string().c_str(),
+              generated.scene.objects.size(), generated.meshes.size(), generated.scene.frames);
+  return 0;
+}
+
+struct CompareOptions {
+  std::string truth, result;
+};
+
+int run_compare(const CompareOptions& o) {
+  const auto truth = experiments::parse_run_result(read_file(o.truth), o.truth);
+  const auto result = experiments::parse_run_result(read_file(o.result), o.result);
+  const experiments::Metrics m = experiments::compare_runs(truth, result);
+  std::printf("truth:  %s (%s)\nresult: %s (%s)\nframes: %zu\n", o.truth.c_str(),
+              truth.method.c_str(), o.result.c_str(), result.method.c_str(), m.frames);
+  std::printf("object-pair recall:    %.4f  (%llu of %llu colliding pairs)\n", m.recall,
+              static_cast<unsigned long long>(m.true_positives),
+              static_cast<unsigned long long>(m.true_pairs));
+  std::printf("object-pair precision: %.4f  (%llu of %llu reported pairs)\n", m.precision,
+              static_cast<unsigned long long>(m.true_positives),
+              static_cast<unsigned long long>(m.reported_pairs));
+  std::printf("accuracy (candidates): %.4f  (%llu of %llu broad-phase pairs)\n", m.accuracy,
+              static_cast<unsigned long long>(m.correct_candidates),
+              static_cast<unsigned long long>(m.candidate_pairs));
+  if (m.feature_recall) {
+    std::printf("feature-pair recall:   %.4f  (A/B)\n", *m.feature_recall);
+  } else {
+    std::printf("feature-pair recall:   n/a (run with a random method and --feature-truth)\n");
+  }
+  std::printf(
+      "time per frame:        mean %.3f ms, p99 %.3f ms (truth: mean %.3f ms, p99 %.3f ms)\n",
+      m.mean_ms, m.p99_ms, m.truth_mean_ms, m.truth_p99_ms);
+  return 0;
+}
+
+}  // namespace
+
+void add_scene_commands(CLI::App& app, int& code) {
+  auto run = std::make_shared<RunOptions>();
+  CLI::App* cmd = app.add_subcommand("run", "Run a scene's frames with a collision method");
+  cmd->add_option("SCENE", run->scene, "Scene file (antcd-scene/1 JSON)")->required();
+  cmd->add_option("--method", run->method, "exact | sphere-obb | aco | maco | pso | ga")
+      ->check(CLI::IsMember({"exact", "sphere-obb", "aco", "maco", "pso", "ga"}));
+  cmd->add_option("--delta", run->delta, "Collision threshold δ in mesh units")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--feature-delta", run->feature_delta,
+                  "Random methods: centroid threshold (default: from triangle sizes)")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--seed", run->seed, "Seed of the random methods");
+  cmd->add_option("--threads", run->threads, "Worker threads")->check(CLI::Range(1, 256));
+  cmd->add_option("--samples", run->samples, "Random methods: features sampled per side")
+      ->check(CLI::Range(1, 100000));
+  cmd->add_option("--iterations", run->iterations, "Random methods: iterations N")
+      ->check(CLI::Range(1, 100000));
+  cmd->add_option("--ants", run->agents, "Random methods: ants / particles / population m")
+      ->check(CLI::Range(1, 100000));
+  cmd->add_flag("--feature-truth", run->feature_truth,
+                "Random methods: also count each space's colliding feature pairs (for A/B)");
+  cmd->add_option("--out", run->out, "Write the result JSON here (atomically)");
+  cmd->callback([run, &code] { code = run_run(*run); });
+
+  auto gen = std::make_shared<GenerateOptions>();
+  CLI::App* scene = app.add_subcommand("scene", "Scene tools");
+  scene->require_subcommand(1);
+  CLI::App* g = scene->add_subcommand("generate", "Write the paper's production-line scene");
+  g->add_option("--out", gen->out, "Output folder (scene.json and meshes/)")->required();
+  g->add_option("--objects", gen->objects, "Number of objects")->check(CLI::Range(2, 100000));
+  g->add_option("--vertices", gen->vertices, "Average vertices per mesh")
+      ->check(CLI::Range(8, 1000000));
+  g->add_option("--frames", gen->frames, "Frames of motion")->check(CLI::Range(1, 1000000));
+  g->add_option("--seed", gen->seed, "Seed of the layout and motions");
+  g->add_option("--mesh", gen->meshes, "Place these mesh files instead of generated equipment")
+      ->check(CLI::ExistingFile);
+  g->callback([gen, &code] { code = run_generate(*gen); });
+
+  auto cmp = std::make_shared<CompareOptions>();
+  CLI::App* c = app.add_subcommand("compare", "Metrics of a run against a ground-truth run");
+  c->add_option("TRUTH", cmp->truth, "Result of an exact run")->required();
+  c->add_option("RESULT", cmp->result, "Result to evaluate")->required();
+  c->callback([cmp, &code] { code = run_compare(*cmp); });
+}
+
+}  // namespace antcd::cli

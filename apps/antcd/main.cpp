@@ -1,0 +1,65 @@
+// antcd — command-line front end of the antcd collision library.
+#include "cli_util.hpp"
+
+#include <antcd/mesh.hpp>
+
+#include <cstdio>
+#include <exception>
+#include <iostream>
+#include <string>
+
+namespace {
+
+std::string one_line(std::string text) {
+  for (char& c : text) {
+    if (c == '\n' || c == '\r') c = ' ';
+  }
+  while (!text.empty() && text.back() == ' ') text.pop_back();
+  return text;
+}
+
+int fail(const std::string& message) {
+  std::cerr << "error: " << one_line(message) << '\n';
+  return 2;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{
+      "antcd: collision detection between triangle meshes (hybrid Sphere-OBB hierarchy, "
+      "exact triangle tests, ant-colony random detection)",
+      "antcd"};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", "antcd 0.1.0");
+  int code = 0;
+  antcd::cli::add_collide_command(app, code);
+  antcd::cli::add_info_command(app, code);
+  antcd::cli::add_demo_command(app, code);
+  antcd::cli::add_scene_commands(app, code);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp&) {
+    std::cout << app.help();
+    return 0;
+  } catch (const CLI::CallForAllHelp&) {
+    std::cout << app.help("", CLI::AppFormatMode::All);
+    return 0;
+  } catch (const CLI::CallForVersion&) {
+    std::cout << "antcd 0.1.0\n";
+    return 0;
+  } catch (const CLI::ParseError& e) {
+    return fail(e.what());
+  } catch (const antcd::cli::UsageError& e) {
+    return fail(e.what());
+  } catch (const antcd::Error& e) {
+    return fail(e.what());
+  } catch (const std::invalid_argument& e) {
+    return fail(e.what());
+  } catch (const std::bad_alloc&) {
+    return fail("out of memory");
+  } catch (const std::exception& e) {
+    return fail(e.what());
+  }
+  return code;
+}

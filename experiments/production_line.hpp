@@ -1,0 +1,89 @@
+// experiments/production_line.hpp — a procedural scene of a veneer production line.
+//
+// The paper's experiment (section 5.1) runs collision detection on 90 models of the equipment of a
+// veneer production line, about 750 vertices each, over 300 simulation runs. This generator builds
+// such a scene in the antcd-scene/1 format (see antcd/scene.hpp):
+//
+// - Equipment along a line in +x, in metres: roller conveyors (bed + spinning rollers + veneer
+//   sheets travelling over them), drying tunnels over conveyors, hot presses (frame, fixed lower
+//   platen, upper platen closing on a sheet that slides in and out), robot cells (pedestal, upper
+//   arm, forearm swinging down onto a pallet, beside a pallet conveyor), portal frames.
+// - Every mesh is built from the generators of antcd/mesh.hpp, tessellated so that it has about
+//   `vertices` vertices. Meshes are shared between objects (one file per kind of equipment).
+// - "Touching" means a slight interpenetration (a few millimetres, larger than the chord error of
+//   the tessellation), so exact triangle tests see it. Parts that should not touch keep gaps of a
+//   centimetre or more. Most object pairs never touch; near pairs (neighbouring rollers, sheets
+//   inside a tunnel) give the broad phase real work.
+// - The result depends only on the options: the same options give byte-identical files.
+#pragma once
+
+#include <antcd/mesh.hpp>
+#include <antcd/scene.hpp>
+
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace antcd::experiments {
+
+/// Limits of ProductionLineOptions (they keep memory use sane).
+inline constexpr std::size_t kMinObjects = 2;
+inline constexpr std::size_t kMaxObjects = 100'000;
+/// 8 is the smallest closed solid the generators make: a box has 8 corners (and a 3-sided prism
+/// with its two cap centres has 8 vertices).
+inline constexpr std::size_t kMinVertices = 8;
+inline constexpr std::size_t kMaxVertices = 1'000'000;
+inline constexpr std::size_t kMaxFrames = 10'000'000;  ///< the scene format's limit
+/// objects × frames: every moving object holds one pose per frame in memory and in the file.
+inline constexpr std::size_t kMaxPoses = 20'000'000;
+
+struct ProductionLineOptions {
+  std::size_t objects = 90;    ///< number of scene objects
+  std::size_t vertices = 750;  ///< requested vertices per mesh (the scene average is within ±15 %)
+  std::size_t frames = 300;    ///< frames of motion
+  std::uint64_t seed = 1;      ///< speeds, phases and spacings of the stations
+  /// When non-empty: place these meshes (cycled over the objects) instead of generated
+  /// equipment. Each file is loaded (load_mesh), centred on its bounding-box centre and written
+  /// into the scene folder; `vertices` is then not used. Objects come in pairs: one static, one
+  /// that spins and moves from well apart (bounding spheres disjoint) to the other's centre and
+  /// back, so their surfaces meet on the way.
+  std::vector<std::filesystem::path> mesh_files;
+};
+
+struct GeneratedScene {
+  /// Mesh paths are relative to the scene folder (mesh_text == mesh, e.g. "meshes/roller.obj").
+  SceneDescription scene;
+  /// File name relative to the scene folder → mesh, in first-use order; every object's mesh is
+  /// here exactly once.
+  std::vector<std::pair<std::string, Mesh>> meshes;
+};
+
+/// Throws std::invalid_argument naming the option ("--objects must be ...") when out of range.
+void validate_options(const ProductionLineOptions& options);
+
+/// Builds the scene in memory. Deterministic: the same options give the same scene. Throws
+/// std::invalid_argument for bad options and MeshError for an unreadable mesh file.
+GeneratedScene generate_production_line(const ProductionLineOptions& options);
+
+/// Writes DIR/meshes/*.obj (save_obj) and then DIR/scene.json (save_scene), creating folders as
+/// needed; every file is written atomically. Returns the path of scene.json. Throws
+/// std::invalid_argument for a mesh name that is absolute or leaves the folder, antcd::Error when
+/// writing fails.
+std::filesystem::path write_scene(const GeneratedScene& generated,
+                                  const std::filesystem::path& dir);
+
+/// Summary numbers for reports.
+struct SceneStats {
+  std::size_t objects = 0;
+  std::size_t moving_objects = 0;  ///< objects with one pose per frame (frames > 1)
+  std::size_t meshes = 0;
+  double average_vertices = 0;   ///< mean over objects of their mesh's vertex count
+  std::size_t min_vertices = 0;  ///< over meshes
+  std::size_t max_vertices = 0;  ///< over meshes
+};
+SceneStats scene_stats(const GeneratedScene& generated);
+
+}  // namespace antcd::experiments

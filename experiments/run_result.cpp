@@ -1,0 +1,224 @@
+#include "run_result.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+
+namespace antcd::experiments {
+
+namespace {
+
+using nlohmann::json;
+
+std::vector<NamePair> names_of(const Scene& scene,
+                               const std::vector<std::pair<std::uint32_t, std::uint32_t>>& pairs) {
+  std::vector<NamePair> out;
+  out.reserve(pairs.size());
+  for (const auto& [i, j] : pairs) {
+    out.emplace_back(scene.description().objects[i].name, scene.description().objects[j].name);
+  }
+  return out;
+}
+
+json pairs_json(const std::vector<NamePair>& pairs) {
+  json out = json::array();
+  for (const auto& [a, b] : pairs) out.push_back(json::array({a, b}));
+  return out;
+}
+
+[[noreturn]] void fail(const std::string& source, const std::string& problem) {
+  throw Error(source + ": " + problem);
+}
+
+std::vector<NamePair> parse_pairs(const json& j, const std::string& source,
+                                  const std::string& where) {
+  if (!j.is_array()) fail(source, where + " must be an array of name pairs");
+  std::vector<NamePair> out;
+  for (const json& p : j) {
+    if (!p.is_array() || p.size() != 2 || !p[0].is_string() || !p[1].is_string()) {
+      fail(source, where + " must hold pairs of names, e.g. [\"a\", \"b\"]");
+    }
+    out.emplace_back(p[0].get<std::string>(), p[1].get<std::string>());
+  }
+  return out;
+}
+
+double number(const json& j, const std::string& key, const std::string& source,
+              const std::string& where) {
+  if (!j.contains(key) || !j[key].is_number()) {
+    fail(source, where + "missing number '" + key + "'");
+  }
+  return j[key].get<double>();
+}
+
+// Unordered key for a name pair, so that ["a", "b"] and ["b", "a"] compare equal.
+NamePair key(const NamePair& p) { return p.first < p.second ? p : NamePair{p.second, p.first}; }
+
+}  // namespace
+
+RunResult run_scene(const Scene& scene, const SceneQuery& query, const std::string& scene_name,
+                    const std::function<void(std::size_t, std::size_t)>& progress) {
+  RunResult out;
+  out.method = std::string(method_name(query.method));
+  out.scene = scene_name;
+  out.delta = query.delta;
+  out.seed = query.seed;
+  out.threads = query.threads;
+  out.build_ms = scene.build_ms();
+  const std::size_t frames = scene.description().frames;
+  out.frames.reserve(frames);
+  const bool random = query.method != Method::Exact && query.method != Method::SphereObb;
+  for (std::size_t f = 0; f < frames; ++f) {
+    const FrameResult r = scene.run_frame(f, query);
+    FrameRecord rec;
+    rec.frame = f;
+    rec.pairs = names_of(scene, r.pairs);
+    rec.candidates = names_of(scene, r.candidates);
+    rec.time_ms = r.time_ms;
+    if (random) {
+      rec.feature_hits = r.feature_hits;
+      if (query.count_feature_truth) rec.feature_truth = r.feature_truth;
+    }
+    out.total_ms += r.time_ms;
+    out.frames.push_back(std::move(rec));
+    if (progress) progress(f + 1, frames);
+  }
+  return out;
+}
+
+std::string to_json(const RunResult& result) {
+  json root;
+  root["method"] = result.method;
+  root["scene"] = result.scene;
+  root["delta"] = result.delta;
+  root["seed"] = result.seed;
+  root["threads"] = result.threads;
+  root["build_ms"] = result.build_ms;
+  root["total_ms"] = result.total_ms;
+  json frames = json::array();
+  for (const FrameRecord& f : result.frames) {
+    json jf;
+    jf["frame"] = f.frame;
+    jf["pairs"] = pairs_json(f.pairs);
+    jf["time_ms"] = f.time_ms;
+    jf["candidates"] = pairs_json(f.candidates);
+    if (f.feature_hits) jf["feature_hits"] = *f.feature_hits;
+    if (f.feature_truth) jf["feature_truth"] = *f.feature_truth;
+    frames.push_back(std::move(jf));
+  }
+  root["frames"] = std::move(frames);
+  return root.dump(1) + "\n";
+}
+
+RunResult parse_run_result(std::string_view text, const std::string& source) {
+  json root;
+  try {
+    root = json::parse(text.begin(), text.end());
+  } catch (const json::parse_error&) {
+    fail(source, "not valid JSON");
+  }
+  if (!root.is_object()) fail(source, "not a run result (expected a JSON object)");
+  RunResult out;
+  if (!root.contains("method") || !root["method"].is_string()) fail(source, "missing 'method'");
+  out.method = root["method"].get<std::string>();
+  if (root.contains("scene") && root["scene"].is_string())
+    out.scene = root["scene"].get<std::string>();
+  if (root.contains("delta") && root["delta"].is_number()) out.delta = root["delta"].get<double>();
+  if (root.contains("seed") && root["seed"].is_number_unsigned())
+    out.seed = root["seed"].get<std::uint64_t>();
+  if (root.contains("threads") && root["threads"].is_number_integer())
+    out.threads = root["threads"].get<int>();
+  out.build_ms = number(root, "build_ms", source, "");
+  out.total_ms = number(root, "total_ms", source, "");
+  if (!root.contains("frames") || !root["frames"].is_array())
+    fail(source, "missing 'frames' array");
+  for (const json& jf : root["frames"]) {
+    if (!jf.is_object()) fail(source, "each frame must be an object");
+    FrameRecord f;
+    if (!jf.contains("frame") || !jf["frame"].is_number_unsigned()) {
+      fail(source, "a frame has no 'frame' index");
+    }
+    f.frame = jf["frame"].get<std::size_t>();
+    const std::string where = "frame " + std::to_string(f.frame) + ": ";
+    if (!jf.contains("pairs")) fail(source, where + "missing 'pairs'");
+    f.pairs = parse_pairs(jf["pairs"], source, where + "'pairs'");
+    f.time_ms = number(jf, "time_ms", source, where);
+    if (jf.contains("candidates"))
+      f.candidates = parse_pairs(jf["candidates"], source, where + "'candidates'");
+    if (jf.contains("feature_hits") && jf["feature_hits"].is_number_unsigned()) {
+      f.feature_hits = jf["feature_hits"].get<std::uint64_t>();
+    }
+    if (jf.contains("feature_truth") && jf["feature_truth"].is_number_unsigned()) {
+      f.feature_truth = jf["feature_truth"].get<std::uint64_t>();
+    }
+    out.frames.push_back(std::move(f));
+  }
+  return out;
+}
+
+double quantile(std::vector<double> values, double q) {
+  if (values.empty()) return 0;
+  std::sort(values.begin(), values.end());
+  const auto rank = static_cast<std::size_t>(std::ceil(q * static_cast<double>(values.size())));
+  return values[std::clamp<std::size_t>(rank, 1, values.size()) - 1];
+}
+
+Metrics compare_runs(const RunResult& truth, const RunResult& result) {
+  if (truth.frames.size() != result.frames.size()) {
+    throw Error("the runs cover different frames (" + std::to_string(truth.frames.size()) + " vs " +
+                std::to_string(result.frames.size()) + ")");
+  }
+  Metrics m;
+  m.frames = truth.frames.size();
+  std::uint64_t hits = 0;
+  std::uint64_t truth_features = 0;
+  bool have_features = false;
+  std::vector<double> times, truth_times;
+  for (std::size_t k = 0; k < truth.frames.size(); ++k) {
+    const FrameRecord& t = truth.frames[k];
+    const FrameRecord& r = result.frames[k];
+    if (t.frame != r.frame) {
+      throw Error("frame " + std::to_string(t.frame) + " of the truth faces frame " +
+                  std::to_string(r.frame) + " of the result");
+    }
+    std::set<NamePair> true_set, reported;
+    for (const auto& p : t.pairs) true_set.insert(key(p));
+    for (const auto& p : r.pairs) reported.insert(key(p));
+    m.true_pairs += true_set.size();
+    m.reported_pairs += reported.size();
+    for (const auto& p : reported) m.true_positives += true_set.count(p);
+    for (const auto& c : t.candidates) {
+      ++m.candidate_pairs;
+      const NamePair kc = key(c);
+      m.correct_candidates += (true_set.count(kc) > 0) == (reported.count(kc) > 0);
+    }
+    if (r.feature_hits && r.feature_truth) {
+      have_features = true;
+      hits += *r.feature_hits;
+      truth_features += *r.feature_truth;
+    }
+    times.push_back(r.time_ms);
+    truth_times.push_back(t.time_ms);
+  }
+  const auto ratio = [](std::uint64_t num, std::uint64_t den) {
+    return den == 0 ? 1.0 : static_cast<double>(num) / static_cast<double>(den);
+  };
+  m.recall = ratio(m.true_positives, m.true_pairs);
+  m.precision = ratio(m.true_positives, m.reported_pairs);
+  m.accuracy = ratio(m.correct_candidates, m.candidate_pairs);
+  if (have_features) m.feature_recall = ratio(hits, truth_features);
+  const auto mean = [](const std::vector<double>& v) {
+    double s = 0;
+    for (const double x : v) s += x;
+    return v.empty() ? 0.0 : s / static_cast<double>(v.size());
+  };
+  m.mean_ms = mean(times);
+  m.p99_ms = quantile(times, 0.99);
+  m.truth_mean_ms = mean(truth_times);
+  m.truth_p99_ms = quantile(truth_times, 0.99);
+  return m;
+}
+
+}  // namespace antcd::experiments

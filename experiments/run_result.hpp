@@ -1,0 +1,76 @@
+// Results of a scene run (the `antcd run` output format) and the metrics that compare two runs.
+//
+// Output format (JSON):
+//   { "method": "maco", "build_ms": 41.0, "total_ms": 36.2,
+//     "frames": [ { "frame": 0, "pairs": [["roller_07", "press_02"]], "time_ms": 0.12 } ] }
+// plus, per frame, "candidates" (the broad phase's pairs, same form as "pairs") and, for random
+// methods, "feature_hits" / "feature_truth"; and at the top "scene", "delta", "seed", "threads".
+// "pairs" lists each colliding object pair once, the two names in scene order.
+#pragma once
+
+#include <antcd/scene.hpp>
+
+#include <functional>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace antcd::experiments {
+
+using NamePair = std::pair<std::string, std::string>;
+
+struct FrameRecord {
+  std::size_t frame = 0;
+  std::vector<NamePair> pairs;
+  std::vector<NamePair> candidates;
+  double time_ms = 0;
+  std::optional<std::uint64_t> feature_hits;
+  std::optional<std::uint64_t> feature_truth;
+};
+
+struct RunResult {
+  std::string method;
+  std::string scene;
+  double delta = 0;
+  std::uint64_t seed = 0;
+  int threads = 1;
+  double build_ms = 0;
+  double total_ms = 0;  ///< sum of the frames' time_ms
+  std::vector<FrameRecord> frames;
+};
+
+/// Runs every frame of `scene` with `query`; `progress(done, total)` is called after each frame
+/// when set. `build_ms` is taken from the scene (loading and building).
+RunResult run_scene(const Scene& scene, const SceneQuery& query, const std::string& scene_name,
+                    const std::function<void(std::size_t, std::size_t)>& progress = {});
+
+std::string to_json(const RunResult& result);
+/// Parses a run result; errors (antcd::Error) name `source` and the problem.
+RunResult parse_run_result(std::string_view text, const std::string& source);
+
+struct Metrics {
+  std::size_t frames = 0;
+  std::uint64_t true_pairs = 0;      ///< colliding object pairs in the truth, summed over frames
+  std::uint64_t reported_pairs = 0;  ///< pairs the result reports, summed over frames
+  std::uint64_t true_positives = 0;
+  std::uint64_t candidate_pairs = 0;  ///< broad-phase candidates of the truth, summed over frames
+  std::uint64_t correct_candidates = 0;  ///< candidates the result classifies like the truth
+  double recall = 0;                     ///< TP / true pairs (1 when the truth has none)
+  double precision = 0;                  ///< TP / reported pairs (1 when nothing was reported)
+  double accuracy = 0;                   ///< correct / candidates (1 when there are none)
+  std::optional<double> feature_recall;  ///< Σ feature_hits / Σ feature_truth (the paper's A/B)
+  double mean_ms = 0;                    ///< of the result's frames
+  double p99_ms = 0;
+  double truth_mean_ms = 0;
+  double truth_p99_ms = 0;
+};
+
+/// Compares `result` against `truth` (normally an `exact` run) frame by frame. Throws
+/// antcd::Error if the two runs do not cover the same frames.
+Metrics compare_runs(const RunResult& truth, const RunResult& result);
+
+/// The value at quantile q in [0, 1] (nearest rank) of `values`; 0 for an empty list.
+double quantile(std::vector<double> values, double q);
+
+}  // namespace antcd::experiments

@@ -1,0 +1,153 @@
+// The scene engine: shared models, a sweep-and-prune broad phase, and the narrow phase of the
+// chosen method on each surviving pair.
+#include <antcd/collide.hpp>
+#include <antcd/scene.hpp>
+
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+#include <chrono>
+#include <map>
+#include <stdexcept>
+
+#include "scene/narrow.hpp"
+
+namespace antcd {
+
+std::string_view method_name(Method m) {
+  switch (m) {
+    case Method::Exact:
+      return "exact";
+    case Method::SphereObb:
+      return "sphere-obb";
+    case Method::Aco:
+      return "aco";
+    case Method::Maco:
+      return "maco";
+    case Method::Pso:
+      return "pso";
+    case Method::Ga:
+      return "ga";
+  }
+  return "?";
+}
+
+Method parse_method(std::string_view name) {
+  for (const Method m :
+       {Method::Exact, Method::SphereObb, Method::Aco, Method::Maco, Method::Pso, Method::Ga}) {
+    if (method_name(m) == name) return m;
+  }
+  throw Error("unknown method '" + std::string(name) +
+              "' (expected exact, sphere-obb, aco, maco, pso or ga)");
+}
+
+Scene::Scene(SceneDescription description, const BuildOptions& options)
+    : description_(std::move(description)) {
+  const auto start = std::chrono::steady_clock::now();
+  std::map<std::pair<std::string, Scalar>, std::size_t> built;
+  model_index_.reserve(description_.objects.size());
+  for (const SceneObject& o : description_.objects) {
+    const auto key = std::make_pair(o.mesh.lexically_normal().string(), o.scale);
+    auto it = built.find(key);
+    if (it == built.end()) {
+      Mesh mesh;
+      try {
+        mesh = load_mesh(o.mesh);
+      } catch (const MeshError& e) {
+        throw SceneError("object '" + o.name + "': " + e.what());
+      }
+      if (o.scale != 1) {
+        for (Vec3& v : mesh.vertices) v *= o.scale;
+      }
+      models_.push_back(std::make_unique<Model>(std::move(mesh), options, o.mesh.string()));
+      it = built.emplace(key, models_.size() - 1).first;
+    }
+    model_index_.push_back(it->second);
+  }
+  build_ms_ =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+FrameResult Scene::run_frame(std::size_t frame, const SceneQuery& query) const {
+  if (frame >= description_.frames) {
+    throw std::out_of_range("frame " + std::to_string(frame) + " out of range (scene has " +
+                            std::to_string(description_.frames) + " frames)");
+  }
+  if (!(query.delta >= 0) || !std::isfinite(query.delta)) {
+    throw Error("delta must be finite and >= 0");
+  }
+  if (query.threads < 1) throw Error("threads must be at least 1");
+  const auto start = std::chrono::steady_clock::now();
+  FrameResult result;
+  result.frame = frame;
+  const std::size_t n = description_.objects.size();
+
+  // Poses and world bounding spheres of the roots.
+  std::vector<Transform> poses(n);
+  std::vector<Vec3> centers(n);
+  std::vector<Scalar> radii(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    poses[i] = description_.objects[i].pose(frame);
+    const Sphere& s = model_of(i).root().sphere;
+    centers[i] = poses[i].apply(s.center);
+    radii[i] = s.radius;
+  }
+
+  // Sweep and prune along x on the spheres' boxes, then y/z box overlap, the sphere test and the
+  // root OBB test, all widened by delta.
+  const Scalar delta = query.delta;
+  std::vector<std::uint32_t> order(n);
+  for (std::uint32_t i = 0; i < n; ++i) order[i] = i;
+  std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
+    const Scalar la = centers[a].x() - radii[a];
+    const Scalar lb = centers[b].x() - radii[b];
+    return la < lb || (la == lb && a < b);
+  });
+  std::vector<std::uint32_t> active;
+  for (const std::uint32_t i : order) {
+    const Scalar lo = centers[i].x() - radii[i];
+    std::erase_if(active, [&](std::uint32_t j) { return centers[j].x() + radii[j] + delta < lo; });
+    for (const std::uint32_t j : active) {
+      const Vec3 d = (centers[i] - centers[j]).cwiseAbs();
+      const Scalar reach = radii[i] + radii[j] + delta;
+      if (d.y() > reach || d.z() > reach) continue;
+      if (d.squaredNorm() > reach * reach) continue;
+      Obb oi = model_of(i).root().obb;
+      oi.axes = poses[i].rotation * oi.axes;
+      oi.center = poses[i].apply(oi.center);
+      Obb oj = model_of(j).root().obb;
+      oj.axes = poses[j].rotation * oj.axes;
+      oj.center = poses[j].apply(oj.center);
+      if (!geometry::obb_overlap(oi, oj, delta + 1e-9 * (reach + centers[i].norm()))) continue;
+      result.candidates.emplace_back(std::min(i, j), std::max(i, j));
+    }
+    active.push_back(i);
+  }
+  std::sort(result.candidates.begin(), result.candidates.end());
+
+  // Narrow phase, one independent task per candidate pair.
+  const std::size_t m = result.candidates.size();
+  std::vector<detail::PairOutcome> outcomes(m);
+  const auto work = [&](std::size_t k) {
+    const auto [i, j] = result.candidates[k];
+    outcomes[k] =
+        detail::narrow_phase(model_of(i), poses[i], model_of(j), poses[j], query, frame, i, j);
+  };
+  if (query.threads == 1 || m < 2) {
+    for (std::size_t k = 0; k < m; ++k) work(k);
+  } else {
+    tbb::task_arena arena(query.threads);
+    arena.execute([&] { tbb::parallel_for(std::size_t{0}, m, [&](std::size_t k) { work(k); }); });
+  }
+  for (std::size_t k = 0; k < m; ++k) {
+    if (outcomes[k].colliding) result.pairs.push_back(result.candidates[k]);
+    result.feature_hits += outcomes[k].feature_hits;
+    result.feature_truth += outcomes[k].feature_truth;
+  }
+  result.time_ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+}  // namespace antcd

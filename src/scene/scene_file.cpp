@@ -1,0 +1,197 @@
+// The antcd-scene/1 file format: parsing with one clear error per violation, and writing.
+#include <antcd/io.hpp>
+#include <antcd/scene.hpp>
+
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+#include <unordered_set>
+
+namespace antcd {
+
+namespace {
+
+using nlohmann::json;
+
+constexpr std::string_view kFormat = "antcd-scene/1";
+
+class Parser {
+ public:
+  explicit Parser(std::string source) : source_(std::move(source)) {}
+
+  [[noreturn]] void fail(const std::string& where, const std::string& problem) const {
+    throw SceneError(source_ + ": " + (where.empty() ? "" : where + ": ") + problem);
+  }
+
+  Scalar number(const json& j, const std::string& where, const std::string& field) const {
+    if (!j.is_number()) fail(where, "'" + field + "' must be a number");
+    const Scalar v = j.get<Scalar>();
+    if (!std::isfinite(v)) fail(where, "'" + field + "' is not finite");
+    return v;
+  }
+
+  Vec3 vec3(const json& j, const std::string& where, const std::string& field) const {
+    if (!j.is_array() || j.size() != 3)
+      fail(where, "'" + field + "' must be an array of 3 numbers");
+    return {number(j[0], where, field), number(j[1], where, field), number(j[2], where, field)};
+  }
+
+  Transform pose(const json& j, const std::string& where) const {
+    if (!j.is_object()) fail(where, "a pose must be an object");
+    for (const auto& [key, value] : j.items()) {
+      if (key != "translation" && key != "rotation_wxyz")
+        fail(where, "unknown pose field '" + key + "'");
+    }
+    Transform t;
+    if (j.contains("translation")) t.translation = vec3(j["translation"], where, "translation");
+    if (j.contains("rotation_wxyz")) {
+      const json& q = j["rotation_wxyz"];
+      if (!q.is_array() || q.size() != 4) {
+        fail(where, "'rotation_wxyz' must be an array of 4 numbers (w, x, y, z)");
+      }
+      const Scalar w = number(q[0], where, "rotation_wxyz");
+      const Scalar x = number(q[1], where, "rotation_wxyz");
+      const Scalar y = number(q[2], where, "rotation_wxyz");
+      const Scalar z = number(q[3], where, "rotation_wxyz");
+      const Scalar norm = std::sqrt(w * w + x * x + y * y + z * z);
+      if (std::abs(norm - 1) > 1e-3) {
+        std::ostringstream msg;
+        msg << "quaternion has length " << norm << ", expected 1 (within 1e-3)";
+        fail(where, msg.str());
+      }
+      t.rotation = Quat(w / norm, x / norm, y / norm, z / norm).toRotationMatrix();
+    }
+    return t;
+  }
+
+  SceneDescription scene(std::string_view text, const std::filesystem::path& base_dir) const {
+    json root;
+    try {
+      root = json::parse(text.begin(), text.end());
+    } catch (const json::parse_error& e) {
+      std::string msg = e.what();
+      for (char& c : msg) {
+        if (c == '\n') c = ' ';
+      }
+      fail("", "not valid JSON (" + msg + ")");
+    }
+    if (!root.is_object()) fail("", "the top level must be a JSON object");
+    if (!root.contains("format")) fail("", "missing 'format' (expected \"antcd-scene/1\")");
+    if (!root["format"].is_string() || root["format"].get<std::string>() != kFormat) {
+      fail("", "unknown format " + root["format"].dump() + " (expected \"antcd-scene/1\")");
+    }
+    for (const auto& [key, value] : root.items()) {
+      if (key != "format" && key != "frames" && key != "objects") {
+        fail("", "unknown field '" + key + "'");
+      }
+    }
+    SceneDescription out;
+    if (!root.contains("frames")) fail("", "missing 'frames'");
+    const json& frames = root["frames"];
+    if (!frames.is_number_integer() || frames.get<std::int64_t>() < 1 ||
+        frames.get<std::int64_t>() > 10'000'000) {
+      fail("", "'frames' must be an integer from 1 to 10000000");
+    }
+    out.frames = frames.get<std::size_t>();
+    if (!root.contains("objects") || !root["objects"].is_array()) {
+      fail("", "missing 'objects' array");
+    }
+    std::unordered_set<std::string> names;
+    std::size_t index = 0;
+    for (const json& o : root["objects"]) {
+      std::string where = "object " + std::to_string(index);
+      if (!o.is_object()) fail(where, "must be a JSON object");
+      if (!o.contains("name") || !o["name"].is_string() || o["name"].get<std::string>().empty()) {
+        fail(where, "missing or empty 'name'");
+      }
+      SceneObject obj;
+      obj.name = o["name"].get<std::string>();
+      where = "object '" + obj.name + "'";
+      for (const auto& [key, value] : o.items()) {
+        if (key != "name" && key != "mesh" && key != "scale" && key != "poses") {
+          fail(where, "unknown field '" + key + "'");
+        }
+      }
+      if (!names.insert(obj.name).second) fail(where, "duplicate name");
+      if (!o.contains("mesh") || !o["mesh"].is_string() || o["mesh"].get<std::string>().empty()) {
+        fail(where, "missing or empty 'mesh'");
+      }
+      obj.mesh_text = o["mesh"].get<std::string>();
+      const std::filesystem::path mesh_path(obj.mesh_text);
+      obj.mesh = mesh_path.is_absolute() ? mesh_path : base_dir / mesh_path;
+      if (o.contains("scale")) {
+        obj.scale = number(o["scale"], where, "scale");
+        if (!(obj.scale > 0)) fail(where, "'scale' must be > 0");
+      }
+      if (!o.contains("poses") || !o["poses"].is_array() || o["poses"].empty()) {
+        fail(where, "missing 'poses' (one pose, or one per frame)");
+      }
+      const json& poses = o["poses"];
+      if (poses.size() != 1 && poses.size() != out.frames) {
+        fail(where, "has " + std::to_string(poses.size()) + " poses; expected 1 or " +
+                        std::to_string(out.frames) + " (frames)");
+      }
+      obj.poses.reserve(poses.size());
+      for (std::size_t k = 0; k < poses.size(); ++k) {
+        obj.poses.push_back(pose(poses[k], where + ": pose " + std::to_string(k)));
+      }
+      out.objects.push_back(std::move(obj));
+      ++index;
+    }
+    if (out.objects.empty()) fail("", "'objects' is empty");
+    return out;
+  }
+
+ private:
+  std::string source_;
+};
+
+json vec_json(const Vec3& v) { return json::array({v.x(), v.y(), v.z()}); }
+
+}  // namespace
+
+SceneDescription parse_scene(std::string_view json_text, const std::filesystem::path& base_dir,
+                             const std::string& source) {
+  return Parser(source).scene(json_text, base_dir);
+}
+
+SceneDescription load_scene(const std::filesystem::path& path) {
+  std::string text;
+  try {
+    text = read_file(path);
+  } catch (const Error& e) {
+    throw SceneError(e.what());
+  }
+  return parse_scene(text, path.parent_path(), path.string());
+}
+
+std::string scene_to_json(const SceneDescription& scene) {
+  json root;
+  root["format"] = kFormat;
+  root["frames"] = scene.frames;
+  json objects = json::array();
+  for (const SceneObject& o : scene.objects) {
+    json jo;
+    jo["name"] = o.name;
+    jo["mesh"] = o.mesh_text.empty() ? o.mesh.generic_string() : o.mesh_text;
+    if (o.scale != 1) jo["scale"] = o.scale;
+    json poses = json::array();
+    for (const Transform& t : o.poses) {
+      const Quat q(t.rotation);
+      poses.push_back({{"translation", vec_json(t.translation)},
+                       {"rotation_wxyz", json::array({q.w(), q.x(), q.y(), q.z()})}});
+    }
+    jo["poses"] = std::move(poses);
+    objects.push_back(std::move(jo));
+  }
+  root["objects"] = std::move(objects);
+  return root.dump(1);
+}
+
+void save_scene(const SceneDescription& scene, const std::filesystem::path& path) {
+  write_file_atomic(path, scene_to_json(scene));
+}
+
+}  // namespace antcd

@@ -1,0 +1,163 @@
+// The scene engine against an all-pairs brute-force run, across methods and thread counts.
+#include <antcd/collide.hpp>
+#include <antcd/io.hpp>
+#include <antcd/scene.hpp>
+
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "support/test_support.hpp"
+
+namespace antcd {
+namespace {
+
+// A small scene of generated shapes tumbling through a box of side ~6, written to `dir`.
+SceneDescription small_scene(const std::filesystem::path& dir, std::size_t objects,
+                             std::size_t frames, std::uint64_t seed) {
+  save_obj(make_torus(0.6, 0.2, 24, 12), dir / "torus.obj");
+  save_obj(make_box(Vec3(0.5, 0.3, 0.2), 2), dir / "box.obj");
+  save_obj(make_sphere(0.4, 16, 8), dir / "sphere.obj");
+  const char* meshes[] = {"torus.obj", "box.obj", "sphere.obj"};
+  std::mt19937_64 rng(seed);
+  SceneDescription s;
+  s.frames = frames;
+  for (std::size_t i = 0; i < objects; ++i) {
+    SceneObject o;
+    o.name = "obj_" + std::to_string(i);
+    o.mesh_text = meshes[i % 3];
+    o.mesh = dir / o.mesh_text;
+    o.scale = i % 4 == 3 ? 1.5 : 1.0;
+    const Transform start = test::random_pose(rng, 3.0);
+    const Transform end = test::random_pose(rng, 3.0);
+    if (i % 5 == 0) {
+      o.poses = {start};  // static
+    } else {
+      for (std::size_t f = 0; f < frames; ++f) {
+        const double t = frames > 1 ? static_cast<double>(f) / static_cast<double>(frames - 1) : 0;
+        Transform p;
+        p.rotation = Quat(start.rotation).slerp(t, Quat(end.rotation)).toRotationMatrix();
+        p.translation = (1 - t) * start.translation + t * end.translation;
+        o.poses.push_back(p);
+      }
+    }
+    s.objects.push_back(std::move(o));
+  }
+  return s;
+}
+
+std::vector<std::pair<std::uint32_t, std::uint32_t>> brute_force(const Scene& scene,
+                                                                 std::size_t frame, Scalar delta) {
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> out;
+  const auto& objects = scene.description().objects;
+  for (std::uint32_t i = 0; i < objects.size(); ++i) {
+    for (std::uint32_t j = i + 1; j < objects.size(); ++j) {
+      if (collide(scene.model_of(i), objects[i].pose(frame), scene.model_of(j),
+                  objects[j].pose(frame), CollisionRequest{delta})
+              .colliding) {
+        out.emplace_back(i, j);
+      }
+    }
+  }
+  return out;
+}
+
+TEST(Scene, ExactEqualsAllPairsBruteForce) {
+  const auto dir = test::fresh_temp_dir("scene_brute");
+  const Scene scene(small_scene(dir, 30, 40, 5));
+  EXPECT_EQ(scene.model_count(), 5u);  // 3 meshes, two of them also at scale 1.5
+  std::size_t colliding = 0;
+  for (const Scalar delta : {0.0, 0.1}) {
+    for (std::size_t f = 0; f < 40; ++f) {
+      SceneQuery q;
+      q.delta = delta;
+      const FrameResult r = scene.run_frame(f, q);
+      const auto truth = brute_force(scene, f, delta);
+      ASSERT_EQ(r.pairs, truth) << "frame " << f << " delta " << delta;
+      // Every colliding pair survived the broad phase, and candidates are ordered and unique.
+      for (const auto& p : truth) {
+        EXPECT_TRUE(std::binary_search(r.candidates.begin(), r.candidates.end(), p));
+      }
+      EXPECT_TRUE(std::is_sorted(r.candidates.begin(), r.candidates.end()));
+      EXPECT_EQ(std::adjacent_find(r.candidates.begin(), r.candidates.end()), r.candidates.end());
+      EXPECT_LT(r.candidates.size(), 30u * 29 / 2);  // the broad phase culls
+      colliding += truth.size();
+    }
+  }
+  EXPECT_GT(colliding, 40u);
+}
+
+TEST(Scene, ThreadsDoNotChangeAnyMethodsAnswer) {
+  const auto dir = test::fresh_temp_dir("scene_threads");
+  const Scene scene(small_scene(dir, 24, 6, 8));
+  for (const Method m :
+       {Method::Exact, Method::SphereObb, Method::Aco, Method::Maco, Method::Pso, Method::Ga}) {
+    SceneQuery q;
+    q.method = m;
+    q.seed = 99;
+    q.samples_per_side = 200;
+    q.iterations = 20;
+    for (std::size_t f = 0; f < 6; ++f) {
+      q.threads = 1;
+      const FrameResult one = scene.run_frame(f, q);
+      for (const int threads : {2, 4}) {
+        q.threads = threads;
+        const FrameResult many = scene.run_frame(f, q);
+        EXPECT_EQ(one.pairs, many.pairs) << method_name(m) << " frame " << f;
+        EXPECT_EQ(one.candidates, many.candidates);
+        EXPECT_EQ(one.feature_hits, many.feature_hits) << method_name(m) << " frame " << f;
+      }
+    }
+  }
+}
+
+TEST(Scene, SphereObbIsASupersetOfExact) {
+  // The hierarchy-only baseline reports a pair whenever leaf volumes overlap, so it never misses
+  // an exact collision; it may report more.
+  const auto dir = test::fresh_temp_dir("scene_sphereobb");
+  const Scene scene(small_scene(dir, 30, 20, 13));
+  for (std::size_t f = 0; f < 20; ++f) {
+    SceneQuery exact;
+    SceneQuery boxes;
+    boxes.method = Method::SphereObb;
+    const auto e = scene.run_frame(f, exact).pairs;
+    const auto b = scene.run_frame(f, boxes).pairs;
+    EXPECT_TRUE(std::includes(b.begin(), b.end(), e.begin(), e.end())) << "frame " << f;
+  }
+}
+
+TEST(Scene, RandomMethodsOnlyReportCandidatePairsAndAreSeeded) {
+  const auto dir = test::fresh_temp_dir("scene_random");
+  const Scene scene(small_scene(dir, 24, 4, 21));
+  SceneQuery q;
+  q.method = Method::Maco;
+  q.seed = 7;
+  q.count_feature_truth = true;
+  for (std::size_t f = 0; f < 4; ++f) {
+    const FrameResult a = scene.run_frame(f, q);
+    const FrameResult b = scene.run_frame(f, q);
+    EXPECT_EQ(a.pairs, b.pairs);
+    EXPECT_EQ(a.feature_hits, b.feature_hits);
+    EXPECT_LE(a.feature_hits, a.feature_truth);
+    for (const auto& p : a.pairs) {
+      EXPECT_TRUE(std::binary_search(a.candidates.begin(), a.candidates.end(), p));
+    }
+  }
+}
+
+TEST(Scene, RejectsBadQueriesAndFrames) {
+  const auto dir = test::fresh_temp_dir("scene_bad");
+  const Scene scene(small_scene(dir, 4, 2, 1));
+  EXPECT_THROW((void)scene.run_frame(2, {}), std::out_of_range);
+  SceneQuery q;
+  q.delta = -1;
+  EXPECT_THROW((void)scene.run_frame(0, q), Error);
+  q.delta = 0;
+  q.threads = 0;
+  EXPECT_THROW((void)scene.run_frame(0, q), Error);
+  EXPECT_THROW(parse_method("bogus"), Error);
+  EXPECT_EQ(parse_method("sphere-obb"), Method::SphereObb);
+}
+
+}  // namespace
+}  // namespace antcd
