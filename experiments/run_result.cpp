@@ -116,7 +116,7 @@ RunResult parse_run_result(std::string_view text, const std::string& source) {
   json root;
   try {
     root = json::parse(text.begin(), text.end());
-  } catch (const json::parse_error&) {
+  } catch (const json::exception&) {
     fail(source, "not valid JSON");
   }
   if (!root.is_object()) fail(source, "not a run result (expected a JSON object)");

@@ -33,5 +33,6 @@ void add_collide_command(CLI::App& app, int& code);
 void add_info_command(CLI::App& app, int& code);
 void add_demo_command(CLI::App& app, int& code);
 void add_scene_commands(CLI::App& app, int& code);
+void add_bench_commands(CLI::App& app, int& code);
 
 }  // namespace antcd::cli

@@ -10,8 +10,7 @@
 
 namespace antcd::cli {
 
-void add_bench_paper_command(CLI::App& bench, int& code);
-void add_bench_commands(CLI::App& app, int& code);
+namespace {
 
 void add_bench_paper_command(CLI::App& bench, int& code) {
   auto opts = std::make_shared<experiments::PaperBenchOptions>();
@@ -37,6 +36,8 @@ void add_bench_paper_command(CLI::App& bench, int& code) {
     code = 0;
   });
 }
+
+}  // namespace
 
 void add_bench_commands(CLI::App& app, int& code) {
   CLI::App* bench = app.add_subcommand("bench", "Benchmark suites");

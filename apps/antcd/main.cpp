@@ -37,6 +37,7 @@ int main(int argc, char** argv) {
   antcd::cli::add_info_command(app, code);
   antcd::cli::add_demo_command(app, code);
   antcd::cli::add_scene_commands(app, code);
+  antcd::cli::add_bench_commands(app, code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp&) {

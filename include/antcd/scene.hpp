@@ -94,8 +94,14 @@ struct SceneQuery {
   std::uint32_t iterations = 100;
   /// Random methods: ants (aco/maco), particles (pso), population (ga); the paper's m = 60.
   std::uint32_t agents = 60;
+  /// Random methods: the verdict of a pair needs one colliding feature pair, so by default each
+  /// search stops at its first hit (or after N iterations without one). Set to run every search
+  /// for its full N iterations and collect every colliding feature pair it meets (FrameResult::
+  /// feature_hits), as the paper's A/B needs. Same verdicts, more time.
+  bool search_all = false;
   /// Random methods: also enumerate each searched feature space to count its truly colliding
   /// feature pairs (FrameResult::feature_truth), for the paper's A/B. Costs one exhaustive pass.
+  /// Implies search_all.
   bool count_feature_truth = false;
   /// Worker threads for the narrow phase (1 = the calling thread only).
   int threads = 1;
@@ -135,6 +141,7 @@ class Scene {
   SceneDescription description_;
   std::vector<std::unique_ptr<Model>> models_;
   std::vector<std::size_t> model_index_;
+  std::vector<Scalar> feature_radius_;  ///< per model, for the random methods' default delta
   double build_ms_ = 0;
 };
 

@@ -44,7 +44,7 @@ class Builder {
       node.first_or_right = static_cast<std::uint32_t>(begin);
       node.count = static_cast<std::uint32_t>(end - begin);
     } else {
-      const std::size_t mid = split_range(node.obb, begin, end, depth);
+      const std::size_t mid = split_range(begin, end, depth);
       const std::size_t left_height = build(begin, mid, depth + 1);
       node.first_or_right = static_cast<std::uint32_t>(nodes_.size());
       const std::size_t right_height = build(mid, end, depth + 1);
@@ -73,9 +73,11 @@ class Builder {
         }
       }
     } else {
-      // Eq. 3: the combined centroid m = Σ A_i c_i / Σ A_i. Into Eq. 2: each triangle's vertex
-      // scatter about m, weighted by the triangle's area, so that a finely tessellated region
-      // counts by its area and not by its number of vertices.
+      // Eq. 3: the combined centroid m = Σ A_i c_i / Σ A_i. Into Eq. 2: the covariance of the
+      // surface itself about m, each triangle weighted by its area. A triangle's second moment
+      // about m is A/12 (9 d_c d_cᵀ + Σ_v d_v d_vᵀ) with d = x − m, which integrates the whole
+      // triangle rather than its three corners, so the result does not depend on how the surface
+      // is cut into triangles.
       Scalar total_area = 0;
       for (std::size_t i = begin; i < end; ++i) {
         mean += tris_[i].area * tris_[i].centroid;
@@ -83,12 +85,13 @@ class Builder {
       }
       mean /= total_area;
       for (std::size_t i = begin; i < end; ++i) {
-        Mat3 scatter = Mat3::Zero();
+        const Vec3 dc = tris_[i].centroid - mean;
+        Mat3 moment = 9 * dc * dc.transpose();
         for (const Vec3& v : tris_[i].v) {
           const Vec3 d = v - mean;
-          scatter.noalias() += d * d.transpose();
+          moment.noalias() += d * d.transpose();
         }
-        cov += tris_[i].area * scatter;
+        cov += (tris_[i].area / 12) * moment;
       }
     }
     Eigen::SelfAdjointEigenSolver<Mat3> solver;
@@ -134,29 +137,35 @@ class Builder {
   }
 
   // Partitions [begin, end) and returns the first index of the right part (begin < mid < end).
-  std::size_t split_range(const Obb& obb, std::size_t begin, std::size_t end, std::size_t depth) {
-    // Split axis: of the node's three principal axes, the one along which the triangle centroids'
-    // projections have the largest variance.
+  std::size_t split_range(std::size_t begin, std::size_t end, std::size_t depth) {
+    // Split axis: the direction of largest variance of the triangle centroids, i.e. the
+    // principal eigenvector of their covariance. It follows the shape whatever its orientation,
+    // and does not depend on the OBB fit method, so both fits see the same tree.
     const std::size_t n = end - begin;
-    Vec3 sum = Vec3::Zero();
-    Vec3 sum_sq = Vec3::Zero();
+    Vec3 mean = Vec3::Zero();
+    for (std::size_t i = begin; i < end; ++i) mean += tris_[i].centroid;
+    mean /= static_cast<Scalar>(n);
+    Mat3 cov = Mat3::Zero();
     for (std::size_t i = begin; i < end; ++i) {
-      const Vec3 p = obb.axes.transpose() * tris_[i].centroid;
-      sum += p;
-      sum_sq += p.cwiseProduct(p);
+      const Vec3 d = tris_[i].centroid - mean;
+      cov.noalias() += d * d.transpose();
     }
-    const Vec3 mean = sum / static_cast<Scalar>(n);
-    const Vec3 variance = sum_sq / static_cast<Scalar>(n) - mean.cwiseProduct(mean);
-    int axis = 0;
-    variance.maxCoeff(&axis);
-    const Vec3 dir = obb.axes.col(axis);
+    Eigen::SelfAdjointEigenSolver<Mat3> solver;
+    solver.computeDirect(cov);
+    Vec3 dir = solver.eigenvectors().col(2);  // eigenvalues ascend: the last is the largest
+    if (!dir.allFinite() || dir.squaredNorm() < 0.5) {
+      int axis = 0;
+      cov.diagonal().maxCoeff(&axis);
+      dir = Vec3::Unit(axis);
+    }
+    dir.normalize();
+    const Scalar split = dir.dot(mean);
 
     // Split point: the mean of the projections (paper), unless one side would be empty or the
     // tree is already deep — then the median.
     auto first = tris_.begin() + static_cast<std::ptrdiff_t>(begin);
     auto last = tris_.begin() + static_cast<std::ptrdiff_t>(end);
     if (depth < kMedianDepth) {
-      const Scalar split = mean[axis];
       auto mid = std::partition(
           first, last, [&](const BuildTriangle& t) { return dir.dot(t.centroid) < split; });
       if (mid != first && mid != last) return begin + static_cast<std::size_t>(mid - first);

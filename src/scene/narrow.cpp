@@ -3,6 +3,9 @@
 #include <antcd/collide.hpp>
 #include <antcd/random.hpp>
 
+#include <algorithm>
+#include <limits>
+
 namespace antcd::detail {
 
 namespace {
@@ -30,18 +33,18 @@ SearchMethod search_method(Method m) {
 
 }  // namespace
 
-PairOutcome narrow_phase(const Model& a, const Transform& pa, const Model& b, const Transform& pb,
-                         const SceneQuery& query, std::size_t frame, std::uint32_t i,
-                         std::uint32_t j) {
+PairOutcome narrow_phase(const PairSide& a, const PairSide& b, const SceneQuery& query,
+                         std::size_t frame) {
   PairOutcome out;
   switch (query.method) {
     case Method::Exact: {
       CollisionResult result;
-      out.colliding = collide(a, pa, b, pb, CollisionRequest{query.delta, false, 0}, result);
+      out.colliding = collide(*a.model, a.pose, *b.model, b.pose,
+                              CollisionRequest{query.delta, false, 0}, result);
       return out;
     }
     case Method::SphereObb:
-      out.colliding = leaves_overlap(a, pa, b, pb, query.delta);
+      out.colliding = leaves_overlap(*a.model, a.pose, *b.model, b.pose, query.delta);
       return out;
     case Method::Aco:
     case Method::Maco:
@@ -51,19 +54,26 @@ PairOutcome narrow_phase(const Model& a, const Transform& pa, const Model& b, co
   }
   SearchRequest request;
   request.method = search_method(query.method);
-  request.delta = query.feature_delta > 0 ? query.feature_delta : default_delta(a, b);
+  if (query.feature_delta > 0) {
+    request.delta = query.feature_delta;
+  } else {
+    // default_delta(a, b), from the radii the scene cached (random.hpp).
+    request.delta =
+        std::max(a.feature_radius + b.feature_radius, std::numeric_limits<Scalar>::min());
+  }
   request.iterations = query.iterations;
   request.ant.ants = query.agents;
   request.pso.particles = query.agents;
   request.ga.population = query.agents;
-  request.seed = mix(mix(mix(query.seed) ^ frame) ^ (std::uint64_t{i} << 32 | j));
+  request.seed = mix(mix(mix(query.seed) ^ frame) ^ (std::uint64_t{a.index} << 32 | b.index));
+  request.stop.first_hit = !(query.search_all || query.count_feature_truth);
   SamplingOptions sampling;
   sampling.samples_per_side = static_cast<std::uint32_t>(query.samples_per_side);
   sampling.delta = request.delta;
-  const FeatureSpace space = build_feature_space(a, pa, b, pb, sampling, request.seed);
+  const FeatureSpace space =
+      build_feature_space(*a.model, a.pose, *b.model, b.pose, sampling, request.seed);
   if (query.count_feature_truth) {
     out.feature_truth = count_colliding(space, request.delta);
-    request.stop.reference_count = out.feature_truth;
   }
   const SearchResult found = search(space, request);
   out.colliding = found.found;

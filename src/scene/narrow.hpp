@@ -13,10 +13,18 @@ struct PairOutcome {
   std::uint64_t feature_truth = 0;  ///< random methods: colliding feature pairs in the space
 };
 
+/// One object of a candidate pair: its model, its pose this frame, its model's feature radius
+/// (random.hpp, cached by the scene) and its object index.
+struct PairSide {
+  const Model* model = nullptr;
+  Transform pose;
+  Scalar feature_radius = 0;
+  std::uint32_t index = 0;
+};
+
 /// Runs `query.method` on one pair. Deterministic: random methods seed their stream from
-/// (query.seed, frame, i, j) only.
-PairOutcome narrow_phase(const Model& a, const Transform& pa, const Model& b, const Transform& pb,
-                         const SceneQuery& query, std::size_t frame, std::uint32_t i,
-                         std::uint32_t j);
+/// (query.seed, frame, a.index, b.index) only.
+PairOutcome narrow_phase(const PairSide& a, const PairSide& b, const SceneQuery& query,
+                         std::size_t frame);
 
 }  // namespace antcd::detail

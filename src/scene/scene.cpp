@@ -1,6 +1,7 @@
 // The scene engine: shared models, a sweep-and-prune broad phase, and the narrow phase of the
 // chosen method on each surviving pair.
 #include <antcd/collide.hpp>
+#include <antcd/random.hpp>
 #include <antcd/scene.hpp>
 
 #include <tbb/parallel_for.h>
@@ -8,6 +9,8 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <cstdint>
 #include <map>
 #include <stdexcept>
 
@@ -61,6 +64,7 @@ Scene::Scene(SceneDescription description, const BuildOptions& options)
         for (Vec3& v : mesh.vertices) v *= o.scale;
       }
       models_.push_back(std::make_unique<Model>(std::move(mesh), options, o.mesh.string()));
+      feature_radius_.push_back(feature_radius(*models_.back()));
       it = built.emplace(key, models_.size() - 1).first;
     }
     model_index_.push_back(it->second);
@@ -78,6 +82,19 @@ FrameResult Scene::run_frame(std::size_t frame, const SceneQuery& query) const {
     throw Error("delta must be finite and >= 0");
   }
   if (query.threads < 1) throw Error("threads must be at least 1");
+  if (query.method != Method::Exact && query.method != Method::SphereObb) {
+    if (query.iterations < 1) throw Error("iterations must be at least 1");
+    if (query.samples_per_side < 1 || query.samples_per_side > UINT32_MAX) {
+      throw Error("samples per side must be between 1 and 4294967295");
+    }
+    const std::uint32_t min_agents = query.method == Method::Ga ? 2 : 1;
+    if (query.agents < min_agents) {
+      throw Error(std::string(method_name(query.method)) + " needs at least " +
+                  std::to_string(min_agents) + (min_agents == 1 ? " agent" : " agents") +
+                  " (ants, particles or population)");
+    }
+    if (!std::isfinite(query.feature_delta)) throw Error("feature delta must be finite");
+  }
   const auto start = std::chrono::steady_clock::now();
   FrameResult result;
   result.frame = frame;
@@ -131,8 +148,9 @@ FrameResult Scene::run_frame(std::size_t frame, const SceneQuery& query) const {
   std::vector<detail::PairOutcome> outcomes(m);
   const auto work = [&](std::size_t k) {
     const auto [i, j] = result.candidates[k];
-    outcomes[k] =
-        detail::narrow_phase(model_of(i), poses[i], model_of(j), poses[j], query, frame, i, j);
+    const detail::PairSide a{&model_of(i), poses[i], feature_radius_[model_index_[i]], i};
+    const detail::PairSide b{&model_of(j), poses[j], feature_radius_[model_index_[j]], j};
+    outcomes[k] = detail::narrow_phase(a, b, query, frame);
   };
   if (query.threads == 1 || m < 2) {
     for (std::size_t k = 0; k < m; ++k) work(k);

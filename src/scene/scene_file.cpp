@@ -70,7 +70,7 @@ class Parser {
     json root;
     try {
       root = json::parse(text.begin(), text.end());
-    } catch (const json::parse_error& e) {
+    } catch (const json::exception& e) {  // parse errors, and out_of_range for 1e999
       std::string msg = e.what();
       for (char& c : msg) {
         if (c == '\n') c = ' ';

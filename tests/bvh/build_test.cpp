@@ -187,33 +187,40 @@ TEST(BvhBuild, Errors) {
   EXPECT_THROW(Model(nan, {}, "nan"), MeshError);
 }
 
-// A rectangular plate (two-sided thin box surface is not needed: the plate alone shows the
-// effect) whose grid is refined geometrically toward one corner, then turned in space. Vertex
-// clusters in the fine corner drag the vertex-mean covariance (Eqs. 1–2) off the plate's true
-// axes; the area-weighted centroid version (Eq. 3) is insensitive to how the area is cut up.
-Mesh graded_plate(int n, double ratio, const Transform& pose) {
+// The closed surface of a 4 x 1 x 0.5 box whose faces are gridded with lines crowded toward the
+// corner at the origin (geometric spacing), then turned in space. The crowded corner drags the
+// vertex-mean covariance (Eqs. 1-2) off the box's true axes; the area-weighted version (Eq. 3) is
+// indifferent to how the area is cut up.
+Mesh graded_box(int n, double ratio, const Transform& pose) {
   std::vector<double> ticks(n + 1);
   for (int i = 0; i <= n; ++i) ticks[i] = (std::pow(ratio, i) - 1) / (std::pow(ratio, n) - 1);
+  const Vec3 size(4.0, 1.0, 0.5);
   Mesh m;
-  for (int j = 0; j <= n; ++j) {
-    for (int i = 0; i <= n; ++i) {
-      m.vertices.push_back(pose.apply(Vec3(4.0 * ticks[i], 1.0 * ticks[j], 0.0)));
+  for (int axis = 0; axis < 3; ++axis) {
+    const int u = (axis + 1) % 3;
+    const int v = (axis + 2) % 3;
+    for (const double side : {0.0, 1.0}) {
+      const std::uint32_t base = static_cast<std::uint32_t>(m.vertices.size());
+      for (int j = 0; j <= n; ++j) {
+        for (int i = 0; i <= n; ++i) {
+          Vec3 p;
+          p[axis] = side * size[axis];
+          p[u] = ticks[i] * size[u];
+          p[v] = ticks[j] * size[v];
+          m.vertices.push_back(pose.apply(p));
+        }
+      }
+      const auto at = [&](int i, int j) {
+        return base + static_cast<std::uint32_t>(j * (n + 1) + i);
+      };
+      for (int j = 0; j < n; ++j) {
+        for (int i = 0; i < n; ++i) {
+          m.triangles.push_back({at(i, j), at(i + 1, j), at(i + 1, j + 1)});
+          m.triangles.push_back({at(i, j), at(i + 1, j + 1), at(i, j + 1)});
+        }
+      }
     }
   }
-  // Thickness: a second, coarse face 0.1 below keeps the plate a solid-like shell.
-  const std::uint32_t base = static_cast<std::uint32_t>(m.vertices.size());
-  for (const auto& p : {Vec3(0, 0, -0.1), Vec3(4, 0, -0.1), Vec3(4, 1, -0.1), Vec3(0, 1, -0.1)}) {
-    m.vertices.push_back(pose.apply(p));
-  }
-  const auto at = [n](int i, int j) { return static_cast<std::uint32_t>(j * (n + 1) + i); };
-  for (int j = 0; j < n; ++j) {
-    for (int i = 0; i < n; ++i) {
-      m.triangles.push_back({at(i, j), at(i + 1, j), at(i + 1, j + 1)});
-      m.triangles.push_back({at(i, j), at(i + 1, j + 1), at(i, j + 1)});
-    }
-  }
-  m.triangles.push_back({base, base + 2, base + 1});
-  m.triangles.push_back({base, base + 3, base + 2});
   return m;
 }
 
@@ -222,7 +229,7 @@ TEST(BvhBuild, AreaWeightedCovarianceIsAtLeastAsTightOnNonUniformMeshes) {
   int strictly_tighter = 0;
   for (int trial = 0; trial < 10; ++trial) {
     const Transform pose = test::random_pose(rng, 10.0);
-    const Mesh mesh = graded_plate(40, 0.85, pose);
+    const Mesh mesh = graded_box(16 + trial, 0.75 + 0.01 * trial, pose);
     for (const std::uint32_t leaf : {4u, 16u}) {
       const Model area(mesh, {leaf, CovarianceMethod::AreaWeightedCentroid});
       const Model vertex(mesh, {leaf, CovarianceMethod::VertexMean});

@@ -106,7 +106,11 @@ TEST(ExactCollide, RealMeshesMatchBruteForceOnRandomPoses) {
   const Model box(load_mesh(test::assimp_model("OBJ/box.obj")), {}, "box");
   const Model cube(load_mesh(test::assimp_model("OFF/Cube.off")), {}, "cube");
   random_pose_sweep(spider, spider, 60, 5, {0.0, 0.5}, "spider-spider");
-  random_pose_sweep(spider, box, 200, 6, {0.0, 0.3}, "spider-box");
+  // box.obj is a unit cube, far smaller than the spider: scale it to a third of the spider's size.
+  Mesh big_box = load_mesh(test::assimp_model("OBJ/box.obj"));
+  for (Vec3& v : big_box.vertices) v *= 0.6 * spider.root().sphere.radius;
+  const Model scaled_box(big_box, {}, "scaled box");
+  random_pose_sweep(spider, scaled_box, 200, 6, {0.0, 0.3}, "spider-box");
   random_pose_sweep(cube, box, 600, 7, {0.0, 0.1}, "cube-box");
 }
 

@@ -65,7 +65,7 @@ std::vector<std::pair<std::uint32_t, std::uint32_t>> brute_force(const Scene& sc
 TEST(Scene, ExactEqualsAllPairsBruteForce) {
   const auto dir = test::fresh_temp_dir("scene_brute");
   const Scene scene(small_scene(dir, 30, 40, 5));
-  EXPECT_EQ(scene.model_count(), 5u);  // 3 meshes, two of them also at scale 1.5
+  EXPECT_EQ(scene.model_count(), 6u);  // 3 meshes, each also at scale 1.5
   std::size_t colliding = 0;
   for (const Scalar delta : {0.0, 0.1}) {
     for (std::size_t f = 0; f < 40; ++f) {
