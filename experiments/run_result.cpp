@@ -59,7 +59,9 @@ NamePair key(const NamePair& p) { return p.first < p.second ? p : NamePair{p.sec
 }  // namespace
 
 RunResult run_scene(const Scene& scene, const SceneQuery& query, const std::string& scene_name,
-                    const std::function<void(std::size_t, std::size_t)>& progress) {
+                    const std::function<void(std::size_t, std::size_t)>& progress,
+                    std::size_t frame_step) {
+  if (frame_step < 1) throw Error("frame step must be at least 1");
   RunResult out;
   out.method = std::string(method_name(query.method));
   out.scene = scene_name;
@@ -68,9 +70,10 @@ RunResult run_scene(const Scene& scene, const SceneQuery& query, const std::stri
   out.threads = query.threads;
   out.build_ms = scene.build_ms();
   const std::size_t frames = scene.description().frames;
-  out.frames.reserve(frames);
+  const std::size_t runs = (frames + frame_step - 1) / frame_step;
+  out.frames.reserve(runs);
   const bool random = query.method != Method::Exact && query.method != Method::SphereObb;
-  for (std::size_t f = 0; f < frames; ++f) {
+  for (std::size_t f = 0; f < frames; f += frame_step) {
     const FrameResult r = scene.run_frame(f, query);
     FrameRecord rec;
     rec.frame = f;
@@ -83,7 +86,7 @@ RunResult run_scene(const Scene& scene, const SceneQuery& query, const std::stri
     }
     out.total_ms += r.time_ms;
     out.frames.push_back(std::move(rec));
-    if (progress) progress(f + 1, frames);
+    if (progress) progress(out.frames.size(), runs);
   }
   return out;
 }

@@ -40,10 +40,12 @@ struct RunResult {
   std::vector<FrameRecord> frames;
 };
 
-/// Runs every frame of `scene` with `query`; `progress(done, total)` is called after each frame
-/// when set. `build_ms` is taken from the scene (loading and building).
+/// Runs frames 0, frame_step, 2 frame_step, ... of `scene` with `query` (every frame by
+/// default); `progress(done, total)` is called after each frame run when set. `build_ms` is taken
+/// from the scene (loading and building). Throws antcd::Error if frame_step is 0.
 RunResult run_scene(const Scene& scene, const SceneQuery& query, const std::string& scene_name,
-                    const std::function<void(std::size_t, std::size_t)>& progress = {});
+                    const std::function<void(std::size_t, std::size_t)>& progress = {},
+                    std::size_t frame_step = 1);
 
 std::string to_json(const RunResult& result);
 /// Parses a run result; errors (antcd::Error) name `source` and the problem.

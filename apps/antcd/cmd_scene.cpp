@@ -4,6 +4,7 @@
 
 #include <unistd.h>
 
+#include <cmath>
 #include <cstdio>
 #include <iostream>
 #include <memory>
@@ -16,6 +17,26 @@ namespace antcd::cli {
 
 namespace {
 
+/// --delta and friends: a finite number >= 0. (CLI::NonNegativeNumber lets NaN through, and its
+/// message prints the largest double in full.)
+CLI::Validator non_negative_finite() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        double value = 0;
+        std::size_t used = 0;
+        try {
+          value = std::stod(text, &used);
+        } catch (const std::exception&) {
+          used = 0;
+        }
+        if (used == 0 || used != text.size() || !std::isfinite(value) || value < 0) {
+          return "expected a finite number >= 0, got '" + text + "'";
+        }
+        return {};
+      },
+      "NUMBER >= 0");
+}
+
 struct RunOptions {
   std::string scene;
   std::string method = "exact";
@@ -27,6 +48,7 @@ struct RunOptions {
   std::uint32_t iterations = 100;
   std::uint32_t agents = 60;
   bool feature_truth = false;
+  bool search_all = false;
   std::string out;
 };
 
@@ -50,6 +72,7 @@ int run_run(const RunOptions& o) {
   query.iterations = o.iterations;
   query.agents = o.agents;
   query.count_feature_truth = o.feature_truth;
+  query.search_all = o.search_all;
   const Scene scene(load_scene(o.scene));
   const bool tty = isatty(STDERR_FILENO) != 0;
   const experiments::RunResult result =
@@ -99,7 +122,11 @@ int run_generate(const GenerateOptions& o) {
   options.vertices = o.vertices;
   options.frames = o.frames;
   options.seed = o.seed;
-  for (const auto& m : o.meshes) options.mesh_files.emplace_back(m);
+  for (const auto& m : o.meshes) {
+    // Refuse a mesh no scene could use (e.g. only zero-area triangles) before writing anything.
+    (void)load_model(m, {});
+    options.mesh_files.emplace_back(m);
+  }
   const auto generated = experiments::generate_production_line(options);
   const auto path = experiments::write_scene(generated, o.out);
   std::printf("wrote %s (%zu objects, %zu meshes, %zu frames)\n", path.string().c_str(),
@@ -146,10 +173,10 @@ void add_scene_commands(CLI::App& app, int& code) {
   cmd->add_option("--method", run->method, "exact | sphere-obb | aco | maco | pso | ga")
       ->check(CLI::IsMember({"exact", "sphere-obb", "aco", "maco", "pso", "ga"}));
   cmd->add_option("--delta", run->delta, "Collision threshold δ in mesh units")
-      ->check(CLI::NonNegativeNumber);
+      ->check(non_negative_finite());
   cmd->add_option("--feature-delta", run->feature_delta,
                   "Random methods: centroid threshold (default: from triangle sizes)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(non_negative_finite());
   cmd->add_option("--seed", run->seed, "Seed of the random methods");
   cmd->add_option("--threads", run->threads, "Worker threads")->check(CLI::Range(1, 256));
   cmd->add_option("--samples", run->samples, "Random methods: features sampled per side")
@@ -160,6 +187,9 @@ void add_scene_commands(CLI::App& app, int& code) {
       ->check(CLI::Range(1, 100000));
   cmd->add_flag("--feature-truth", run->feature_truth,
                 "Random methods: also count each space's colliding feature pairs (for A/B)");
+  cmd->add_flag("--search-all", run->search_all,
+                "Random methods: run every search for its N iterations instead of stopping at "
+                "the first colliding feature pair (same verdicts; feature_hits counts them all)");
   cmd->add_option("--out", run->out, "Write the result JSON here (atomically)");
   cmd->callback([run, &code] { code = run_run(*run); });
 

@@ -22,7 +22,33 @@ class Parser {
   explicit Parser(std::string source) : source_(std::move(source)) {}
 
   [[noreturn]] void fail(const std::string& where, const std::string& problem) const {
-    throw SceneError(source_ + ": " + (where.empty() ? "" : where + ": ") + problem);
+    // Names and keys come from the file and may hold control characters ("a\nb" is valid JSON):
+    // they are escaped so that the message stays one line.
+    const std::string text = (where.empty() ? "" : where + ": ") + problem;
+    std::string message = source_ + ": ";
+    message.reserve(message.size() + text.size());
+    for (const char c : text) {
+      const auto u = static_cast<unsigned char>(c);
+      if (u >= 0x20 && u != 0x7F) {
+        message += c;
+      } else {
+        constexpr char hex[] = "0123456789abcdef";
+        message += "\\x";
+        message += hex[u >> 4];
+        message += hex[u & 0xF];
+      }
+    }
+    throw SceneError(message);
+  }
+
+  /// A short, one-line description of a JSON value for messages. json::dump() is avoided for
+  /// arrays and objects: it recurses once per nesting level, and a file of a million nested
+  /// brackets overflowed the stack.
+  static std::string describe(const json& j) {
+    if (j.is_array() || j.is_object()) return std::string("(a JSON ") + j.type_name() + ")";
+    std::string text = j.dump();
+    if (text.size() > 80) text = text.substr(0, 77) + "...";
+    return text;
   }
 
   Scalar number(const json& j, const std::string& where, const std::string& field) const {
@@ -80,7 +106,7 @@ class Parser {
     if (!root.is_object()) fail("", "the top level must be a JSON object");
     if (!root.contains("format")) fail("", "missing 'format' (expected \"antcd-scene/1\")");
     if (!root["format"].is_string() || root["format"].get<std::string>() != kFormat) {
-      fail("", "unknown format " + root["format"].dump() + " (expected \"antcd-scene/1\")");
+      fail("", "unknown format " + describe(root["format"]) + " (expected \"antcd-scene/1\")");
     }
     for (const auto& [key, value] : root.items()) {
       if (key != "format" && key != "frames" && key != "objects") {
