@@ -11,6 +11,9 @@
 #include <antcd/io.hpp>
 #include <antcd/random.hpp>
 #include <antcd/scene.hpp>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <atomic>
@@ -28,7 +31,6 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
-#include <thread>
 #include <utility>
 #include <vector>
 
@@ -134,37 +136,21 @@ double ms_since(Clock::time_point start) {
   return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
 }
 
-/// Runs f(0) … f(count - 1) on up to `threads` threads; rethrows the first exception.
+/// Runs f(0) … f(count - 1) on up to `threads` oneTBB workers; rethrows the first exception.
 template <typename F>
 void parallel_for(std::size_t count, int threads, F&& f) {
-  const std::size_t workers = std::min<std::size_t>(static_cast<std::size_t>(threads), count);
-  if (workers <= 1) {
+  if (threads <= 1 || count <= 1) {
     for (std::size_t k = 0; k < count; ++k) f(k);
     return;
   }
-  std::atomic<std::size_t> next{0};
-  std::exception_ptr error;
-  std::mutex error_mutex;
-  std::vector<std::thread> pool;
-  pool.reserve(workers);
-  for (std::size_t w = 0; w < workers; ++w) {
-    pool.emplace_back([&] {
-      for (;;) {
-        const std::size_t k = next.fetch_add(1);
-        if (k >= count) return;
-        try {
-          f(k);
-        } catch (...) {
-          const std::lock_guard<std::mutex> lock(error_mutex);
-          if (!error) error = std::current_exception();
-          next.store(count);
-          return;
-        }
-      }
-    });
-  }
-  for (std::thread& t : pool) t.join();
-  if (error) std::rethrow_exception(error);
+  // One task per index (runs are long and uneven); oneTBB rethrows the first exception.
+  tbb::task_arena arena(threads);
+  arena.execute([&] {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, 1),
+                      [&](const tbb::blocked_range<std::size_t>& range) {
+                        for (std::size_t k = range.begin(); k != range.end(); ++k) f(k);
+                      });
+  });
 }
 
 /// Median (mean of the two middle values for an even count); +inf values sort last. NaN if empty.
