@@ -5,7 +5,9 @@
 
 #include <gtest/gtest.h>
 
+#include <limits>
 #include <random>
+#include <string>
 
 #include "support/test_support.hpp"
 
@@ -133,6 +135,8 @@ TEST(Scene, RandomMethodsOnlyReportCandidatePairsAndAreSeeded) {
   q.method = Method::Maco;
   q.seed = 7;
   q.count_feature_truth = true;
+  q.samples_per_side = 400;
+  q.iterations = 40;
   for (std::size_t f = 0; f < 4; ++f) {
     const FrameResult a = scene.run_frame(f, q);
     const FrameResult b = scene.run_frame(f, q);
@@ -157,6 +161,60 @@ TEST(Scene, RejectsBadQueriesAndFrames) {
   EXPECT_THROW((void)scene.run_frame(0, q), Error);
   EXPECT_THROW(parse_method("bogus"), Error);
   EXPECT_EQ(parse_method("sphere-obb"), Method::SphereObb);
+  // Random methods: parameters that would make the search meaningless are refused up front.
+  const auto expect_refused = [&](const SceneQuery& bad, const char* needle) {
+    try {
+      (void)scene.run_frame(0, bad);
+      ADD_FAILURE() << "accepted: " << needle;
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
+    }
+  };
+  SceneQuery r;
+  r.method = Method::Ga;
+  r.agents = 1;
+  expect_refused(r, "at least 2");
+  r.method = Method::Maco;
+  r.agents = 0;
+  expect_refused(r, "at least 1");
+  r.agents = 60;
+  r.iterations = 0;
+  expect_refused(r, "iterations");
+  r.iterations = 100;
+  r.samples_per_side = 0;
+  expect_refused(r, "samples");
+  r.samples_per_side = 1000;
+  r.feature_delta = std::numeric_limits<Scalar>::infinity();
+  expect_refused(r, "feature delta");
+}
+
+// A verdict needs one colliding feature pair: stopping at the first hit (the default) and running
+// every search to its end give the same pairs; only the counts of feature pairs found differ.
+TEST(Scene, RandomVerdictsDoNotDependOnSearchingToTheEnd) {
+  const auto dir = test::fresh_temp_dir("scene_search_all");
+  const Scene scene(small_scene(dir, 10, 3, 7));
+  for (const Method m : {Method::Aco, Method::Maco, Method::Pso}) {
+    SceneQuery first;
+    first.method = m;
+    first.samples_per_side = 200;
+    first.iterations = 20;
+    first.agents = 10;
+    SceneQuery all = first;
+    all.search_all = true;
+    std::size_t candidates = 0;
+    for (std::size_t f = 0; f < 3; ++f) {
+      const FrameResult a = scene.run_frame(f, first);
+      const FrameResult b = scene.run_frame(f, all);
+      candidates += a.candidates.size();
+      EXPECT_EQ(a.candidates, b.candidates);
+      // Same seed, same stream: the longer search meets the same first hit, and a search with
+      // no hit runs the same N iterations either way.
+      EXPECT_EQ(a.pairs, b.pairs) << method_name(m) << " frame " << f;
+      EXPECT_LE(a.feature_hits, b.feature_hits) << method_name(m) << " frame " << f;
+      EXPECT_LE(a.feature_hits, a.pairs.size()) << "a first-hit search keeps one hit per pair";
+    }
+    EXPECT_GT(candidates, 0u);
+  }
 }
 
 }  // namespace
