@@ -4,6 +4,7 @@
 #include <nlohmann/json.hpp>
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <iostream>
 #include <memory>
@@ -13,6 +14,26 @@
 namespace antcd::cli {
 
 namespace {
+
+/// --delta and friends: a finite number >= 0. (CLI::NonNegativeNumber lets NaN through, and its
+/// message prints the largest double in full.)
+CLI::Validator non_negative_finite() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        double value = 0;
+        std::size_t used = 0;
+        try {
+          value = std::stod(text, &used);
+        } catch (const std::exception&) {
+          used = 0;
+        }
+        if (used == 0 || used != text.size() || !std::isfinite(value) || value < 0) {
+          return "expected a finite number >= 0, got '" + text + "'";
+        }
+        return {};
+      },
+      "NUMBER >= 0");
+}
 
 struct CollideOptions {
   std::string mesh_a, mesh_b;
@@ -99,7 +120,7 @@ void add_collide_command(CLI::App& app, int& code) {
   cmd->add_option("--pose-b", opts->pose_b, "Pose of B: tx,ty,tz[,qw,qx,qy,qz] (world frame)");
   cmd->add_option("--delta", opts->delta,
                   "Collision threshold δ in mesh units: collide when triangles are within δ")
-      ->check(CLI::NonNegativeNumber);
+      ->check(non_negative_finite());
   cmd->add_flag("--all", opts->all,
                 "Report every colliding triangle pair (default: stop at first)");
   cmd->add_flag("--json", opts->json, "Print the result as JSON");

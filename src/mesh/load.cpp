@@ -248,6 +248,160 @@ std::string implausible_off_header(std::string_view head, std::uintmax_t file_si
          " bytes";
 }
 
+/// assimp's PLY reader never returns when the file ends inside the header: at the end of the
+/// file it keeps parsing the last header line again (appending the same "property" over and over,
+/// so memory grows as well). A 60-byte "ply\nformat ascii 1.0\nelement vertex 3\n" is enough. A
+/// file that assimp would read as PLY (it starts with "ply", in any case) must therefore have the
+/// line assimp ends the header on: "end_header" at the start of a line (after a '\n': assimp
+/// skips from any other line end to the next '\n') and optional blanks, followed by a blank, a
+/// line end or the end of the file. The scan stops there, so only a broken file is read to its end.
+/// Returns the problem, or an empty string when the header is complete or the file is not PLY.
+std::string unterminated_ply_header(const std::filesystem::path& path, std::string_view head) {
+  if (head.size() < 3 || (head[0] | 0x20) != 'p' || (head[1] | 0x20) != 'l' ||
+      (head[2] | 0x20) != 'y') {
+    return {};
+  }
+  std::FILE* file = std::fopen(path.c_str(), "rb");
+  if (file == nullptr) return {};  // assimp will report it
+  constexpr std::string_view token = "end_header";
+  enum class Mode { Blanks, Token, Rest } mode = Mode::Blanks;
+  std::size_t matched = 0;
+  bool found = false;
+  std::array<char, 16384> chunk{};
+  std::size_t n = 0;
+  while (!found && (n = std::fread(chunk.data(), 1, chunk.size(), file)) > 0) {
+    for (std::size_t i = 0; i < n && !found; ++i) {
+      const char c = chunk[i];
+      const bool blank = c == ' ' || c == '\t';
+      if (mode == Mode::Token && matched == token.size() &&
+          (blank || c == '\n' || c == '\r' || c == '\0' || c == '\f')) {
+        found = true;
+      } else if (c == '\n') {
+        mode = Mode::Blanks;
+        matched = 0;
+      } else if (mode == Mode::Blanks && blank) {
+        // leading blanks are skipped
+      } else if (mode != Mode::Rest && matched < token.size() && c == token[matched]) {
+        mode = Mode::Token;
+        ++matched;
+      } else {
+        mode = Mode::Rest;
+      }
+    }
+  }
+  std::fclose(file);
+  if (found || (mode == Mode::Token && matched == token.size())) return {};
+  return "the PLY header has no end_header line";
+}
+
+/// assimp 5.2's OFF reader drops a face line whose corner count is 0 or above 9 by decrementing
+/// the mesh's face count, without bound: with more such lines than the header has faces the count
+/// wraps around to about 4 billion and assimp reads far past its face array (a crash found by
+/// fuzzing: "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n0\n0\n3 0 1 2\n"). Its counts are also read from
+/// files without the OFF keyword, which implausible_off_header does not see. This walks a file
+/// the OFF reader would get (extension .off, or content starting with "off") the way that reader
+/// does: its header tokens, then one line per vertex, then face lines until the header's count of
+/// faces is read. Returns the problem, or an empty string.
+std::string unsafe_off_body(const std::filesystem::path& path, std::string_view head,
+                            std::uintmax_t file_size) {
+  std::string ext = path.extension().string();
+  for (char& c : ext) c = static_cast<char>(c | 0x20);
+  const bool off_content = head.size() >= 3 && (head[0] | 0x20) == 'o' && (head[1] | 0x20) == 'f' &&
+                           (head[2] | 0x20) == 'f';
+  if (ext != ".off" && (!off_content || ext == ".stl")) return {};
+  std::string text;
+  {
+    std::FILE* file = std::fopen(path.c_str(), "rb");
+    if (file == nullptr) return {};  // assimp will report it
+    std::array<char, 16384> chunk{};
+    std::size_t n = 0;
+    while ((n = std::fread(chunk.data(), 1, chunk.size(), file)) > 0) text.append(chunk.data(), n);
+    std::fclose(file);
+  }
+  text.push_back('\0');  // as assimp's TextFileToBuffer
+  const char* p = text.data();
+  const char* const end = p + text.size();
+  const auto line_end = [](char c) { return c == '\r' || c == '\n' || c == '\0' || c == '\f'; };
+  const auto skip_spaces_and_line_ends = [&] {
+    while (*p == ' ' || *p == '\t' || *p == '\r' || *p == '\n') ++p;
+  };
+  const auto next_token = [&] {  // blanks, line ends and '#' comment lines
+    skip_spaces_and_line_ends();
+    while (p < end && (*p == '#' || *p == '\n' || *p == '\r')) {
+      while (*p != '\r' && *p != '\n' && *p != '\0') ++p;
+      while (*p == '\r' || *p == '\n') ++p;
+      skip_spaces_and_line_ends();
+    }
+  };
+  const auto number = [&] {  // assimp's strtoul10, wrapping like it
+    std::uint32_t value = 0;
+    while (*p >= '0' && *p <= '9') value = value * 10 + static_cast<std::uint32_t>(*p++ - '0');
+    return value;
+  };
+  const auto next_line = [&] {  // assimp's GetNextLine: lines of at most 4096 characters
+    if (*p == '\0') return false;
+    for (std::size_t k = 0; k < 4096 && !line_end(*p); ++k) ++p;
+    while (line_end(*p) && *p != '\0') ++p;
+    return true;
+  };
+
+  next_token();
+  bool dimension = false;
+  if (p + 2 < end && p[0] == 'S' && p[1] == 'T') p += 2;
+  if (p + 1 < end && p[0] == 'C') ++p;
+  if (p + 1 < end && p[0] == 'N') ++p;
+  if (p + 1 < end && p[0] == '4') ++p;
+  if (p + 1 < end && p[0] == 'n') {
+    dimension = true;
+    ++p;
+  }
+  if (p + 3 < end && p[0] == 'O' && p[1] == 'F' && p[2] == 'F') {
+    p += 3;
+    next_token();
+  } else {
+    next_token();
+    if (p + 1 >= end || *p < '0' || *p > '9') return {};  // assimp: "Header is invalid"
+  }
+  if (dimension) {
+    if (number() > 3) return {};  // assimp refuses more than 3 coordinates
+    next_token();
+  }
+  next_token();
+  const std::uint32_t vertices = number();
+  next_token();
+  const std::uint32_t faces = number();
+  next_token();
+  (void)number();  // edges
+  next_token();
+  if (vertices == 0 || faces == 0) return {};  // assimp refuses these
+  if (std::uint64_t{vertices} * 6 + std::uint64_t{faces} * 2 > file_size) {
+    return "the OFF header announces " + std::to_string(vertices) + " vertices and " +
+           std::to_string(faces) + " faces but the file has only " + std::to_string(file_size) +
+           " bytes";
+  }
+  for (std::uint32_t i = 0; i < vertices && next_line(); ++i) {
+  }
+  std::uint64_t skipped = 0;
+  for (std::uint32_t read = 0; read < faces;) {
+    const char* line = p;
+    if (!next_line()) break;
+    while (*line == ' ' || *line == '\t') ++line;
+    std::uint32_t corners = 0;
+    while (*line >= '0' && *line <= '9') {
+      corners = corners * 10 + static_cast<std::uint32_t>(*line++ - '0');
+    }
+    if (corners == 0 || corners > 9) {
+      if (++skipped > faces) {
+        return "more face lines with 0 or over 9 corners than faces in the OFF header (" +
+               std::to_string(faces) + ")";
+      }
+    } else {
+      ++read;
+    }
+  }
+  return {};
+}
+
 }  // namespace
 
 Mesh load_mesh(const std::filesystem::path& path) {
@@ -280,6 +434,16 @@ Mesh load_mesh(const std::filesystem::path& path) {
   if (size == 0) throw MeshError(source, "not a readable mesh: the file is empty");
   if (const std::string problem =
           implausible_off_header(std::string_view(head.data(), head_size), size);
+      !problem.empty()) {
+    throw MeshError(source, "not a readable mesh: " + problem);
+  }
+  if (const std::string problem =
+          unsafe_off_body(path, std::string_view(head.data(), head_size), size);
+      !problem.empty()) {
+    throw MeshError(source, "not a readable mesh: " + problem);
+  }
+  if (const std::string problem =
+          unterminated_ply_header(path, std::string_view(head.data(), head_size));
       !problem.empty()) {
     throw MeshError(source, "not a readable mesh: " + problem);
   }
