@@ -12,8 +12,8 @@ namespace antcd {
 /// the temporary file is removed and antcd::Error is thrown naming `path`.
 void write_file_atomic(const std::filesystem::path& path, std::string_view contents);
 
-/// Reads a whole file. Throws antcd::Error naming `path` if it is missing, a directory or
-/// unreadable.
+/// Reads a whole file. Throws antcd::Error naming `path` if it is missing, a directory, not a
+/// regular file (a device or a pipe, which could read forever or block) or unreadable.
 std::string read_file(const std::filesystem::path& path);
 
 }  // namespace antcd

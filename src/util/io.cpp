@@ -78,6 +78,10 @@ std::string read_file(const std::filesystem::path& path) {
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec)) throw Error(path.string() + ": is a directory");
   if (!std::filesystem::exists(path, ec)) throw Error(path.string() + ": no such file");
+  // Devices and pipes (/dev/zero, a FIFO with no writer) would read forever or block.
+  if (!std::filesystem::is_regular_file(path, ec)) {
+    throw Error(path.string() + ": is not a regular file");
+  }
   std::ifstream in(path, std::ios::binary);
   if (!in) throw Error(path.string() + ": cannot open for reading");
   std::ostringstream text;

@@ -135,6 +135,15 @@ TEST(SceneFile, MissingFileAndDirectory) {
   } catch (const SceneError& e) {
     EXPECT_NE(std::string(e.what()).find("is a directory"), std::string::npos);
   }
+  // A device would read forever: refused before reading.
+  if (std::filesystem::exists("/dev/zero")) {
+    try {
+      load_scene("/dev/zero");
+      FAIL();
+    } catch (const SceneError& e) {
+      EXPECT_NE(std::string(e.what()).find("is not a regular file"), std::string::npos) << e.what();
+    }
+  }
 }
 
 TEST(SceneFile, MissingMeshNamesTheObject) {
