@@ -59,7 +59,21 @@ inline void two_sum(double a, double b, double& s, double& e) {
 // correct whatever the compiler does about floating-point contraction.
 inline void two_product(double a, double b, double& p, double& e) {
   p = a * b;
+#if defined(__FMA__)
   e = std::fma(a, b, -p);
+#else
+  // No FMA instruction in this build, where std::fma would be a libm call on the predicates' slow
+  // path: Dekker/Veltkamp splitting instead (exact barring overflow; without FMA instructions the
+  // compiler cannot contract it). a = ah + al, b = bh + bl with 26-bit halves.
+  constexpr double kSplit = 134217729.0;  // 2^27 + 1
+  const double ca = kSplit * a;
+  const double ah = ca - (ca - a);
+  const double al = a - ah;
+  const double cb = kSplit * b;
+  const double bh = cb - (cb - b);
+  const double bl = b - bh;
+  e = ((ah * bh - p) + ah * bl + al * bh) + al * bl;
+#endif
 }
 
 // A sum of doubles held exactly as a nonoverlapping expansion, components in increasing order of
@@ -105,7 +119,7 @@ class Expansion {
 
  private:
   static constexpr int kCapacity = 128;  // callers add at most 96 terms; each add grows n_ by <= 1
-  std::array<double, kCapacity> c_{};
+  std::array<double, kCapacity> c_;      // only c_[0 .. n_) is ever read
   int n_ = 0;
 };
 
@@ -163,6 +177,7 @@ double orient2d(const Vec3& p, const Vec3& q, const Vec3& r, const Projection& p
   const double det = left - right;
   const double bound = kOrient2dBound * (std::abs(left) + std::abs(right));
   if (det > bound || -det > bound) return det;
+  if (left == 0 && right == 0) return 0;  // both products exactly zero
   // (qx-px)(ry-py) - (qy-py)(rx-px) expanded (the px*py terms cancel).
   Expansion e;
   e.add_product(qx, ry);
@@ -322,6 +337,10 @@ int side_sign(const Plane& pl, const Vec3& p, SideValue& sv) {
   const double bound = kOrient3dBound * sv.perm;
   if (sv.value > bound) return 1;
   if (sv.value < -bound) return -1;
+  if (sv.perm == 0) {  // every product is exactly zero, so is the determinant
+    sv.value = 0;
+    return 0;
+  }
   sv.value = -orient3d_exact(*pl.t[0], *pl.t[1], *pl.t[2], p);
   return sign_of(sv.value);
 }
@@ -500,6 +519,7 @@ Scalar orient3d(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
                       (std::abs(adxbdy) + std::abs(bdxady)) * std::abs(cdz);
   const double bound = kOrient3dBound * perm;
   if (det > bound || -det > bound) return det;
+  if (perm == 0) return 0;  // every product is exactly zero, so is the determinant
   return orient3d_exact(a, b, c, d);
 }
 

@@ -3,7 +3,9 @@
 
 #include "bvh/traverse.hpp"
 
+#include <array>
 #include <cmath>
+#include <cstdint>
 #include <stdexcept>
 #include <string>
 
@@ -26,21 +28,62 @@ bool collide(const Model& a, const Transform& pose_a, const Model& b, const Tran
   const Scalar delta = request.delta;
   const std::size_t limit = request.all_contacts ? request.max_contacts : 1;
 
-  result.traversal = detail::dual_traverse(a, b, frame, [&](std::uint32_t la, std::uint32_t lb) {
+  // B's leaf triangles mapped into A's frame, with their boxes, kept while consecutive leaf pairs
+  // share B's leaf (the traversal descends A under a fixed B node). Leaves are small (leaf_size);
+  // larger ones are transformed triangle by triangle.
+  constexpr std::uint32_t kCached = 8;
+  std::array<Vec3, 3 * kCached> cache_b;
+  std::array<Vec3, kCached> lo_b;
+  std::array<Vec3, kCached> hi_b;
+  std::uint32_t cached_leaf = UINT32_MAX;
+
+  const auto on_leaf = [&](std::uint32_t la, std::uint32_t lb) {
     const BvhNode& na = nodes_a[la];
     const BvhNode& nb = nodes_b[lb];
-
-    // for the default sizes and falls back to per-triangle transforms for large leaves.
-    for (std::uint32_t jb = nb.first_or_right; jb < nb.first_or_right + nb.count; ++jb) {
-      const Vec3 b0 = frame.b_to_a.apply(verts_b[3 * jb]);
-      const Vec3 b1 = frame.b_to_a.apply(verts_b[3 * jb + 1]);
-      const Vec3 b2 = frame.b_to_a.apply(verts_b[3 * jb + 2]);
-      for (std::uint32_t ia = na.first_or_right; ia < na.first_or_right + na.count; ++ia) {
+    const bool cached = nb.count <= kCached;
+    if (cached && cached_leaf != lb) {
+      for (std::uint32_t k = 0; k < nb.count; ++k) {
+        const std::uint32_t jb = nb.first_or_right + k;
+        for (int v = 0; v < 3; ++v) cache_b[3 * k + v] = frame.b_to_a.apply(verts_b[3 * jb + v]);
+        lo_b[k] = cache_b[3 * k].cwiseMin(cache_b[3 * k + 1]).cwiseMin(cache_b[3 * k + 2]);
+        hi_b[k] = cache_b[3 * k].cwiseMax(cache_b[3 * k + 1]).cwiseMax(cache_b[3 * k + 2]);
+      }
+      cached_leaf = lb;
+    }
+    for (std::uint32_t ia = na.first_or_right; ia < na.first_or_right + na.count; ++ia) {
+      const Vec3& a0 = verts_a[3 * ia];
+      const Vec3& a1 = verts_a[3 * ia + 1];
+      const Vec3& a2 = verts_a[3 * ia + 2];
+      const Vec3 lo_a = a0.cwiseMin(a1).cwiseMin(a2);
+      const Vec3 hi_a = a0.cwiseMax(a1).cwiseMax(a2);
+      for (std::uint32_t k = 0; k < nb.count; ++k) {
+        const std::uint32_t jb = nb.first_or_right + k;
+        Vec3 tb[3];
+        const Vec3* b0 = nullptr;
+        const Vec3* b1 = nullptr;
+        const Vec3* b2 = nullptr;
+        if (cached) {
+          // Exact box rejection: a gap larger than delta along one axis (the subtraction rounds
+          // monotonically, so fl(x - y) > delta implies x - y > delta) means no point of the two
+          // triangles is within delta. Same coordinates as the triangle test below.
+          if (lo_b[k].x() - hi_a.x() > delta || lo_a.x() - hi_b[k].x() > delta ||
+              lo_b[k].y() - hi_a.y() > delta || lo_a.y() - hi_b[k].y() > delta ||
+              lo_b[k].z() - hi_a.z() > delta || lo_a.z() - hi_b[k].z() > delta) {
+            continue;
+          }
+          b0 = &cache_b[3 * k];
+          b1 = &cache_b[3 * k + 1];
+          b2 = &cache_b[3 * k + 2];
+        } else {
+          for (int v = 0; v < 3; ++v) tb[v] = frame.b_to_a.apply(verts_b[3 * jb + v]);
+          b0 = &tb[0];
+          b1 = &tb[1];
+          b2 = &tb[2];
+        }
         ++result.triangle_tests;
         Vec3 point;
         Scalar distance = 0;
-        if (geometry::triangles_within(verts_a[3 * ia], verts_a[3 * ia + 1], verts_a[3 * ia + 2],
-                                       b0, b1, b2, delta, &point, &distance)) {
+        if (geometry::triangles_within(a0, a1, a2, *b0, *b1, *b2, delta, &point, &distance)) {
           result.colliding = true;
           result.contacts.push_back({tris_a[ia], tris_b[jb], pose_a.apply(point), distance});
           if (limit != 0 && result.contacts.size() >= limit) return true;
@@ -48,7 +91,10 @@ bool collide(const Model& a, const Transform& pose_a, const Model& b, const Tran
       }
     }
     return false;
-  });
+  };
+  // A query that stops at its first contact visits the nearer children first.
+  result.traversal = limit == 1 ? detail::dual_traverse<true>(a, b, frame, on_leaf)
+                                : detail::dual_traverse<false>(a, b, frame, on_leaf);
   return result.colliding;
 }
 
