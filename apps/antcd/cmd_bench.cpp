@@ -10,6 +10,8 @@
 
 namespace antcd::cli {
 
+void add_bench_peers_command(CLI::App& bench, int& code);  // cmd_bench_peers.cpp
+
 namespace {
 
 void add_bench_paper_command(CLI::App& bench, int& code) {
@@ -43,6 +45,7 @@ void add_bench_commands(CLI::App& app, int& code) {
   CLI::App* bench = app.add_subcommand("bench", "Benchmark suites");
   bench->require_subcommand(1);
   add_bench_paper_command(*bench, code);
+  add_bench_peers_command(*bench, code);
 }
 
 }  // namespace antcd::cli
