@@ -42,6 +42,10 @@ constexpr double kEps = 0x1p-53;  // unit roundoff of double
 // about 7 eps for orient3d and 3 eps for orient2d; we use comfortably larger factors.
 constexpr double kOrient3dBound = 16 * kEps;
 constexpr double kOrient2dBound = 8 * kEps;
+// A determinant used to interpolate a crossing point (not only for its sign) is taken in floating
+// point only when it exceeds its error bound this many times (relative error <= 2^-40); otherwise
+// it is re-evaluated exactly. Near-parallel crossings would otherwise move the point far off.
+constexpr double kInterpolationMargin = 0x1p40;
 
 int sign_of(double x) { return (x > 0) - (x < 0); }
 
@@ -167,15 +171,17 @@ struct Projection {
   explicit Projection(int drop) : u((drop + 1) % 3), v((drop + 2) % 3) {}
 };
 
-// Exact-sign orient2d of the projections of p, q, r: (q-p) x (r-p).
-double orient2d(const Vec3& p, const Vec3& q, const Vec3& r, const Projection& pr) {
+// Exact-sign orient2d of the projections of p, q, r: (q-p) x (r-p). The floating-point value is
+// returned when it is larger than `margin` times its error bound, else the exact value's estimate.
+double orient2d(const Vec3& p, const Vec3& q, const Vec3& r, const Projection& pr,
+                double margin = 1) {
   const double px = p[pr.u], py = p[pr.v];
   const double qx = q[pr.u], qy = q[pr.v];
   const double rx = r[pr.u], ry = r[pr.v];
   const double left = (qx - px) * (ry - py);
   const double right = (qy - py) * (rx - px);
   const double det = left - right;
-  const double bound = kOrient2dBound * (std::abs(left) + std::abs(right));
+  const double bound = margin * kOrient2dBound * (std::abs(left) + std::abs(right));
   if (det > bound || -det > bound) return det;
   if (left == 0 && right == 0) return 0;  // both products exactly zero
   // (qx-px)(ry-py) - (qy-py)(rx-px) expanded (the px*py terms cancel).
@@ -233,8 +239,11 @@ bool segments_meet_2d(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d
     } else if (o4 == 0) {
       *point = b;
     } else {
-      double t = o3 / (o3 - o4);  // o3, o4 nonzero with opposite signs
-      t = std::clamp(t, 0.0, 1.0);
+      // o3, o4 nonzero with opposite signs; their floating-point values may be off by up to their
+      // error bound, so re-evaluate them accurately for the crossing point.
+      const double a3 = orient2d(c, d, a, pr, kInterpolationMargin);
+      const double a4 = orient2d(c, d, b, pr, kInterpolationMargin);
+      const double t = std::clamp(a3 / (a3 - a4), 0.0, 1.0);
       *point = a + t * (b - a);
     }
   }
@@ -342,7 +351,15 @@ int side_sign(const Plane& pl, const Vec3& p, SideValue& sv) {
     return 0;
   }
   sv.value = -orient3d_exact(*pl.t[0], *pl.t[1], *pl.t[2], p);
+  sv.perm = 0;  // the value is now accurate, see accurate_side
   return sign_of(sv.value);
+}
+
+// n·(p - t0) accurate to a relative 2^-40, for interpolating a crossing point: `sv` when its error
+// bound allows (or when side_sign already re-evaluated it), else re-evaluated exactly.
+double accurate_side(const Plane& pl, const Vec3& p, const SideValue& sv) {
+  if (std::abs(sv.value) > kInterpolationMargin * kOrient3dBound * sv.perm) return sv.value;
+  return -orient3d_exact(*pl.t[0], *pl.t[1], *pl.t[2], p);
 }
 
 bool certainly_one_side(const SideValue (&sv)[3]) {
@@ -362,9 +379,9 @@ bool strictly_one_side(const int (&s)[3]) {
 bool all_zero(const int (&s)[3]) { return s[0] == 0 && s[1] == 0 && s[2] == 0; }
 
 // Closed segment pq against the closed triangle of plane `pl` (non-degenerate), given the exact
-// sides sp, sq of p, q and their sign-exact plane values dp, dq.
-bool edge_meets_triangle(const Vec3& p, const Vec3& q, int sp, int sq, double dp, double dq,
-                         const Plane& pl, Vec3* point) {
+// sides sp, sq of p, q and their plane values dp, dq (sign-exact).
+bool edge_meets_triangle(const Vec3& p, const Vec3& q, int sp, int sq, const SideValue& dp,
+                         const SideValue& dq, const Plane& pl, Vec3* point) {
   if (sp * sq > 0) return false;
   const Vec3& a = *pl.t[0];
   const Vec3& b = *pl.t[1];
@@ -383,8 +400,10 @@ bool edge_meets_triangle(const Vec3& p, const Vec3& q, int sp, int sq, double dp
     } else if (sq == 0) {
       *point = q;
     } else {
-      double t = dp / (dp - dq);  // dp, dq nonzero with opposite signs
-      t = std::clamp(t, 0.0, 1.0);
+      // dp, dq nonzero with opposite signs.
+      const double vp = accurate_side(pl, p, dp);
+      const double vq = accurate_side(pl, q, dq);
+      const double t = std::clamp(vp / (vp - vq), 0.0, 1.0);
       *point = p + t * (q - p);
     }
   }
@@ -428,8 +447,7 @@ bool intersect_core(const Plane& pa, const Plane& pb, SideValue (&va)[3], SideVa
   if (!a_in_b_plane) {
     for (int i = 0; i < 3; ++i) {
       const int j = (i + 1) % 3;
-      if (edge_meets_triangle(*pa.t[i], *pa.t[j], sa[i], sa[j], va[i].value, va[j].value, pb,
-                              point)) {
+      if (edge_meets_triangle(*pa.t[i], *pa.t[j], sa[i], sa[j], va[i], va[j], pb, point)) {
         return true;
       }
     }
@@ -437,8 +455,7 @@ bool intersect_core(const Plane& pa, const Plane& pb, SideValue (&va)[3], SideVa
   if (!b_in_a_plane) {
     for (int i = 0; i < 3; ++i) {
       const int j = (i + 1) % 3;
-      if (edge_meets_triangle(*pb.t[i], *pb.t[j], sb[i], sb[j], vb[i].value, vb[j].value, pa,
-                              point)) {
+      if (edge_meets_triangle(*pb.t[i], *pb.t[j], sb[i], sb[j], vb[i], vb[j], pa, point)) {
         return true;
       }
     }
