@@ -1,0 +1,244 @@
+// Concurrency: many std::threads query the same Models and the same Scene at once and must get
+// exactly the answers of a single-threaded run (every field but wall times). Built to run under
+// ThreadSanitizer too (scripts/sanitize.sh tsan runs the tests named Concurrency*), so the work
+// per thread is kept small.
+#include <antcd/collide.hpp>
+#include <antcd/random.hpp>
+#include <antcd/scene.hpp>
+
+#include <gtest/gtest.h>
+#include <tbb/global_control.h>
+
+#include <atomic>
+#include <cstdint>
+#include <latch>
+#include <random>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "production_line.hpp"
+#include "support/test_support.hpp"
+
+namespace antcd {
+namespace {
+
+constexpr int kThreads = 8;
+
+// Under ThreadSanitizer (scripts/sanitize.sh tsan) the Scene test keeps run_frame on the calling
+// thread (SceneQuery::threads = 1). Debian's libtbb is not instrumented, so TSan cannot see how
+// oneTBB hands tasks over between its threads: every access of the task bodies, antcd's included
+// (scene.cpp's per-pair lambda, narrow.cpp), is then reported as a race. Silencing those would
+// also silence real races in antcd, so the oneTBB path is checked by the answers in the other
+// builds (ASan and Release run this test with threads > 1 inside), not by TSan.
+#if defined(__SANITIZE_THREAD__)
+constexpr bool kUnderTsan = true;
+#elif defined(__has_feature)
+#if __has_feature(thread_sanitizer)
+constexpr bool kUnderTsan = true;
+#else
+constexpr bool kUnderTsan = false;
+#endif
+#else
+constexpr bool kUnderTsan = false;
+#endif
+
+// ---- field-by-field comparisons (times excluded) ------------------------------------------------
+
+bool same(const Vec3& a, const Vec3& b) { return a == b; }
+
+bool same(const CollisionResult& a, const CollisionResult& b) {
+  if (a.colliding != b.colliding || a.contacts.size() != b.contacts.size() ||
+      a.triangle_tests != b.triangle_tests || a.traversal.node_pairs != b.traversal.node_pairs ||
+      a.traversal.sphere_rejects != b.traversal.sphere_rejects ||
+      a.traversal.obb_rejects != b.traversal.obb_rejects ||
+      a.traversal.leaf_pairs != b.traversal.leaf_pairs) {
+    return false;
+  }
+  for (std::size_t k = 0; k < a.contacts.size(); ++k) {
+    const Contact& x = a.contacts[k];
+    const Contact& y = b.contacts[k];
+    if (x.triangle_a != y.triangle_a || x.triangle_b != y.triangle_b || !same(x.point, y.point) ||
+        x.distance != y.distance) {
+      return false;
+    }
+  }
+  return true;
+}
+
+bool same(const FeaturePair& a, const FeaturePair& b) {
+  return a.i == b.i && a.j == b.j && a.triangle_a == b.triangle_a && a.triangle_b == b.triangle_b &&
+         a.distance == b.distance;
+}
+
+bool same(const SearchResult& a, const SearchResult& b) {
+  if (a.found != b.found || a.hits.size() != b.hits.size() || a.best_distance != b.best_distance ||
+      !same(a.best, b.best) || a.evaluations != b.evaluations || a.iterations != b.iterations ||
+      a.runs != b.runs || a.progress.size() != b.progress.size() || a.stop != b.stop ||
+      a.delta != b.delta) {
+    return false;
+  }
+  for (std::size_t k = 0; k < a.hits.size(); ++k) {
+    if (!same(a.hits[k], b.hits[k])) return false;
+  }
+  for (std::size_t k = 0; k < a.progress.size(); ++k) {
+    const ProgressMark& x = a.progress[k];
+    const ProgressMark& y = b.progress[k];
+    if (x.share != y.share || x.hits != y.hits || x.reached != y.reached ||
+        x.evaluations != y.evaluations) {  // seconds is a wall time
+      return false;
+    }
+  }
+  return true;
+}
+
+bool same(const FrameResult& a, const FrameResult& b) {
+  return a.frame == b.frame && a.pairs == b.pairs && a.candidates == b.candidates &&
+         a.feature_hits == b.feature_hits && a.feature_truth == b.feature_truth;
+}
+
+// Runs `job(thread, round)` on kThreads threads released together; returns the mismatch count.
+template <class Job>
+int run_threads(int rounds, Job job) {
+  std::atomic<int> mismatches{0};
+  std::latch start(kThreads);
+  std::vector<std::thread> threads;
+  for (int t = 0; t < kThreads; ++t) {
+    threads.emplace_back([&, t] {
+      start.arrive_and_wait();
+      for (int r = 0; r < rounds; ++r) mismatches += job(t, r);
+    });
+  }
+  for (std::thread& th : threads) th.join();
+  return mismatches.load();
+}
+
+// ---- one Model pair -----------------------------------------------------------------------------
+
+struct PoseCase {
+  Transform pose_a;
+  Transform pose_b;
+  CollisionResult boolean;
+  CollisionResult all;
+  bool volumes = false;
+  SearchResult maco;
+  SearchResult ga;
+};
+
+TEST(Concurrency, ModelQueriesFromManyThreadsMatchSingleThreaded) {
+  const Model a(make_torus(1.0, 0.3, 32, 16));
+  const Model b(merge({make_box(Vec3(0.6, 0.4, 0.3), 3), make_sphere(0.5, 16, 8)}));
+  std::mt19937_64 rng(11);
+  std::vector<PoseCase> cases(12);
+  std::size_t colliding = 0;
+  for (PoseCase& c : cases) {
+    c.pose_a = test::random_pose(rng, 0.3);
+    c.pose_b = test::random_pose(rng, 1.2);
+    c.boolean = collide(a, c.pose_a, b, c.pose_b, {});
+    c.all = collide(a, c.pose_a, b, c.pose_b, {.delta = 0.01, .all_contacts = true});
+    c.volumes = leaves_overlap(a, c.pose_a, b, c.pose_b, 0.0);
+    SearchRequest maco;
+    maco.method = SearchMethod::Maco;
+    maco.seed = 99;
+    maco.iterations = 20;
+    maco.progress_marks = {0.5};
+    c.maco = random_collide(a, c.pose_a, b, c.pose_b, maco, {.samples_per_side = 200});
+    SearchRequest ga = maco;
+    ga.method = SearchMethod::Ga;
+    ga.progress_marks.clear();
+    c.ga = random_collide(a, c.pose_a, b, c.pose_b, ga, {.samples_per_side = 200});
+    colliding += c.boolean.colliding ? 1 : 0;
+  }
+  // The poses mix hits and misses, so the comparisons below are not all trivial.
+  ASSERT_GT(colliding, 2u);
+  ASSERT_LT(colliding, cases.size());
+
+  const int mismatches = run_threads(1, [&](int t, int r) {
+    int bad = 0;
+    CollisionResult reused;  // a reused result must give the same answer as a fresh one
+    for (std::size_t k = 0; k < cases.size(); ++k) {
+      const PoseCase& c = cases[(k + static_cast<std::size_t>(t * 5 + r)) % cases.size()];
+      collide(a, c.pose_a, b, c.pose_b, {}, reused);
+      bad += same(reused, c.boolean) ? 0 : 1;
+      bad += same(collide(a, c.pose_a, b, c.pose_b, {.delta = 0.01, .all_contacts = true}), c.all)
+                 ? 0
+                 : 1;
+      bad += leaves_overlap(a, c.pose_a, b, c.pose_b, 0.0) == c.volumes ? 0 : 1;
+      if ((k + static_cast<std::size_t>(t)) % 3 == 0) {  // a third of the random searches
+        SearchRequest maco;
+        maco.method = SearchMethod::Maco;
+        maco.seed = 99;
+        maco.iterations = 20;
+        maco.progress_marks = {0.5};
+        bad +=
+            same(random_collide(a, c.pose_a, b, c.pose_b, maco, {.samples_per_side = 200}), c.maco)
+                ? 0
+                : 1;
+        maco.method = SearchMethod::Ga;
+        maco.progress_marks.clear();
+        bad += same(random_collide(a, c.pose_a, b, c.pose_b, maco, {.samples_per_side = 200}), c.ga)
+                   ? 0
+                   : 1;
+      }
+    }
+    return bad;
+  });
+  EXPECT_EQ(mismatches, 0);
+}
+
+// ---- one Scene ----------------------------------------------------------------------------------
+
+TEST(Concurrency, SceneFramesFromManyThreadsMatchSingleThreaded) {
+  experiments::ProductionLineOptions options;
+  options.objects = 12;
+  options.vertices = 120;
+  options.frames = 4;
+  options.seed = 5;
+  // oneTBB caps its workers at the core count minus one by default (a single worker on a 2-core
+  // machine): allow more, so that the arenas of the threads below really run in parallel.
+  const tbb::global_control workers(tbb::global_control::max_allowed_parallelism, 2 * kThreads);
+  const auto dir = test::fresh_temp_dir("concurrency_scene");
+  const Scene scene(
+      load_scene(experiments::write_scene(experiments::generate_production_line(options), dir)));
+
+  struct Job {
+    SceneQuery query;
+    std::vector<FrameResult> expected;
+  };
+  std::vector<Job> jobs;
+  for (const Method m : {Method::Exact, Method::SphereObb, Method::Maco, Method::Pso}) {
+    SceneQuery q;
+    q.method = m;
+    q.seed = 3;
+    q.samples_per_side = 100;
+    q.iterations = 10;
+    q.agents = 20;
+    q.search_all = m == Method::Pso;
+    jobs.push_back({q, {}});
+  }
+  std::size_t pairs = 0;
+  for (Job& job : jobs) {
+    for (std::size_t f = 0; f < scene.description().frames; ++f) {
+      job.expected.push_back(scene.run_frame(f, job.query));
+      pairs += job.expected.back().pairs.size();
+    }
+  }
+  ASSERT_GT(pairs, 0u) << "the scene has no collision: the test would be trivial";
+
+  const int mismatches = run_threads(1, [&](int t, int) {
+    int bad = 0;
+    for (std::size_t k = 0; k < jobs.size(); ++k) {
+      const Job& job = jobs[(k + static_cast<std::size_t>(t)) % jobs.size()];
+      SceneQuery q = job.query;
+      q.threads = kUnderTsan || t % 3 == 0 ? 1 : (t % 3 == 1 ? 2 : 4);  // oneTBB inside, too
+      for (std::size_t f = 0; f < job.expected.size(); ++f) {
+        bad += same(scene.run_frame(f, q), job.expected[f]) ? 0 : 1;
+      }
+    }
+    return bad;
+  });
+  EXPECT_EQ(mismatches, 0);
+}
+
+}  // namespace
+}  // namespace antcd
