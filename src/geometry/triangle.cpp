@@ -553,12 +553,26 @@ bool triangles_intersect(const Vec3& a0, const Vec3& a1, const Vec3& a2, const V
 
 Scalar point_triangle_distance_squared(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c,
                                        Vec3* closest) {
-  const Vec3 ab = b - a;
-  const Vec3 ac = c - a;
-  const Vec3 n = ab.cross(ac);
+  // The normal is taken at the vertex opposite the longest edge, whose angle is the largest: the
+  // rounding error of a cross product relative to its length grows as 1 / sin(angle), so the
+  // sharp tip of a needle is the worst place to take it. (b, c, a) and (c, a, b) keep the
+  // orientation of (a, b, c).
+  const Scalar lab = (b - a).squaredNorm();
+  const Scalar lbc = (c - b).squaredNorm();
+  const Scalar lca = (a - c).squaredNorm();
+  const Vec3* o = &a;  // pivot: opposite the longest edge
+  const Vec3* o1 = &b;
+  const Vec3* o2 = &c;
+  if (lca >= lab && lca >= lbc) {
+    o = &b, o1 = &c, o2 = &a;
+  } else if (lab >= lbc && lab >= lca) {
+    o = &c, o1 = &a, o2 = &b;
+  }
+  const Vec3 n = (*o1 - *o).cross(*o2 - *o);
   const Scalar nn = n.squaredNorm();
-  auto edges_only = [&]() {  // a zero-area triangle is the union of its edges
-    Vec3 best_c = a, cc;
+  auto edges_only_into = [&](Vec3& best_c) {  // distance to the union of the three edges
+    best_c = a;
+    Vec3 cc;
     Scalar best = std::numeric_limits<Scalar>::infinity();
     const Vec3* v[3] = {&a, &b, &c};
     for (int i = 0; i < 3; ++i) {
@@ -568,6 +582,11 @@ Scalar point_triangle_distance_squared(const Vec3& p, const Vec3& a, const Vec3&
         best_c = cc;
       }
     }
+    return best;
+  };
+  auto edges_only = [&]() {  // a zero-area triangle is the union of its edges
+    Vec3 best_c;
+    const Scalar best = edges_only_into(best_c);
     if (closest != nullptr) *closest = best_c;
     return best;
   };
@@ -580,14 +599,28 @@ Scalar point_triangle_distance_squared(const Vec3& p, const Vec3& a, const Vec3&
   // regions are resolved by clamping onto the candidate edges. Everything is computed from
   // cross products of short vectors and point-segment projections, which stays accurate for
   // needle- and cap-shaped triangles (unlike closed-form barycentrics from dot products).
-  const Vec3 q = p - (n.dot(p - a) / nn) * n;
+  const Vec3 q = p - (n.dot(p - *o) / nn) * n;
   const Vec3 qa = a - q, qb = b - q, qc = c - q;
   const Scalar wa = n.dot(qb.cross(qc));  // weight of a: side of q against edge bc
   const Scalar wb = n.dot(qc.cross(qa));  // weight of b: edge ca
   const Scalar wc = n.dot(qa.cross(qb));  // weight of c: edge ab
   if (wa >= 0 && wb >= 0 && wc >= 0) {
+    const Scalar face = (p - q).squaredNorm();
+    // A sliver (sine of its largest angle below 1e-3) has a plane that rounding tilts by up to
+    // about 1e-16 / sine: its edges, which lie within the sliver's width of every point of it,
+    // may then be nearer than the tilted projection says. Cheap triangles keep the fast path.
+    const Scalar lmax = std::max({lab, lbc, lca});
+    const Scalar lmid = lab + lbc + lca - lmax - std::min({lab, lbc, lca});
+    if (nn < 1e-6 * lmax * lmid) {
+      Vec3 edge_closest;
+      const Scalar on_edges = edges_only_into(edge_closest);
+      if (on_edges < face) {
+        if (closest != nullptr) *closest = edge_closest;
+        return on_edges;
+      }
+    }
     if (closest != nullptr) *closest = q;
-    return (p - q).squaredNorm();
+    return face;
   }
   Vec3 best_c = a, cc;
   Scalar best = std::numeric_limits<Scalar>::infinity();

@@ -603,6 +603,45 @@ TEST(TrianglePointDistance, AllSevenRegions) {
   }
 }
 
+// Needles: two far vertices and a third 2^-k off their edge, at scales 1e-6 .. 1e6. Points that
+// lie on the triangle (its vertices, points of its edges) are at distance ~0, and a point lifted
+// off the long edge's midpoint perpendicular to the triangle's plane is at its lift height, in
+// every vertex order. The normal used to be taken at the needle's sharp tip, where the cross
+// product's rounding error is largest (3.5e-8 for a vertex at scale 10, 0.37 at 1e6); slivers now
+// also compare with their edges.
+TEST(TrianglePointDistance, NeedlesAreAccurate) {
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> unit(-1, 1);
+  for (const double scale : {1e-6, 1e-3, 1.0, 10.0, 1e3, 1e6}) {
+    for (int k = 10; k <= 40; k += 6) {
+      for (int trial = 0; trial < 20; ++trial) {
+        const Vec3 a = scale * V(unit(rng), unit(rng), unit(rng));
+        const Vec3 axis = V(unit(rng), unit(rng), unit(rng)).normalized();
+        const Vec3 b = a + scale * axis;
+        Vec3 side = axis.cross(V(unit(rng), unit(rng), unit(rng))).normalized();
+        const Vec3 c = a + (0.5 + 0.4 * unit(rng)) * scale * axis + std::ldexp(scale, -k) * side;
+        const Vec3 normal = (b - a).cross(c - a).normalized();
+        const double tol = 1e-13 * scale;  // distances are compared, not squared distances
+        // Off the plane the answer depends on the plane's tilt, whose rounding error grows as
+        // the sliver thins (2^-k): 5e-10 relative at k = 28, 1e-7 at k = 40.
+        const double lift_tol = (k <= 28 ? 1e-9 : 1e-6) * scale;
+        const Vec3 mid = 0.5 * (a + b);
+        const double lift = 0.25 * scale;
+        for (const Tri& t : orderings({a, b, c})) {
+          for (const Vec3& p : {a, b, c, Vec3(0.5 * (a + c)), Vec3(0.5 * (b + c)), mid}) {
+            EXPECT_LE(std::sqrt(point_triangle_distance_squared(p, t[0], t[1], t[2])), tol)
+                << "scale " << scale << " k " << k;
+          }
+          const Vec3 p = mid + lift * normal;
+          EXPECT_NEAR(std::sqrt(point_triangle_distance_squared(p, t[0], t[1], t[2])), lift,
+                      lift_tol)
+              << "scale " << scale << " k " << k;
+        }
+      }
+    }
+  }
+}
+
 // Certificate: c is the closest point of the triangle to p iff c lies in the triangle and
 // (p - c)·(v - c) <= 0 for the three vertices v. Also compared with dense sampling.
 TEST(TrianglePointDistance, RandomAgainstCertificateAndSampling) {
