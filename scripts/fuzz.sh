@@ -19,6 +19,9 @@ cd "$(dirname "$0")/.."
 repo="$(pwd)"
 
 seconds="${ANTCD_FUZZ_SECONDS:-60}"
+# A fixed seed makes a run repeatable (the same inputs in the same order; a faster machine just
+# gets further along them). ANTCD_FUZZ_SEED=0 lets libFuzzer pick one.
+seed="${ANTCD_FUZZ_SEED:-1}"
 build_dir="${ANTCD_FUZZ_BUILD_DIR:-$repo/build-fuzz}"
 jobs="${ANTCD_FUZZ_JOBS:-$(nproc)}"
 
@@ -74,7 +77,7 @@ for fuzzer in "${fuzzers[@]}"; do
   echo "== $fuzzer: ${seconds}s on $seeds seed inputs (fuzz/corpus/$corpus_name)" >&2
   set +e
   (cd "$run_dir" && TMPDIR="$run_dir" "$build_dir/fuzz/$fuzzer" \
-     -max_total_time="$seconds" -timeout=10 -rss_limit_mb=4096 -print_final_stats=1 \
+     -max_total_time="$seconds" -seed="$seed" -timeout=10 -rss_limit_mb=4096 -print_final_stats=1 \
      -artifact_prefix="$run_dir/" corpus) 2>&1 | tee "$run_dir/log.txt" | grep -E \
      "^(#[0-9]+[[:space:]]+(INITED|DONE)|stat::|==[0-9]+==|SUMMARY|Test unit written|artifact_prefix|.*ERROR)" >&2
   rc=${PIPESTATUS[0]}
