@@ -6,6 +6,7 @@
 #
 # Environment:
 #   ANTCD_FUZZ_SECONDS     seconds per fuzzer (default 60)
+#   ANTCD_FUZZ_SEED        libFuzzer's -seed (default 1: repeatable; 0: random)
 #   ANTCD_FUZZ_BUILD_DIR   build folder (default <repo>/build-fuzz)
 #   ANTCD_FUZZ_JOBS        parallel build jobs (default: the number of cores)
 #
