@@ -54,4 +54,22 @@ Model load_model(const std::filesystem::path& path, const BuildOptions& options)
   return Model(load_mesh(path), options, path.string());
 }
 
+CLI::Validator non_negative_finite() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        double value = 0;
+        std::size_t used = 0;
+        try {
+          value = std::stod(text, &used);
+        } catch (const std::exception&) {
+          used = 0;
+        }
+        if (used == 0 || used != text.size() || !std::isfinite(value) || value < 0) {
+          return "expected a finite number >= 0, got '" + text + "'";
+        }
+        return {};
+      },
+      "NUMBER >= 0");
+}
+
 }  // namespace antcd::cli

@@ -28,6 +28,10 @@ CovarianceMethod parse_covariance(const std::string& text);
 /// Loads a mesh and builds its hierarchy; errors name the file.
 Model load_model(const std::filesystem::path& path, const BuildOptions& options);
 
+/// Option check for --delta and friends: a finite number >= 0. (CLI::NonNegativeNumber lets NaN
+/// through, and its message prints the largest double in full.)
+CLI::Validator non_negative_finite();
+
 /// Registers the subcommands; each returns its exit code through the callback's `code`.
 void add_collide_command(CLI::App& app, int& code);
 void add_info_command(CLI::App& app, int& code);

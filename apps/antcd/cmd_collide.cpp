@@ -15,26 +15,6 @@ namespace antcd::cli {
 
 namespace {
 
-/// --delta and friends: a finite number >= 0. (CLI::NonNegativeNumber lets NaN through, and its
-/// message prints the largest double in full.)
-CLI::Validator non_negative_finite() {
-  return CLI::Validator(
-      [](std::string& text) -> std::string {
-        double value = 0;
-        std::size_t used = 0;
-        try {
-          value = std::stod(text, &used);
-        } catch (const std::exception&) {
-          used = 0;
-        }
-        if (used == 0 || used != text.size() || !std::isfinite(value) || value < 0) {
-          return "expected a finite number >= 0, got '" + text + "'";
-        }
-        return {};
-      },
-      "NUMBER >= 0");
-}
-
 struct CollideOptions {
   std::string mesh_a, mesh_b;
   std::string pose_a = "0,0,0", pose_b = "0,0,0";

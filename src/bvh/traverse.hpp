@@ -8,6 +8,8 @@
 #include <cmath>
 #include <utility>
 
+#include "geometry/obb_sat.hpp"
+
 namespace antcd::detail {
 
 /// Relative placement of model B in model A's frame plus the culling margin.
@@ -33,32 +35,10 @@ struct PairFrame {
 /// geometry::obb_overlap, inlined into the traversal. True when a separating axis was found.
 inline bool obb_disjoint(const Obb& a, const Obb& b, const Mat3& rot, const Vec3& trans,
                          Scalar margin) {
-  constexpr Scalar kEps = 1e-12;  // as geometry::obb_overlap: near-parallel edge pairs
   const Mat3 rb = rot * b.axes;
   const Mat3 r = a.axes.transpose() * rb;
   const Vec3 t = a.axes.transpose() * (rot * b.center + trans - a.center);
-  const Mat3 ar = r.cwiseAbs().array() + kEps;
-  const Vec3 ea = a.half_extents.array() + margin;
-  const Vec3& eb = b.half_extents;
-  for (int i = 0; i < 3; ++i) {
-    if (std::abs(t[i]) > ea[i] + ar.row(i).dot(eb)) return true;
-  }
-  for (int j = 0; j < 3; ++j) {
-    if (std::abs(t.dot(r.col(j))) > ar.col(j).dot(ea) + eb[j]) return true;
-  }
-  for (int i = 0; i < 3; ++i) {
-    const int i1 = (i + 1) % 3;
-    const int i2 = (i + 2) % 3;
-    for (int j = 0; j < 3; ++j) {
-      const int j1 = (j + 1) % 3;
-      const int j2 = (j + 2) % 3;
-      const Scalar ra = ea[i1] * ar(i2, j) + ea[i2] * ar(i1, j);
-      const Scalar rb2 = eb[j1] * ar(i, j2) + eb[j2] * ar(i, j1);
-      const Scalar dist = std::abs(t[i2] * r(i1, j) - t[i1] * r(i2, j));
-      if (dist > ra + rb2) return true;
-    }
-  }
-  return false;
+  return geometry::detail::obb_separated(a.half_extents.array() + margin, b.half_extents, r, t);
 }
 
 /// Depth-first dual traversal (paper, section 4 step 1). For each pair of leaves whose spheres and
