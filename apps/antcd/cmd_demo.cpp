@@ -176,7 +176,7 @@ void add_demo_command(CLI::App& app, int& code) {
       ->check(CLI::Range(1, 256))
       ->capture_default_str();
   cmd->add_option("--maco-step", opts->maco_step,
-                  "Run maco on every k-th frame (it is ~1000x slower than exact); 1 = all")
+                  "Run maco on every k-th frame (it is over 1000x slower than exact); 1 = all")
       ->check(CLI::Range(1, 1000000))
       ->capture_default_str();
   cmd->add_option("--ab-frames", opts->ab_frames,
