@@ -27,28 +27,7 @@ build_dir="${ANTCD_FUZZ_BUILD_DIR:-$repo/build-fuzz}"
 jobs="${ANTCD_FUZZ_JOBS:-$(nproc)}"
 
 # ---- clang and its libFuzzer runtime (Debian 12: clang, libclang-rt-dev) ----
-./scripts/install-deps.sh
-missing=()
-for p in clang libclang-rt-dev; do
-  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
-    missing+=("$p")
-  fi
-done
-if [ ${#missing[@]} -gt 0 ] || ! command -v clang++ >/dev/null 2>&1; then
-  echo "installing missing Debian packages: ${missing[*]:-clang}" >&2
-  sudo_cmd=()
-  if [ "$(id -u)" -ne 0 ]; then
-    if command -v sudo >/dev/null 2>&1; then
-      sudo_cmd=(sudo)
-    else
-      echo "error: clang is missing and not root: run this script as root" >&2
-      exit 2
-    fi
-  fi
-  export DEBIAN_FRONTEND=noninteractive
-  "${sudo_cmd[@]}" apt-get update -q
-  "${sudo_cmd[@]}" apt-get install -y -q --no-install-recommends clang libclang-rt-dev
-fi
+./scripts/install-deps.sh clang libclang-rt-dev
 
 # ---- build ----
 cmake -S "$repo" -B "$build_dir" \

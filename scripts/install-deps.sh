@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages antcd needs to build, test and benchmark, if any are missing.
-# Usage: scripts/install-deps.sh            (run as root, or with sudo available)
+# Usage: scripts/install-deps.sh [EXTRA-PACKAGE ...]   (run as root, or with sudo available)
+# Extra packages (e.g. clang for scripts/fuzz.sh) are installed the same way.
 set -euo pipefail
 
 packages=(
@@ -9,6 +10,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev libcgal-dev
   libfcl-dev libbullet-dev
   assimp-testmodels gnuplot-nox
+  "$@"
 )
 
 missing=()
