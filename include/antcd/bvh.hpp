@@ -17,16 +17,6 @@
 
 namespace antcd {
 
-/// How the OBB axes of a node are fitted (paper, Eqs. 1–3).
-enum class CovarianceMethod {
-  /// Eqs. 1–2: mean of the triangles' vertices, covariance of the vertices about it.
-  VertexMean,
-  /// Eq. 3 into Eq. 2: the mean is the area-weighted combined centroid of the triangles, and each
-  /// triangle contributes its vertices' scatter about it weighted by its area (the paper's
-  /// improvement; insensitive to non-uniform tessellation). Default.
-  AreaWeightedCentroid,
-};
-
 struct BuildOptions {
   /// Largest number of triangles in a leaf (>= 1).
   std::uint32_t leaf_size = 4;

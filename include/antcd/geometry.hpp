@@ -31,6 +31,16 @@ struct Obb {
   [[nodiscard]] Scalar volume() const { return 8 * half_extents.prod(); }
 };
 
+/// How the OBB axes of a hierarchy node are fitted (paper, Eqs. 1–3).
+enum class CovarianceMethod {
+  /// Eqs. 1–2: mean of the triangles' vertices, covariance of the vertices about it.
+  VertexMean,
+  /// Eq. 3 into Eq. 2: the mean is the area-weighted combined centroid of the triangles, and each
+  /// triangle contributes its vertices' scatter about it weighted by its area (the paper's
+  /// improvement; insensitive to non-uniform tessellation). Default.
+  AreaWeightedCentroid,
+};
+
 namespace geometry {
 
 /// True for a zero-area triangle, or numerically so: twice its area (|(b-a)×(c-a)|) is at most

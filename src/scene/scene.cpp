@@ -14,7 +14,7 @@
 #include <map>
 #include <stdexcept>
 
-#include "scene/narrow.hpp"
+#include "scene/pair_query.hpp"
 
 namespace antcd {
 
@@ -150,7 +150,7 @@ FrameResult Scene::run_frame(std::size_t frame, const SceneQuery& query) const {
     const auto [i, j] = result.candidates[k];
     const detail::PairSide a{&model_of(i), poses[i], feature_radius_[model_index_[i]], i};
     const detail::PairSide b{&model_of(j), poses[j], feature_radius_[model_index_[j]], j};
-    outcomes[k] = detail::narrow_phase(a, b, query, frame);
+    outcomes[k] = detail::query_pair(a, b, query, frame);
   };
   if (query.threads == 1 || m < 2) {
     for (std::size_t k = 0; k < m; ++k) work(k);

@@ -1,4 +1,4 @@
-#include "scene/narrow.hpp"
+#include "scene/pair_query.hpp"
 
 #include <antcd/collide.hpp>
 #include <antcd/random.hpp>
@@ -33,8 +33,8 @@ SearchMethod search_method(Method m) {
 
 }  // namespace
 
-PairOutcome narrow_phase(const PairSide& a, const PairSide& b, const SceneQuery& query,
-                         std::size_t frame) {
+PairOutcome query_pair(const PairSide& a, const PairSide& b, const SceneQuery& query,
+                       std::size_t frame) {
   PairOutcome out;
   switch (query.method) {
     case Method::Exact: {

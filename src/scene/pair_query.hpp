@@ -24,7 +24,7 @@ struct PairSide {
 
 /// Runs `query.method` on one pair. Deterministic: random methods seed their stream from
 /// (query.seed, frame, a.index, b.index) only.
-PairOutcome narrow_phase(const PairSide& a, const PairSide& b, const SceneQuery& query,
-                         std::size_t frame);
+PairOutcome query_pair(const PairSide& a, const PairSide& b, const SceneQuery& query,
+                       std::size_t frame);
 
 }  // namespace antcd::detail

@@ -9,7 +9,7 @@
 // - pheromone lives on a grid of at most pheromone_resolution² blocks (64² by default),
 //   tau_ij = tau(block of j);
 // - L_k, the path length, is the mean centroid distance of the path's cells in units of delta.
-#include "narrowphase/random/recorder.hpp"
+#include "random/engines.hpp"
 
 #include <algorithm>
 #include <array>

@@ -1,6 +1,6 @@
 // Exhaustive enumeration of the feature grid, row by row: the reference every heuristic search is
 // measured against (it finds every colliding pair, in na * nb evaluations).
-#include "narrowphase/random/recorder.hpp"
+#include "random/engines.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,88 +1,17 @@
 // Private: bookkeeping shared by every random search — fitness evaluation, distinct hits, best,
-// stop criteria — and the seeding of the searches' random streams.
+// stop criteria.
 #pragma once
 
 #include <antcd/random.hpp>
 
+#include "random/cell_set.hpp"
+
 #include <chrono>
 #include <cmath>
 #include <cstdint>
-#include <random>
 #include <vector>
 
 namespace antcd::detail {
-
-/// SplitMix64 finaliser: turns related seeds (0, 1, 2, ...) into unrelated 64-bit states.
-constexpr std::uint64_t mix_seed(std::uint64_t x) {
-  x += 0x9E3779B97F4A7C15ULL;
-  x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ULL;
-  x = (x ^ (x >> 27)) * 0x94D049BB133111EBULL;
-  return x ^ (x >> 31);
-}
-
-/// The searches' random stream: std::mt19937_64 (its output sequence is fixed by the standard)
-/// with our own mappings to ranges, so a seed gives the same result with any standard library
-/// (the std:: distributions are implementation-defined).
-class Rng {
- public:
-  explicit Rng(std::uint64_t seed) : engine_(mix_seed(seed)) {}
-
-  /// Uniform integer in [0, n), n >= 1 (rejection sampling, unbiased).
-  std::uint64_t below(std::uint64_t n) {
-    const std::uint64_t threshold = (0 - n) % n;  // 2^64 mod n
-    for (;;) {
-      const std::uint64_t r = engine_();
-      if (r >= threshold) return r % n;
-    }
-  }
-  /// Uniform double in [0, 1).
-  double unit() { return static_cast<double>(engine_() >> 11) * 0x1.0p-53; }
-  /// Uniform double in [lo, hi).
-  double uniform(double lo, double hi) { return lo + (hi - lo) * unit(); }
-
- private:
-  std::mt19937_64 engine_;
-};
-
-/// Set of 64-bit keys (open addressing, linear probing, power-of-two capacity). Memory grows
-/// with the number of distinct hits only; growth is amortised (doubling).
-class CellSet {
- public:
-  CellSet() { table_.assign(1024, kEmpty); }
-
-  /// Inserts `key`; true when it was not present.
-  bool insert(std::uint64_t key) {
-    if (2 * (size_ + 1) > table_.size()) grow();
-    return insert_unchecked(key);
-  }
-
- private:
-  static constexpr std::uint64_t kEmpty = ~std::uint64_t{0};
-
-  bool insert_unchecked(std::uint64_t key) {
-    const std::size_t mask = table_.size() - 1;
-    std::size_t slot = static_cast<std::size_t>(mix_seed(key)) & mask;
-    while (table_[slot] != kEmpty) {
-      if (table_[slot] == key) return false;
-      slot = (slot + 1) & mask;
-    }
-    table_[slot] = key;
-    ++size_;
-    return true;
-  }
-
-  void grow() {
-    std::vector<std::uint64_t> old(table_.size() * 2, kEmpty);
-    old.swap(table_);
-    size_ = 0;
-    for (const std::uint64_t key : old) {
-      if (key != kEmpty) insert_unchecked(key);
-    }
-  }
-
-  std::vector<std::uint64_t> table_;
-  std::size_t size_ = 0;
-};
 
 /// Evaluates feature pairs for a search and applies the stop criteria. One per search call.
 class Recorder {
@@ -229,15 +158,5 @@ class Recorder {
   std::uint32_t iteration_offset_ = 0;
   CellSet seen_;
 };
-
-/// The engines, one per file. Each runs one run of request.iterations iterations with its own
-/// random stream seeded from `seed`, or less if `rec` stops.
-void run_colony(const FeatureSpace& space, const SearchRequest& request, bool improved,
-                std::uint64_t seed, Recorder& rec);
-void run_pso(const FeatureSpace& space, const SearchRequest& request, std::uint64_t seed,
-             Recorder& rec);
-void run_ga(const FeatureSpace& space, const SearchRequest& request, std::uint64_t seed,
-            Recorder& rec);
-void run_exhaustive(const FeatureSpace& space, Recorder& rec);
 
 }  // namespace antcd::detail

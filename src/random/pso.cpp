@@ -2,7 +2,7 @@
 // references [8–10]): a global-best swarm flying over the continuous rectangle [0, na) x [0, nb)
 // of the feature grid; a particle's cell is its position rounded down. Synchronous updates: the
 // whole swarm is evaluated, then every velocity and position is updated.
-#include "narrowphase/random/recorder.hpp"
+#include "random/engines.hpp"
 
 #include <algorithm>
 #include <cmath>

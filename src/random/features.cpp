@@ -1,6 +1,8 @@
 // Feature sampling (paper, sections 3.1–3.2 and section 4 step 2): from the leaf pairs of the
 // preliminary detection to the 2-D grid of centroid pairs.
-#include "narrowphase/random/recorder.hpp"
+#include <antcd/random.hpp>
+
+#include "random/rng.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,5 +1,5 @@
 // search() and random_collide(): request validation, then dispatch to one engine.
-#include "narrowphase/random/recorder.hpp"
+#include "random/engines.hpp"
 
 #include <cmath>
 #include <stdexcept>

@@ -3,7 +3,7 @@
 // g of k bits decodes to floor(g * n / 2^k), which covers [0, n) evenly and keeps close codes on
 // close indices. Generational replacement with elitism, tournament selection, one-point
 // crossover, per-bit mutation. Fitness: the centroid distance, minimised.
-#include "narrowphase/random/recorder.hpp"
+#include "random/engines.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,0 +1,19 @@
+// Private: where a hierarchy node's triangles are cut in two (split.cpp).
+#pragma once
+
+#include "geometry/obb_fit.hpp"
+
+#include <cstddef>
+#include <span>
+
+namespace antcd::detail {
+
+/// From this depth on the split point is always the median, so the depth stays below
+/// kMedianDepth + log2(n) + 1 whatever the triangle distribution, and the build O(n log n).
+constexpr std::size_t kMedianDepth = 40;
+
+/// Partitions `tris` (at least 2) of a node at `depth` into a left and a right part and returns
+/// the size of the left part (0 < size < tris.size()).
+std::size_t split_triangles(std::span<geometry::detail::FitTriangle> tris, std::size_t depth);
+
+}  // namespace antcd::detail

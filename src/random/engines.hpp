@@ -1,0 +1,23 @@
+// Private: the search engines behind search_feature_space (aco.cpp, pso.cpp, ga.cpp,
+// exhaustive.cpp).
+#pragma once
+
+#include <antcd/random.hpp>
+
+#include "random/recorder.hpp"
+
+#include <cstdint>
+
+namespace antcd::detail {
+
+/// The engines, one per file. Each runs one run of request.iterations iterations with its own
+/// random stream seeded from `seed`, or less if `rec` stops.
+void run_colony(const FeatureSpace& space, const SearchRequest& request, bool improved,
+                std::uint64_t seed, Recorder& rec);
+void run_pso(const FeatureSpace& space, const SearchRequest& request, std::uint64_t seed,
+             Recorder& rec);
+void run_ga(const FeatureSpace& space, const SearchRequest& request, std::uint64_t seed,
+            Recorder& rec);
+void run_exhaustive(const FeatureSpace& space, Recorder& rec);
+
+}  // namespace antcd::detail
