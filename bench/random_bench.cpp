@@ -85,7 +85,7 @@ double median(std::vector<double> v) {
 
 double exhaustive_ms(const FeatureSpace& space) {
   SearchRequest r;
-  r.method = SearchMethod::Exhaustive;
+  r.method = Method::Exhaustive;
   const auto t0 = std::chrono::steady_clock::now();
   const SearchResult res = search(space, r);
   benchmark::DoNotOptimize(res.hits.data());
@@ -108,7 +108,7 @@ const std::vector<double> kMarks = {1e-12, 0.2, 0.4, 0.6, 0.8};
 void bm_exhaustive(benchmark::State& state, std::uint32_t samples) {
   const Space& sp = space_for(samples);
   SearchRequest r;
-  r.method = SearchMethod::Exhaustive;
+  r.method = Method::Exhaustive;
   r.stop.reference_count = sp.colliding;
   r.progress_marks = kMarks;
   std::array<std::vector<double>, 5> mark_ms;
@@ -124,7 +124,7 @@ void bm_exhaustive(benchmark::State& state, std::uint32_t samples) {
   set_space_counters(state, sp);
 }
 
-void bm_search(benchmark::State& state, SearchMethod method, std::uint32_t samples,
+void bm_search(benchmark::State& state, Method method, std::uint32_t samples,
                MacoSwitches switches) {
   const Space& sp = space_for(samples);
   const auto& kNames = kMarkNames;
@@ -180,9 +180,8 @@ int main(int argc, char** argv) {
                                  n)
         ->Unit(benchmark::kMillisecond)
         ->Iterations(5);
-    for (const SearchMethod m :
-         {SearchMethod::Aco, SearchMethod::Maco, SearchMethod::Pso, SearchMethod::Ga}) {
-      const std::string name = std::string(to_string(m)) + "/samples:" + std::to_string(n);
+    for (const Method m : {Method::Aco, Method::Maco, Method::Pso, Method::Ga}) {
+      const std::string name = std::string(method_label(m)) + "/samples:" + std::to_string(n);
       benchmark::RegisterBenchmark(name.c_str(), bm_search, m, n, MacoSwitches{})
           ->Unit(benchmark::kMillisecond)
           ->Iterations(5);
@@ -201,7 +200,7 @@ int main(int argc, char** argv) {
   };
   for (const auto& [label, switches] : variants) {
     benchmark::RegisterBenchmark((std::string(label) + "/samples:2000").c_str(), bm_search,
-                                 SearchMethod::Maco, 2000u, switches)
+                                 Method::Maco, 2000u, switches)
         ->Unit(benchmark::kMillisecond)
         ->Iterations(5);
   }

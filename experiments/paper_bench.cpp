@@ -6,14 +6,14 @@
 #include <fcntl.h>
 #include <spawn.h>
 #include <sys/wait.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 #include <unistd.h>
 #include <antcd/collide.hpp>
 #include <antcd/io.hpp>
 #include <antcd/random.hpp>
 #include <antcd/scene.hpp>
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <atomic>
@@ -362,20 +362,20 @@ const char* algo_name(Algo a) {
   return "?";
 }
 
-SearchMethod search_method(Algo a) {
+Method search_method(Algo a) {
   switch (a) {
     case Algo::Maco:
-      return SearchMethod::Maco;
+      return Method::Maco;
     case Algo::Aco:
-      return SearchMethod::Aco;
+      return Method::Aco;
     case Algo::Pso:
-      return SearchMethod::Pso;
+      return Method::Pso;
     case Algo::Ga:
-      return SearchMethod::Ga;
+      return Method::Ga;
     case Algo::Exhaustive:
-      return SearchMethod::Exhaustive;
+      return Method::Exhaustive;
   }
-  return SearchMethod::Maco;
+  return Method::Maco;
 }
 
 /// The paper's settings (section 5, experiment 3): m = 60, alpha = beta = 1, N = 100, n = 50; the
@@ -1243,8 +1243,8 @@ std::string write_report(const Results& r) {
 }  // namespace
 
 void run_paper_bench(const PaperBenchOptions& options, std::ostream& log) {
-  if (options.out.empty()) throw std::invalid_argument("bench paper: --out must not be empty");
-  if (options.threads < 1) throw std::invalid_argument("bench paper: --threads must be >= 1");
+  if (options.out.empty()) throw antcd::ArgumentError("bench paper: --out must not be empty");
+  if (options.threads < 1) throw antcd::ArgumentError("bench paper: --threads must be >= 1");
   const auto start = Clock::now();
   const fs::path out = options.out;
   std::error_code ec;
@@ -1543,7 +1543,7 @@ void run_paper_bench(const PaperBenchOptions& options, std::ostream& log) {
       }
       {
         const auto t0 = Clock::now();
-        const bool hit = leaves_overlap(a, pa, b, pb, 0.0);
+        const bool hit = any_leaf_pair_overlaps(a, pa, b, pb, 0.0);
         out.sphere.add(hit, t.truth, ms_since(t0));
       }
       const std::uint64_t seed = derive_seed(options.seed, 4, t.frame, t.i, t.j);

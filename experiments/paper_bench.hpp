@@ -41,7 +41,7 @@ struct PaperBenchOptions {
 };
 
 /// Runs the experiments and writes the files listed above; progress goes to `log`. Throws
-/// std::invalid_argument for bad options (empty `out`, threads < 1) and antcd::Error when gnuplot
+/// antcd::ArgumentError for bad options (empty `out`, threads < 1) and antcd::Error when gnuplot
 /// is missing or fails, or a file cannot be written.
 void run_paper_bench(const PaperBenchOptions& options, std::ostream& log);
 

@@ -712,13 +712,13 @@ class WorkDir {
   explicit WorkDir(const fs::path& requested) {
     if (!requested.empty()) {
       path_ = requested;
-      fs::create_directories(path_);
+      create_folders(path_);
       return;
     }
     path_ = fs::temp_directory_path() /
             ("antcd-peers-" + std::to_string(::getpid()) + "-" +
              std::to_string(std::chrono::steady_clock::now().time_since_epoch().count()));
-    fs::create_directories(path_);
+    create_folders(path_);
     owned_ = true;
   }
   ~WorkDir() {
@@ -1118,7 +1118,7 @@ SceneCheck check_scene(const Scene& scene, std::string_view name, std::size_t fr
 }
 
 PeersBenchResult run_peers_bench(const PeersBenchOptions& options, std::ostream& log) {
-  if (options.threads < 1) throw std::invalid_argument("--threads must be at least 1");
+  if (options.threads < 1) throw antcd::ArgumentError("--threads must be at least 1");
   const auto total_start = std::chrono::steady_clock::now();
   const std::size_t frames_default = options.quick ? 30 : 300;
   const std::size_t frames_wanted = options.frames > 0 ? options.frames : frames_default;

@@ -93,7 +93,7 @@ struct PeersBenchResult {
   std::size_t bullet_disagreements = 0;
 };
 
-/// Runs the selected sections; progress goes to `log`. Throws std::invalid_argument for bad
+/// Runs the selected sections; progress goes to `log`. Throws antcd::ArgumentError for bad
 /// options, antcd::Error for an unreadable scene.
 PeersBenchResult run_peers_bench(const PeersBenchOptions& options, std::ostream& log);
 

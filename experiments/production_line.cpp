@@ -7,6 +7,8 @@
 // conveyor (or a column when only one object is left).
 #include "production_line.hpp"
 
+#include <antcd/io.hpp>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -856,28 +858,28 @@ GeneratedScene generate_from_files(const ProductionLineOptions& options) {
 
 void validate_options(const ProductionLineOptions& options) {
   if (options.objects < kMinObjects || options.objects > kMaxObjects) {
-    throw std::invalid_argument("--objects must be between " + std::to_string(kMinObjects) +
-                                " and " + std::to_string(kMaxObjects) + ", got " +
-                                std::to_string(options.objects));
+    throw antcd::ArgumentError("--objects must be between " + std::to_string(kMinObjects) +
+                               " and " + std::to_string(kMaxObjects) + ", got " +
+                               std::to_string(options.objects));
   }
   if (options.vertices < kMinVertices || options.vertices > kMaxVertices) {
-    throw std::invalid_argument(
+    throw antcd::ArgumentError(
         "--vertices must be between " + std::to_string(kMinVertices) +
         " (a box's 8 corners: the coarsest closed solid the equipment is built from) and " +
         std::to_string(kMaxVertices) + ", got " + std::to_string(options.vertices));
   }
   if (options.frames < 1 || options.frames > kMaxFrames) {
-    throw std::invalid_argument("--frames must be between 1 and " + std::to_string(kMaxFrames) +
-                                ", got " + std::to_string(options.frames));
+    throw antcd::ArgumentError("--frames must be between 1 and " + std::to_string(kMaxFrames) +
+                               ", got " + std::to_string(options.frames));
   }
   if (options.objects * options.frames > kMaxPoses) {
-    throw std::invalid_argument("--objects × --frames must be at most " +
-                                std::to_string(kMaxPoses) + " (one pose per moving object and " +
-                                "frame is kept in memory), got " +
-                                std::to_string(options.objects * options.frames));
+    throw antcd::ArgumentError("--objects × --frames must be at most " + std::to_string(kMaxPoses) +
+                               " (one pose per moving object and " +
+                               "frame is kept in memory), got " +
+                               std::to_string(options.objects * options.frames));
   }
   for (const std::filesystem::path& p : options.mesh_files) {
-    if (p.empty()) throw std::invalid_argument("--mesh: an empty file name was given");
+    if (p.empty()) throw antcd::ArgumentError("--mesh: an empty file name was given");
   }
 }
 
@@ -893,14 +895,14 @@ std::filesystem::path write_scene(const GeneratedScene& generated,
     const std::filesystem::path rel = std::filesystem::path(name).lexically_normal();
     if (name.empty() || rel.is_absolute() || rel.has_root_path() || rel.empty() ||
         *rel.begin() == "..") {
-      throw std::invalid_argument("write_scene: mesh file name '" + name +
-                                  "' must be relative and stay inside the scene folder");
+      throw antcd::ArgumentError("write_scene: mesh file name '" + name +
+                                 "' must be relative and stay inside the scene folder");
     }
   }
-  std::filesystem::create_directories(dir);
+  create_folders(dir);
   for (const auto& [name, mesh] : generated.meshes) {
     const std::filesystem::path path = dir / std::filesystem::path(name);
-    std::filesystem::create_directories(path.parent_path());
+    create_folders(path.parent_path());
     save_obj(mesh, path);
   }
   const std::filesystem::path scene_path = dir / "scene.json";

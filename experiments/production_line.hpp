@@ -61,16 +61,16 @@ struct GeneratedScene {
   std::vector<std::pair<std::string, Mesh>> meshes;
 };
 
-/// Throws std::invalid_argument naming the option ("--objects must be ...") when out of range.
+/// Throws antcd::ArgumentError naming the option ("--objects must be ...") when out of range.
 void validate_options(const ProductionLineOptions& options);
 
 /// Builds the scene in memory. Deterministic: the same options give the same scene. Throws
-/// std::invalid_argument for bad options and MeshError for an unreadable mesh file.
+/// antcd::ArgumentError for bad options and MeshError for an unreadable mesh file.
 GeneratedScene generate_production_line(const ProductionLineOptions& options);
 
 /// Writes DIR/meshes/*.obj (save_obj) and then DIR/scene.json (save_scene), creating folders as
 /// needed; every file is written atomically. Returns the path of scene.json. Throws
-/// std::invalid_argument for a mesh name that is absolute or leaves the folder, antcd::Error when
+/// antcd::ArgumentError for a mesh name that is absolute or leaves the folder, antcd::Error when
 /// writing fails.
 std::filesystem::path write_scene(const GeneratedScene& generated,
                                   const std::filesystem::path& dir);

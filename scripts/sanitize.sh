@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Sanitizer runs (issue 6):
+# Sanitizer runs:
 #   asan: AddressSanitizer + UndefinedBehaviorSanitizer, -O1 -g, over the whole ctest suite, in
 #         ${ANTCD_ASAN_BUILD_DIR:-build-asan}.
 #   tsan: ThreadSanitizer, -O1 -g, over the concurrency tests (GoogleTest names Concurrency*), in

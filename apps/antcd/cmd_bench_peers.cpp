@@ -78,7 +78,7 @@ void add_bench_peers_command(CLI::App& bench, int& code) {
     std::cout << r.report_markdown;
     if (!args->out.empty()) {
       const std::filesystem::path dir(args->out);
-      std::filesystem::create_directories(dir);
+      create_folders(dir);
       write_file_atomic(dir / "report.md", r.report_markdown);
       for (const auto& [name, text] : r.csv) write_file_atomic(dir / name, text);
       std::cerr << "wrote " << (dir / "report.md").string() << '\n';

@@ -1,11 +1,12 @@
 // antcd — command-line front end of the antcd collision library.
 #include "cli_util.hpp"
 
-#include <antcd/mesh.hpp>
+#include <antcd/error.hpp>
+#include <antcd/version.hpp>
 
 #include <cstdio>
-#include <exception>
 #include <iostream>
+#include <new>
 #include <string>
 
 namespace {
@@ -31,7 +32,8 @@ int main(int argc, char** argv) {
       "exact triangle tests, ant-colony random detection)",
       "antcd"};
   app.require_subcommand(1);
-  app.set_version_flag("--version", "antcd 0.1.0");
+  const std::string version = std::string("antcd ") + antcd::kVersion;
+  app.set_version_flag("--version", version);
   int code = 0;
   antcd::cli::add_collide_command(app, code);
   antcd::cli::add_info_command(app, code);
@@ -56,20 +58,16 @@ int main(int argc, char** argv) {
     std::cout << app.help("", CLI::AppFormatMode::All);
     return 0;
   } catch (const CLI::CallForVersion&) {
-    std::cout << "antcd 0.1.0\n";
+    std::cout << version << '\n';
     return 0;
   } catch (const CLI::ParseError& e) {
     return fail(e.what());
   } catch (const antcd::cli::UsageError& e) {
     return fail(e.what());
-  } catch (const antcd::Error& e) {
-    return fail(e.what());
-  } catch (const std::invalid_argument& e) {
+  } catch (const antcd::Error& e) {  // antcd/error.hpp: every bad input the library reports
     return fail(e.what());
   } catch (const std::bad_alloc&) {
     return fail("out of memory");
-  } catch (const std::exception& e) {
-    return fail(e.what());
   }
   return code;
 }

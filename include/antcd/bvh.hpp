@@ -8,6 +8,7 @@
 // triangles leaf_triangles()[first .. first + count). Bounding volumes are in the model's frame.
 #pragma once
 
+#include <antcd/export.hpp>
 #include <antcd/geometry.hpp>
 #include <antcd/mesh.hpp>
 
@@ -48,10 +49,10 @@ struct BvhStats {
   std::size_t memory_bytes = 0;   ///< heap bytes owned by the Model (mesh + tree)
 };
 
-class Model {
+class ANTCD_API Model {
  public:
   /// Builds the hierarchy over `mesh`. Throws MeshError (named `source`) if the mesh is invalid
-  /// (see validate_mesh) or has no triangle of non-zero area, or std::invalid_argument if
+  /// (see validate_mesh) or has no triangle of non-zero area, or antcd::ArgumentError if
   /// options.leaf_size is 0. O(n log n) in the number of triangles.
   explicit Model(Mesh mesh, const BuildOptions& options = {}, std::string source = "mesh");
 
@@ -93,13 +94,13 @@ struct LeafPair {
 /// Preliminary detection (paper, section 4 step 1): depth-first dual traversal of both trees, with
 /// the sphere test first and the 15-axis OBB test second, both grown by `delta` >= 0. Appends to
 /// `out` every leaf pair whose volumes are within delta; `out` is not cleared. Thread-safe.
-TraversalStats overlapping_leaves(const Model& a, const Transform& pose_a, const Model& b,
-                                  const Transform& pose_b, Scalar delta,
-                                  std::vector<LeafPair>& out);
+ANTCD_API TraversalStats overlapping_leaves(const Model& a, const Transform& pose_a, const Model& b,
+                                            const Transform& pose_b, Scalar delta,
+                                            std::vector<LeafPair>& out);
 
 /// The paper's Sphere-OBB baseline verdict: true when some pair of leaves has overlapping sphere
 /// and OBB (grown by delta). Stops at the first such pair. Thread-safe.
-bool leaves_overlap(const Model& a, const Transform& pose_a, const Model& b,
-                    const Transform& pose_b, Scalar delta);
+ANTCD_API bool any_leaf_pair_overlaps(const Model& a, const Transform& pose_a, const Model& b,
+                                      const Transform& pose_b, Scalar delta);
 
 }  // namespace antcd

@@ -16,6 +16,7 @@
 #pragma once
 
 #include <antcd/bvh.hpp>
+#include <antcd/export.hpp>
 
 #include <cstdint>
 #include <vector>
@@ -56,12 +57,13 @@ struct CollisionResult {
 };
 
 /// Exact collision query. Clears `result` first, fills it, returns result.colliding.
-/// Throws std::invalid_argument if request.delta is negative or not finite.
-bool collide(const Model& a, const Transform& pose_a, const Model& b, const Transform& pose_b,
-             const CollisionRequest& request, CollisionResult& result);
+/// Throws antcd::ArgumentError if request.delta is negative or not finite.
+ANTCD_API bool collide(const Model& a, const Transform& pose_a, const Model& b,
+                       const Transform& pose_b, const CollisionRequest& request,
+                       CollisionResult& result);
 
 /// Convenience overload returning a fresh result.
-CollisionResult collide(const Model& a, const Transform& pose_a, const Model& b,
-                        const Transform& pose_b, const CollisionRequest& request = {});
+ANTCD_API CollisionResult collide(const Model& a, const Transform& pose_a, const Model& b,
+                                  const Transform& pose_b, const CollisionRequest& request = {});
 
 }  // namespace antcd

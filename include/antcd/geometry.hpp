@@ -10,6 +10,7 @@
 // - Every function here is reentrant: no globals, no allocation.
 #pragma once
 
+#include <antcd/export.hpp>
 #include <antcd/math.hpp>
 
 namespace antcd {
@@ -46,27 +47,28 @@ namespace geometry {
 /// True for a zero-area triangle, or numerically so: twice its area (|(b-a)×(c-a)|) is at most
 /// 1e-12 times its longest edge squared (needle and cap shaped slivers with all three vertices on
 /// one line up to rounding). Such triangles are left out of hierarchies and queries.
-bool is_degenerate_triangle(const Vec3& a, const Vec3& b, const Vec3& c);
+ANTCD_API bool is_degenerate_triangle(const Vec3& a, const Vec3& b, const Vec3& c);
 
 /// Orientation of d against the plane through a, b, c: the determinant
 /// | a-d ; b-d ; c-d |. Positive when d lies below the plane (a, b, c counter-clockwise when seen
 /// from above), zero when coplanar.
-Scalar orient3d(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d);
+ANTCD_API Scalar orient3d(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d);
 
 /// Whether the closed triangles (a0, a1, a2) and (b0, b1, b2) share at least one point
 /// (touching counts). When they do and `point` is not null, one common point is written to it.
-bool triangles_intersect(const Vec3& a0, const Vec3& a1, const Vec3& a2, const Vec3& b0,
-                         const Vec3& b1, const Vec3& b2, Vec3* point = nullptr);
+ANTCD_API bool triangles_intersect(const Vec3& a0, const Vec3& a1, const Vec3& a2, const Vec3& b0,
+                                   const Vec3& b1, const Vec3& b2, Vec3* point = nullptr);
 
 /// Squared distance from p to the closed triangle (a, b, c); the closest point is written to
 /// `closest` when not null.
-Scalar point_triangle_distance_squared(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c,
-                                       Vec3* closest = nullptr);
+ANTCD_API Scalar point_triangle_distance_squared(const Vec3& p, const Vec3& a, const Vec3& b,
+                                                 const Vec3& c, Vec3* closest = nullptr);
 
 /// Squared distance between the closed segments [p0, p1] and [q0, q1]; the closest points on
 /// each are written to `cp` and `cq` when not null. Handles degenerate (point) segments.
-Scalar segment_segment_distance_squared(const Vec3& p0, const Vec3& p1, const Vec3& q0,
-                                        const Vec3& q1, Vec3* cp = nullptr, Vec3* cq = nullptr);
+ANTCD_API Scalar segment_segment_distance_squared(const Vec3& p0, const Vec3& p1, const Vec3& q0,
+                                                  const Vec3& q1, Vec3* cp = nullptr,
+                                                  Vec3* cq = nullptr);
 
 /// Distance between two closed triangles (0 when they intersect) with a closest pair of points
 /// (`pa` on the first, `pb` on the second; equal to a common point when they intersect).
@@ -75,25 +77,25 @@ struct TriangleDistance {
   Vec3 pa = Vec3::Zero();
   Vec3 pb = Vec3::Zero();
 };
-TriangleDistance triangle_distance(const Vec3& a0, const Vec3& a1, const Vec3& a2, const Vec3& b0,
-                                   const Vec3& b1, const Vec3& b2);
+ANTCD_API TriangleDistance triangle_distance(const Vec3& a0, const Vec3& a1, const Vec3& a2,
+                                             const Vec3& b0, const Vec3& b1, const Vec3& b2);
 
 /// The query used by collision detection with threshold delta >= 0: true when the triangles
 /// intersect or their distance is <= delta. With delta == 0 this is exactly triangles_intersect.
 /// On true, `point` (when not null) receives a contact point: a common point when they intersect,
 /// else the midpoint of the closest points; `distance` (when not null) receives the distance.
-bool triangles_within(const Vec3& a0, const Vec3& a1, const Vec3& a2, const Vec3& b0,
-                      const Vec3& b1, const Vec3& b2, Scalar delta, Vec3* point = nullptr,
-                      Scalar* distance = nullptr);
+ANTCD_API bool triangles_within(const Vec3& a0, const Vec3& a1, const Vec3& a2, const Vec3& b0,
+                                const Vec3& b1, const Vec3& b2, Scalar delta, Vec3* point = nullptr,
+                                Scalar* distance = nullptr);
 
 /// Separating-axis test (15 axes) between box `a` and box `b`, both in the same frame, with `a`'s
 /// half extents grown by `margin` >= 0 (a box that contains a's Minkowski sum with a ball of radius
 /// margin, so the test stays conservative for distance queries). True when no separating axis was
 /// found (overlap or touching).
-bool obb_overlap(const Obb& a, const Obb& b, Scalar margin = 0);
+ANTCD_API bool obb_overlap(const Obb& a, const Obb& b, Scalar margin = 0);
 
 /// Same test with b given in its own frame and the rigid motion `b_to_a` mapping it into a's frame.
-bool obb_overlap(const Obb& a, const Obb& b, const Transform& b_to_a, Scalar margin);
+ANTCD_API bool obb_overlap(const Obb& a, const Obb& b, const Transform& b_to_a, Scalar margin);
 
 /// Sphere test: true when the spheres are within `margin` of each other (touching counts).
 inline bool sphere_overlap(const Sphere& a, const Sphere& b, Scalar margin = 0) {

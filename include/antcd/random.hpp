@@ -27,10 +27,12 @@
 // - Memory: search() allocates its working set once (pheromone on at most 64 x 64 blocks, paths,
 //   swarm or population); after that only the hit list and the distinct-hit set grow, with the
 //   number of hits. Nothing is proportional to the number of feature pairs.
-// - Errors: invalid arguments throw std::invalid_argument naming the parameter.
+// - Errors: invalid arguments throw antcd::ArgumentError naming the parameter.
 #pragma once
 
 #include <antcd/bvh.hpp>
+#include <antcd/export.hpp>
+#include <antcd/method.hpp>
 
 #include <cstdint>
 #include <limits>
@@ -71,7 +73,7 @@ struct FeatureSide {
 };
 
 /// The discrete 2-D search space of one model pair at one pose pair. Immutable once built.
-struct FeatureSpace {
+struct ANTCD_API FeatureSpace {
   FeatureSide a;  ///< features of model A, index i
   FeatureSide b;  ///< features of model B, index j
   /// The centroid threshold the space was built for (SamplingOptions::delta, resolved).
@@ -90,39 +92,32 @@ struct FeatureSpace {
 
 /// Median over A's non-degenerate triangles of the largest centroid-to-vertex distance ("feature
 /// radius"), model frame (poses do not change it). O(n) in the triangles.
-Scalar feature_radius(const Model& model);
+ANTCD_API Scalar feature_radius(const Model& model);
 
 /// Default centroid threshold: feature_radius(a) + feature_radius(b). Any point of a triangle lies
 /// within its radius of its centroid, so two touching triangles of at most median size always have
 /// centroids within this distance: for typical triangles the threshold misses no touching pair
 /// (it does admit near misses; random detection is approximate). Always > 0.
-Scalar default_delta(const Model& a, const Model& b);
+ANTCD_API Scalar default_delta(const Model& a, const Model& b);
+/// default_delta from radii already computed with feature_radius (a scene caches them per model).
+ANTCD_API Scalar default_delta(Scalar radius_a, Scalar radius_b);
 
 /// Preliminary detection then sampling: runs overlapping_leaves(a, pose_a, b, pose_b, delta), takes
 /// the triangles of the reported leaves of each side in leaf order, samples
 /// options.samples_per_side of them per side (stratified: one uniformly random triangle from each
 /// of that many equal runs of the leaf order, so the sample covers every region), computes their
 /// centroids in the world frame and orders them (options.order). `seed` drives the sampling only.
-/// Separated models (no leaf pair) give an empty space. Throws std::invalid_argument if
+/// Separated models (no leaf pair) give an empty space. Throws antcd::ArgumentError if
 /// samples_per_side is 0 or delta is NaN.
-FeatureSpace build_feature_space(const Model& a, const Transform& pose_a, const Model& b,
-                                 const Transform& pose_b, const SamplingOptions& options = {},
-                                 std::uint64_t seed = 0);
+ANTCD_API FeatureSpace build_feature_space(const Model& a, const Transform& pose_a, const Model& b,
+                                           const Transform& pose_b,
+                                           const SamplingOptions& options = {},
+                                           std::uint64_t seed = 0);
 
 // ---- Searches (sections 3.3–4) ----
 
-enum class SearchMethod {
-  Aco,         ///< classic ant colony (Sphere-OBB-ACO): Eqs. 7–8, fixed alpha, beta, rho
-  Maco,        ///< improved ant colony (Sphere-OBB-MACO): Eqs. 9–15, each switch in MacoSwitches
-  Pso,         ///< particle swarm (BOX-PSO / PSO random collision detection baseline)
-  Ga,          ///< genetic algorithm baseline
-  Exhaustive,  ///< every feature pair in row order: the reference
-};
-
-std::string_view to_string(SearchMethod method);
-
 /// The four improvements of section 3.4; each can be switched off alone (ablation). Used only by
-/// SearchMethod::Maco (Aco runs with all four off).
+/// Method::Maco (Aco runs with all four off).
 struct MacoSwitches {
   bool adaptive_exponents = true;    ///< (1) alpha' = alpha Nc/n, beta' = beta Nc/n (Eqs. 9–10)
   bool adaptive_evaporation = true;  ///< (2) rho = N / (Nc + N) (Eq. 11)
@@ -181,7 +176,7 @@ struct StopCriteria {
 };
 
 struct SearchRequest {
-  SearchMethod method = SearchMethod::Maco;
+  Method method = Method::Maco;
   /// Centroid threshold. Negative: the space's delta. NaN is rejected. A value above the space's
   /// delta may find pairs outside the culled leaves missing from the space.
   Scalar delta = -1;
@@ -244,17 +239,17 @@ struct SearchResult {
   Scalar delta = 0;  ///< the threshold used
 };
 
-/// Runs one search over `space`. Throws std::invalid_argument on an invalid request.
-SearchResult search(const FeatureSpace& space, const SearchRequest& request);
+/// Runs one search over `space`. Throws antcd::ArgumentError on an invalid request.
+ANTCD_API SearchResult search(const FeatureSpace& space, const SearchRequest& request);
 
 /// Number of colliding pairs in the space at threshold delta (negative: the space's), by
 /// enumeration: the truth against which a detection rate is measured.
-std::uint64_t count_colliding(const FeatureSpace& space, Scalar delta = -1);
+ANTCD_API std::uint64_t count_colliding(const FeatureSpace& space, Scalar delta = -1);
 
 /// One call: build_feature_space(a, pose_a, b, pose_b, sampling, request.seed), then search. When
 /// request.delta is set (>= 0) the space is built for it, overriding sampling.delta.
-SearchResult random_collide(const Model& a, const Transform& pose_a, const Model& b,
-                            const Transform& pose_b, const SearchRequest& request = {},
-                            const SamplingOptions& sampling = {});
+ANTCD_API SearchResult random_collide(const Model& a, const Transform& pose_a, const Model& b,
+                                      const Transform& pose_b, const SearchRequest& request = {},
+                                      const SamplingOptions& sampling = {});
 
 }  // namespace antcd

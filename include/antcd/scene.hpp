@@ -3,8 +3,8 @@
 // Scene file (JSON, format "antcd-scene/1"):
 //   { "format": "antcd-scene/1", "frames": 300,
 //     "objects": [ { "name": "roller_07", "mesh": "meshes/roller.obj", "scale": 1.0,
-//                    "poses": [ { "translation": [0, 1.5, 0], "rotation_wxyz": [1, 0, 0, 0] } ] } ]
-//                    }
+//                    "poses": [ { "translation": [0, 1.5, 0], "rotation_wxyz": [1, 0, 0, 0] } ]
+//                  } ] }
 // - "mesh" is relative to the scene file's folder (absolute paths are kept as they are).
 // - "poses" holds one pose (a static object) or exactly "frames" poses.
 // - "scale" is optional, uniform, > 0, default 1; it scales the mesh about its own origin before
@@ -21,7 +21,9 @@
 #pragma once
 
 #include <antcd/bvh.hpp>
+#include <antcd/export.hpp>
 #include <antcd/mesh.hpp>
+#include <antcd/method.hpp>
 
 #include <cstdint>
 #include <filesystem>
@@ -31,12 +33,6 @@
 #include <vector>
 
 namespace antcd {
-
-/// A scene file is invalid. what() is "<file>: <object or field>: <problem>".
-class SceneError : public Error {
- public:
-  using Error::Error;
-};
 
 struct SceneObject {
   std::string name;
@@ -57,27 +53,15 @@ struct SceneDescription {
 
 /// Parses a scene from JSON text. `source` names the input in errors; relative mesh paths are
 /// resolved against `base_dir`. Mesh files are not opened here. Throws SceneError.
-SceneDescription parse_scene(std::string_view json_text, const std::filesystem::path& base_dir,
-                             const std::string& source);
+ANTCD_API SceneDescription parse_scene(std::string_view json_text,
+                                       const std::filesystem::path& base_dir,
+                                       const std::string& source);
 /// Reads and parses a scene file. Throws SceneError.
-SceneDescription load_scene(const std::filesystem::path& path);
+ANTCD_API SceneDescription load_scene(const std::filesystem::path& path);
 /// Serialises a scene (mesh paths as in mesh_text) and writes it atomically. Throws Error.
-void save_scene(const SceneDescription& scene, const std::filesystem::path& path);
+ANTCD_API void save_scene(const SceneDescription& scene, const std::filesystem::path& path);
 /// The JSON text save_scene writes.
-std::string scene_to_json(const SceneDescription& scene);
-
-/// Narrow phases a scene can run on the candidate pairs.
-enum class Method {
-  Exact,      ///< triangle–triangle tests (ground truth, default)
-  SphereObb,  ///< hierarchy only: collide when some pair of leaf volumes overlaps
-  Aco,        ///< random detection, classic ant colony
-  Maco,       ///< random detection, the paper's improved ant colony
-  Pso,        ///< random detection, particle swarm
-  Ga,         ///< random detection, genetic algorithm
-};
-std::string_view method_name(Method m);
-/// Parses "exact", "sphere-obb", "aco", "maco", "pso", "ga"; throws Error otherwise.
-Method parse_method(std::string_view name);
+ANTCD_API std::string scene_to_json(const SceneDescription& scene);
 
 struct SceneQuery {
   Method method = Method::Exact;
@@ -120,7 +104,7 @@ struct FrameResult {
   double time_ms = 0;  ///< pose update + broad phase + narrow phase
 };
 
-class Scene {
+class ANTCD_API Scene {
  public:
   /// Loads every mesh (once per distinct file and scale) and builds the hierarchies.
   /// Throws MeshError / SceneError naming the object whose mesh failed.
@@ -134,7 +118,7 @@ class Scene {
   }
   [[nodiscard]] double build_ms() const { return build_ms_; }
 
-  /// Runs one frame. Throws std::out_of_range for a frame >= frames, Error for a bad query.
+  /// Runs one frame. Throws ArgumentError for a frame >= frames or a bad query.
   [[nodiscard]] FrameResult run_frame(std::size_t frame, const SceneQuery& query) const;
 
  private:

@@ -75,7 +75,7 @@ Model::Model(Mesh mesh, const BuildOptions& options, std::string source)
     : mesh_(std::move(mesh)), source_(std::move(source)), options_(options) {
   const auto start = std::chrono::steady_clock::now();
   if (options_.leaf_size == 0) {
-    throw std::invalid_argument(source_ + ": leaf size must be at least 1");
+    throw antcd::ArgumentError(source_ + ": leaf size must be at least 1");
   }
   validate_mesh(mesh_, source_);
 

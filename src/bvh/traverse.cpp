@@ -12,8 +12,8 @@ TraversalStats overlapping_leaves(const Model& a, const Transform& pose_a, const
   });
 }
 
-bool leaves_overlap(const Model& a, const Transform& pose_a, const Model& b,
-                    const Transform& pose_b, Scalar delta) {
+bool any_leaf_pair_overlaps(const Model& a, const Transform& pose_a, const Model& b,
+                            const Transform& pose_b, Scalar delta) {
   const detail::PairFrame frame(a, pose_a, b, pose_b, delta);
   bool found = false;
   detail::dual_traverse(a, b, frame, [&](std::uint32_t, std::uint32_t) { return found = true; });

@@ -14,8 +14,8 @@ namespace antcd {
 bool collide(const Model& a, const Transform& pose_a, const Model& b, const Transform& pose_b,
              const CollisionRequest& request, CollisionResult& result) {
   if (!(request.delta >= 0) || !std::isfinite(request.delta)) {
-    throw std::invalid_argument("collision threshold delta must be finite and >= 0, got " +
-                                std::to_string(request.delta));
+    throw antcd::ArgumentError("collision threshold delta must be finite and >= 0, got " +
+                               std::to_string(request.delta));
   }
   result.clear();
   const detail::PairFrame frame(a, pose_a, b, pose_b, request.delta);

@@ -10,7 +10,6 @@
 #include <string>
 #include <system_error>
 
-
 namespace antcd {
 
 Aabb Mesh::bounds() const {
@@ -123,10 +122,9 @@ Mesh merge(const std::vector<Mesh>& parts) {
       for (const std::uint32_t v : parts[p].triangles[t]) {
         // Offsetting an out-of-range index could silently make it point into the next part.
         if (v >= n) {
-          throw std::invalid_argument("antcd::merge: part " + std::to_string(p) + " triangle " +
-                                      std::to_string(t) + " references vertex " +
-                                      std::to_string(v) + " but the part has " + std::to_string(n) +
-                                      " vertices");
+          throw antcd::ArgumentError("antcd::merge: part " + std::to_string(p) + " triangle " +
+                                     std::to_string(t) + " references vertex " + std::to_string(v) +
+                                     " but the part has " + std::to_string(n) + " vertices");
         }
       }
     }
@@ -134,9 +132,9 @@ Mesh merge(const std::vector<Mesh>& parts) {
     total_triangles += parts[p].triangles.size();
   }
   if (total_vertices > std::numeric_limits<std::uint32_t>::max()) {
-    throw std::length_error("antcd::merge: the merged mesh would have " +
-                            std::to_string(total_vertices) +
-                            " vertices, more than 32-bit indices can address");
+    throw antcd::ArgumentError("antcd::merge: the merged mesh would have " +
+                               std::to_string(total_vertices) +
+                               " vertices, more than 32-bit indices can address");
   }
 
   Mesh out;

@@ -27,24 +27,24 @@ std::string number(double x) {
 
 void require_length(const char* function, const char* name, Scalar value) {
   if (!std::isfinite(value) || !(value > 0)) {
-    throw std::invalid_argument(std::string("antcd::") + function + ": " + name +
-                                " must be finite and > 0, got " + number(value));
+    throw antcd::ArgumentError(std::string("antcd::") + function + ": " + name +
+                               " must be finite and > 0, got " + number(value));
   }
 }
 
 void require_count(const char* function, const char* name, int value, int minimum) {
   if (value < minimum) {
-    throw std::invalid_argument(std::string("antcd::") + function + ": " + name + " must be >= " +
-                                std::to_string(minimum) + ", got " + std::to_string(value));
+    throw antcd::ArgumentError(std::string("antcd::") + function + ": " + name + " must be >= " +
+                               std::to_string(minimum) + ", got " + std::to_string(value));
   }
 }
 
 /// Rejects tessellations whose vertex count would not fit 32-bit indices.
 void require_size(const char* function, std::uint64_t vertices) {
   if (vertices > std::numeric_limits<std::uint32_t>::max()) {
-    throw std::invalid_argument(std::string("antcd::") + function +
-                                ": the tessellation would have " + std::to_string(vertices) +
-                                " vertices, more than 32-bit indices can address");
+    throw antcd::ArgumentError(std::string("antcd::") + function +
+                               ": the tessellation would have " + std::to_string(vertices) +
+                               " vertices, more than 32-bit indices can address");
   }
 }
 
@@ -224,8 +224,8 @@ Mesh make_torus(Scalar major, Scalar minor, int major_segments, int minor_segmen
   require_length("make_torus", "minor", minor);
   if (!(minor < major)) {
     // With minor >= major the tube reaches the axis: the inner ring collapses or self-intersects.
-    throw std::invalid_argument("antcd::make_torus: minor radius (" + number(minor) +
-                                ") must be smaller than major radius (" + number(major) + ")");
+    throw antcd::ArgumentError("antcd::make_torus: minor radius (" + number(minor) +
+                               ") must be smaller than major radius (" + number(major) + ")");
   }
   require_count("make_torus", "major_segments", major_segments, 3);
   require_count("make_torus", "minor_segments", minor_segments, 3);

@@ -1,7 +1,7 @@
 // Private: the set of distinct feature-pair cells a search has hit.
 #pragma once
 
-#include "random/rng.hpp"
+#include <antcd/rng.hpp>
 
 #include <cstddef>
 #include <cstdint>

@@ -75,7 +75,7 @@ void run_exhaustive(const FeatureSpace& space, Recorder& rec) {
 namespace antcd {
 
 std::uint64_t count_colliding(const FeatureSpace& space, Scalar delta) {
-  if (std::isnan(delta)) throw std::invalid_argument("count_colliding: delta is NaN");
+  if (std::isnan(delta)) throw antcd::ArgumentError("count_colliding: delta is NaN");
   const Scalar d = delta < 0 ? space.delta : delta;
   const Scalar delta2 = d * d;
   std::uint64_t total = 0;

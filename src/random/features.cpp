@@ -1,8 +1,7 @@
 // Feature sampling (paper, sections 3.1–3.2 and section 4 step 2): from the leaf pairs of the
 // preliminary detection to the 2-D grid of centroid pairs.
 #include <antcd/random.hpp>
-
-#include "random/rng.hpp"
+#include <antcd/rng.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -38,7 +37,11 @@ Scalar feature_radius(const Model& model) {
 }
 
 Scalar default_delta(const Model& a, const Model& b) {
-  const Scalar d = feature_radius(a) + feature_radius(b);
+  return default_delta(feature_radius(a), feature_radius(b));
+}
+
+Scalar default_delta(Scalar radius_a, Scalar radius_b) {
+  const Scalar d = radius_a + radius_b;
   // Non-degenerate triangles have a positive radius, so d > 0; the fallback only guards a model
   // made of numerically tiny triangles.
   return d > 0 ? d : std::numeric_limits<Scalar>::min();
@@ -63,7 +66,7 @@ std::vector<std::uint32_t> candidate_positions(const Model& model,
 /// Stratified sample: `count` runs of (almost) equal length over `positions`, one uniformly random
 /// element from each. Keeps leaf order and covers every region of the candidate set.
 std::vector<std::uint32_t> stratified_sample(const std::vector<std::uint32_t>& positions,
-                                             std::uint32_t count, detail::Rng& rng) {
+                                             std::uint32_t count, Rng& rng) {
   const std::size_t n = positions.size();
   if (n <= count) return positions;
   std::vector<std::uint32_t> out(count);
@@ -137,10 +140,10 @@ FeatureSpace build_feature_space(const Model& a, const Transform& pose_a, const 
                                  const Transform& pose_b, const SamplingOptions& options,
                                  std::uint64_t seed) {
   if (options.samples_per_side == 0) {
-    throw std::invalid_argument("build_feature_space: samples_per_side must be >= 1");
+    throw antcd::ArgumentError("build_feature_space: samples_per_side must be >= 1");
   }
   if (std::isnan(options.delta) || std::isinf(options.delta)) {
-    throw std::invalid_argument("build_feature_space: delta must be finite (negative = default)");
+    throw antcd::ArgumentError("build_feature_space: delta must be finite (negative = default)");
   }
   FeatureSpace space;
   space.delta = options.delta < 0 ? default_delta(a, b) : options.delta;
@@ -162,28 +165,12 @@ FeatureSpace build_feature_space(const Model& a, const Transform& pose_a, const 
   space.candidates_a = cand_a.size();
   space.candidates_b = cand_b.size();
 
-  detail::Rng rng(seed ^ 0x5A3B1E0FEA7ULL);
+  Rng rng(seed ^ 0x5A3B1E0FEA7ULL);
   const auto sample_a = stratified_sample(cand_a, options.samples_per_side, rng);
   const auto sample_b = stratified_sample(cand_b, options.samples_per_side, rng);
   space.a = make_side(a, pose_a, sample_a, options.order);
   space.b = make_side(b, pose_b, sample_b, options.order);
   return space;
-}
-
-std::string_view to_string(SearchMethod method) {
-  switch (method) {
-    case SearchMethod::Aco:
-      return "ACO";
-    case SearchMethod::Maco:
-      return "MACO";
-    case SearchMethod::Pso:
-      return "PSO";
-    case SearchMethod::Ga:
-      return "GA";
-    case SearchMethod::Exhaustive:
-      return "Exhaustive";
-  }
-  return "?";
 }
 
 }  // namespace antcd

@@ -1,4 +1,6 @@
 // search() and random_collide(): request validation, then dispatch to one engine.
+#include <antcd/rng.hpp>
+
 #include "random/engines.hpp"
 
 #include <cmath>
@@ -9,7 +11,7 @@ namespace antcd {
 namespace {
 
 void require(bool ok, const char* what) {
-  if (!ok) throw std::invalid_argument(std::string("antcd::search: ") + what);
+  if (!ok) throw antcd::ArgumentError(std::string("antcd::search: ") + what);
 }
 
 void validate(const SearchRequest& r) {
@@ -23,8 +25,8 @@ void validate(const SearchRequest& r) {
     require(mark > 0 && mark <= 1, "progress_marks must be in (0, 1]");
   }
   switch (r.method) {
-    case SearchMethod::Aco:
-    case SearchMethod::Maco: {
+    case Method::Aco:
+    case Method::Maco: {
       const AntParams& p = r.ant;
       require(p.ants >= 1, "ant.ants must be >= 1");
       require(p.alpha >= 0 && p.beta >= 0, "ant.alpha and ant.beta must be >= 0");
@@ -36,7 +38,7 @@ void validate(const SearchRequest& r) {
       require(p.pheromone_resolution >= 1, "ant.pheromone_resolution must be >= 1");
       break;
     }
-    case SearchMethod::Pso: {
+    case Method::Pso: {
       const PsoParams& p = r.pso;
       require(p.particles >= 1, "pso.particles must be >= 1");
       require(std::isfinite(p.inertia) && std::isfinite(p.cognitive) && std::isfinite(p.social),
@@ -44,7 +46,7 @@ void validate(const SearchRequest& r) {
       require(p.max_velocity > 0 && std::isfinite(p.max_velocity), "pso.max_velocity must be > 0");
       break;
     }
-    case SearchMethod::Ga: {
+    case Method::Ga: {
       const GaParams& p = r.ga;
       require(p.population >= 2, "ga.population must be >= 2");
       require(p.tournament >= 1, "ga.tournament must be >= 1");
@@ -52,10 +54,12 @@ void validate(const SearchRequest& r) {
       require(!std::isnan(p.mutation) && p.mutation <= 1, "ga.mutation must be <= 1");
       break;
     }
-    case SearchMethod::Exhaustive:
+    case Method::Exhaustive:
       break;
-    default:
-      require(false, "unknown method");
+    case Method::Exact:
+    case Method::SphereObb:
+      throw ArgumentError("antcd::search: method '" + std::string(method_name(r.method)) +
+                          "' is not a random search (expected aco, maco, pso, ga or exhaustive)");
   }
 }
 
@@ -83,28 +87,30 @@ SearchResult search(const FeatureSpace& space, const SearchRequest& request) {
   }
   detail::Recorder rec(space, request, delta, target, result);
   rec.set_marks(request.progress_marks, truth);
-  if (request.method == SearchMethod::Exhaustive) {
+  if (request.method == Method::Exhaustive) {
     rec.begin_run();
     detail::run_exhaustive(space, rec);
   } else {
     for (std::uint64_t run = 0; run <= request.restarts && !rec.stopped(); ++run) {
       rec.begin_run();
       // Run 0 uses the request's seed as it is; restarts get derived, unrelated streams.
-      const std::uint64_t seed = run == 0 ? request.seed : detail::mix_seed(request.seed + run);
+      const std::uint64_t seed = run == 0 ? request.seed : mix_seed(request.seed + run);
       switch (request.method) {
-        case SearchMethod::Aco:
+        case Method::Aco:
           detail::run_colony(space, request, false, seed, rec);
           break;
-        case SearchMethod::Maco:
+        case Method::Maco:
           detail::run_colony(space, request, true, seed, rec);
           break;
-        case SearchMethod::Pso:
+        case Method::Pso:
           detail::run_pso(space, request, seed, rec);
           break;
-        case SearchMethod::Ga:
+        case Method::Ga:
           detail::run_ga(space, request, seed, rec);
           break;
-        case SearchMethod::Exhaustive:
+        case Method::Exhaustive:
+        case Method::Exact:
+        case Method::SphereObb:  // refused by validate()
           break;
       }
     }

@@ -2,36 +2,12 @@
 
 #include <antcd/collide.hpp>
 #include <antcd/random.hpp>
+#include <antcd/rng.hpp>
 
 #include <algorithm>
 #include <limits>
 
 namespace antcd::detail {
-
-namespace {
-
-// SplitMix64 finaliser: spreads (seed, frame, i, j) into independent-looking stream seeds.
-std::uint64_t mix(std::uint64_t x) {
-  x += 0x9e3779b97f4a7c15ULL;
-  x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ULL;
-  x = (x ^ (x >> 27)) * 0x94d049bb133111ebULL;
-  return x ^ (x >> 31);
-}
-
-SearchMethod search_method(Method m) {
-  switch (m) {
-    case Method::Aco:
-      return SearchMethod::Aco;
-    case Method::Maco:
-      return SearchMethod::Maco;
-    case Method::Pso:
-      return SearchMethod::Pso;
-    default:
-      return SearchMethod::Ga;
-  }
-}
-
-}  // namespace
 
 PairOutcome query_pair(const PairSide& a, const PairSide& b, const SceneQuery& query,
                        std::size_t frame) {
@@ -44,28 +20,26 @@ PairOutcome query_pair(const PairSide& a, const PairSide& b, const SceneQuery& q
       return out;
     }
     case Method::SphereObb:
-      out.colliding = leaves_overlap(*a.model, a.pose, *b.model, b.pose, query.delta);
+      out.colliding = any_leaf_pair_overlaps(*a.model, a.pose, *b.model, b.pose, query.delta);
       return out;
     case Method::Aco:
     case Method::Maco:
     case Method::Pso:
     case Method::Ga:
+    case Method::Exhaustive:
       break;
   }
   SearchRequest request;
-  request.method = search_method(query.method);
-  if (query.feature_delta > 0) {
-    request.delta = query.feature_delta;
-  } else {
-    // default_delta(a, b), from the radii the scene cached (random.hpp).
-    request.delta =
-        std::max(a.feature_radius + b.feature_radius, std::numeric_limits<Scalar>::min());
-  }
+  request.method = query.method;
+  // The radii are the ones the scene cached per model, so this is default_delta(a, b).
+  request.delta = query.feature_delta > 0 ? query.feature_delta
+                                          : default_delta(a.feature_radius, b.feature_radius);
   request.iterations = query.iterations;
   request.ant.ants = query.agents;
   request.pso.particles = query.agents;
   request.ga.population = query.agents;
-  request.seed = mix(mix(mix(query.seed) ^ frame) ^ (std::uint64_t{a.index} << 32 | b.index));
+  request.seed =
+      mix_seed(mix_seed(mix_seed(query.seed) ^ frame) ^ (std::uint64_t{a.index} << 32 | b.index));
   request.stop.first_hit = !(query.search_all || query.count_feature_truth);
   SamplingOptions sampling;
   sampling.samples_per_side = static_cast<std::uint32_t>(query.samples_per_side);

@@ -18,33 +18,6 @@
 
 namespace antcd {
 
-std::string_view method_name(Method m) {
-  switch (m) {
-    case Method::Exact:
-      return "exact";
-    case Method::SphereObb:
-      return "sphere-obb";
-    case Method::Aco:
-      return "aco";
-    case Method::Maco:
-      return "maco";
-    case Method::Pso:
-      return "pso";
-    case Method::Ga:
-      return "ga";
-  }
-  return "?";
-}
-
-Method parse_method(std::string_view name) {
-  for (const Method m :
-       {Method::Exact, Method::SphereObb, Method::Aco, Method::Maco, Method::Pso, Method::Ga}) {
-    if (method_name(m) == name) return m;
-  }
-  throw Error("unknown method '" + std::string(name) +
-              "' (expected exact, sphere-obb, aco, maco, pso or ga)");
-}
-
 Scene::Scene(SceneDescription description, const BuildOptions& options)
     : description_(std::move(description)) {
   const auto start = std::chrono::steady_clock::now();
@@ -75,25 +48,25 @@ Scene::Scene(SceneDescription description, const BuildOptions& options)
 
 FrameResult Scene::run_frame(std::size_t frame, const SceneQuery& query) const {
   if (frame >= description_.frames) {
-    throw std::out_of_range("frame " + std::to_string(frame) + " out of range (scene has " +
-                            std::to_string(description_.frames) + " frames)");
+    throw ArgumentError("frame " + std::to_string(frame) + " out of range (scene has " +
+                        std::to_string(description_.frames) + " frames)");
   }
   if (!(query.delta >= 0) || !std::isfinite(query.delta)) {
-    throw Error("delta must be finite and >= 0");
+    throw ArgumentError("delta must be finite and >= 0");
   }
-  if (query.threads < 1) throw Error("threads must be at least 1");
+  if (query.threads < 1) throw ArgumentError("threads must be at least 1");
   if (query.method != Method::Exact && query.method != Method::SphereObb) {
-    if (query.iterations < 1) throw Error("iterations must be at least 1");
+    if (query.iterations < 1) throw ArgumentError("iterations must be at least 1");
     if (query.samples_per_side < 1 || query.samples_per_side > UINT32_MAX) {
-      throw Error("samples per side must be between 1 and 4294967295");
+      throw ArgumentError("samples per side must be between 1 and 4294967295");
     }
     const std::uint32_t min_agents = query.method == Method::Ga ? 2 : 1;
-    if (query.agents < min_agents) {
-      throw Error(std::string(method_name(query.method)) + " needs at least " +
-                  std::to_string(min_agents) + (min_agents == 1 ? " agent" : " agents") +
-                  " (ants, particles or population)");
+    if (query.method != Method::Exhaustive && query.agents < min_agents) {
+      throw ArgumentError(std::string(method_name(query.method)) + " needs at least " +
+                          std::to_string(min_agents) + (min_agents == 1 ? " agent" : " agents") +
+                          " (ants, particles or population)");
     }
-    if (!std::isfinite(query.feature_delta)) throw Error("feature delta must be finite");
+    if (!std::isfinite(query.feature_delta)) throw ArgumentError("feature delta must be finite");
   }
   const auto start = std::chrono::steady_clock::now();
   FrameResult result;

@@ -90,4 +90,10 @@ std::string read_file(const std::filesystem::path& path) {
   return text.str();
 }
 
+void create_folders(const std::filesystem::path& path) {
+  std::error_code ec;
+  std::filesystem::create_directories(path, ec);
+  if (ec) throw Error(path.string() + ": cannot create the folder: " + ec.message());
+}
+
 }  // namespace antcd

@@ -177,7 +177,7 @@ TEST(BvhBuild, Errors) {
     EXPECT_NE(std::string(e.what()).find("flat.obj"), std::string::npos);
     EXPECT_NE(std::string(e.what()).find("non-zero area"), std::string::npos);
   }
-  EXPECT_THROW(Model(make_box(Vec3(1, 1, 1)), {0}), std::invalid_argument);
+  EXPECT_THROW(Model(make_box(Vec3(1, 1, 1)), {0}), antcd::ArgumentError);
   EXPECT_THROW(Model(Mesh{}, {}, "empty"), MeshError);
   Mesh bad_index = make_box(Vec3(1, 1, 1));
   bad_index.triangles[0][1] = 1000;

@@ -216,11 +216,11 @@ TEST(ExactCollide, MaxContactsStopsEarlyAndBooleanFindsOne) {
 
 TEST(ExactCollide, RejectsBadDelta) {
   const Model a(make_box(Vec3(1, 1, 1)));
-  EXPECT_THROW(collide(a, {}, a, {}, CollisionRequest{-1.0}), std::invalid_argument);
+  EXPECT_THROW(collide(a, {}, a, {}, CollisionRequest{-1.0}), antcd::ArgumentError);
   EXPECT_THROW(collide(a, {}, a, {}, CollisionRequest{std::numeric_limits<Scalar>::quiet_NaN()}),
-               std::invalid_argument);
+               antcd::ArgumentError);
   EXPECT_THROW(collide(a, {}, a, {}, CollisionRequest{std::numeric_limits<Scalar>::infinity()}),
-               std::invalid_argument);
+               antcd::ArgumentError);
 }
 
 TEST(ExactCollide, ReusedResultDoesNotGrowAndIsCleared) {

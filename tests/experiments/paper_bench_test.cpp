@@ -277,11 +277,11 @@ TEST(PaperBench, MissingGnuplotIsAClearErrorBeforeAnyWork) {
 TEST(PaperBench, RejectsBadOptions) {
   std::ostringstream log;
   PaperBenchOptions no_out;
-  EXPECT_THROW(run_paper_bench(no_out, log), std::invalid_argument);
+  EXPECT_THROW(run_paper_bench(no_out, log), antcd::ArgumentError);
   PaperBenchOptions no_threads;
   no_threads.out = test::fresh_temp_dir("paper_bench_bad_options");
   no_threads.threads = 0;
-  EXPECT_THROW(run_paper_bench(no_threads, log), std::invalid_argument);
+  EXPECT_THROW(run_paper_bench(no_threads, log), antcd::ArgumentError);
 }
 
 }  // namespace

@@ -27,7 +27,7 @@ using Pair = std::pair<std::uint32_t, std::uint32_t>;
 std::string invalid_message(const ProductionLineOptions& options) {
   try {
     (void)generate_production_line(options);
-  } catch (const std::invalid_argument& e) {
+  } catch (const antcd::ArgumentError& e) {
     return e.what();
   }
   return "(no exception)";
@@ -112,7 +112,7 @@ TEST(ProductionLine, RejectsBadOptionsNamingTheOption) {
 
   o = {};
   o.mesh_files = {std::filesystem::path()};
-  EXPECT_THROW((void)generate_production_line(o), std::invalid_argument);
+  EXPECT_THROW((void)generate_production_line(o), antcd::ArgumentError);
 
   // The limits themselves are accepted.
   o = {};
@@ -263,7 +263,7 @@ TEST(ProductionLine, WriteSceneRejectsNamesLeavingTheFolder) {
   for (const char* bad : {"../outside.obj", "/tmp/absolute.obj", "meshes/../../up.obj", ""}) {
     GeneratedScene g;
     g.meshes.emplace_back(bad, make_box(Vec3(1, 1, 1)));
-    EXPECT_THROW((void)write_scene(g, dir / "scene"), std::invalid_argument) << bad;
+    EXPECT_THROW((void)write_scene(g, dir / "scene"), antcd::ArgumentError) << bad;
   }
   EXPECT_FALSE(std::filesystem::exists(dir / "outside.obj"));
 }

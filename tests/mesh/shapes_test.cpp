@@ -155,17 +155,17 @@ TEST(MakeBox, Subdivided) {
 TEST(MakeBox, InvalidArguments) {
   const Scalar nan = std::numeric_limits<Scalar>::quiet_NaN();
   const Scalar inf = std::numeric_limits<Scalar>::infinity();
-  EXPECT_THROW(make_box(Vec3(0, 1, 1)), std::invalid_argument);
-  EXPECT_THROW(make_box(Vec3(1, -1, 1)), std::invalid_argument);
-  EXPECT_THROW(make_box(Vec3(1, 1, nan)), std::invalid_argument);
-  EXPECT_THROW(make_box(Vec3(inf, 1, 1)), std::invalid_argument);
-  EXPECT_THROW(make_box(Vec3(1, 1, 1), 0), std::invalid_argument);
-  EXPECT_THROW(make_box(Vec3(1, 1, 1), -3), std::invalid_argument);
+  EXPECT_THROW(make_box(Vec3(0, 1, 1)), antcd::ArgumentError);
+  EXPECT_THROW(make_box(Vec3(1, -1, 1)), antcd::ArgumentError);
+  EXPECT_THROW(make_box(Vec3(1, 1, nan)), antcd::ArgumentError);
+  EXPECT_THROW(make_box(Vec3(inf, 1, 1)), antcd::ArgumentError);
+  EXPECT_THROW(make_box(Vec3(1, 1, 1), 0), antcd::ArgumentError);
+  EXPECT_THROW(make_box(Vec3(1, 1, 1), -3), antcd::ArgumentError);
   // 6 · 40000² vertices do not fit 32-bit indices: refused before anything is allocated.
-  EXPECT_THROW(make_box(Vec3(1, 1, 1), 40000), std::invalid_argument);
+  EXPECT_THROW(make_box(Vec3(1, 1, 1), 40000), antcd::ArgumentError);
   try {
     (void)make_box(Vec3(1, 1, 1), 0);
-  } catch (const std::invalid_argument& e) {
+  } catch (const antcd::ArgumentError& e) {
     EXPECT_NE(std::string(e.what()).find("subdivisions must be >= 1, got 0"), std::string::npos)
         << e.what();
   }
@@ -234,16 +234,16 @@ TEST(MakeSphere, MinimalAndOddTessellations) {
 }
 
 TEST(MakeSphere, InvalidArguments) {
-  EXPECT_THROW(make_sphere(0), std::invalid_argument);
-  EXPECT_THROW(make_sphere(-1), std::invalid_argument);
-  EXPECT_THROW(make_sphere(std::numeric_limits<Scalar>::quiet_NaN()), std::invalid_argument);
-  EXPECT_THROW(make_sphere(std::numeric_limits<Scalar>::infinity()), std::invalid_argument);
-  EXPECT_THROW(make_sphere(1, 2, 8), std::invalid_argument);
-  EXPECT_THROW(make_sphere(1, 8, 1), std::invalid_argument);
-  EXPECT_THROW(make_sphere(1, 100000, 100000), std::invalid_argument);
+  EXPECT_THROW(make_sphere(0), antcd::ArgumentError);
+  EXPECT_THROW(make_sphere(-1), antcd::ArgumentError);
+  EXPECT_THROW(make_sphere(std::numeric_limits<Scalar>::quiet_NaN()), antcd::ArgumentError);
+  EXPECT_THROW(make_sphere(std::numeric_limits<Scalar>::infinity()), antcd::ArgumentError);
+  EXPECT_THROW(make_sphere(1, 2, 8), antcd::ArgumentError);
+  EXPECT_THROW(make_sphere(1, 8, 1), antcd::ArgumentError);
+  EXPECT_THROW(make_sphere(1, 100000, 100000), antcd::ArgumentError);
   try {
     (void)make_sphere(-1);
-  } catch (const std::invalid_argument& e) {
+  } catch (const antcd::ArgumentError& e) {
     EXPECT_NE(std::string(e.what()).find("make_sphere: radius must be finite and > 0, got -1"),
               std::string::npos)
         << e.what();
@@ -275,12 +275,12 @@ TEST(MakeCylinder, VolumeAndBounds) {
 }
 
 TEST(MakeCylinder, InvalidArguments) {
-  EXPECT_THROW(make_cylinder(0, 1), std::invalid_argument);
-  EXPECT_THROW(make_cylinder(1, 0), std::invalid_argument);
-  EXPECT_THROW(make_cylinder(1, -2), std::invalid_argument);
-  EXPECT_THROW(make_cylinder(1, std::numeric_limits<Scalar>::infinity()), std::invalid_argument);
-  EXPECT_THROW(make_cylinder(1, 1, 2), std::invalid_argument);
-  EXPECT_THROW(make_cylinder(1, 1, 8, 0), std::invalid_argument);
+  EXPECT_THROW(make_cylinder(0, 1), antcd::ArgumentError);
+  EXPECT_THROW(make_cylinder(1, 0), antcd::ArgumentError);
+  EXPECT_THROW(make_cylinder(1, -2), antcd::ArgumentError);
+  EXPECT_THROW(make_cylinder(1, std::numeric_limits<Scalar>::infinity()), antcd::ArgumentError);
+  EXPECT_THROW(make_cylinder(1, 1, 2), antcd::ArgumentError);
+  EXPECT_THROW(make_cylinder(1, 1, 8, 0), antcd::ArgumentError);
 }
 
 // ---- torus ----
@@ -308,13 +308,13 @@ TEST(MakeTorus, VolumeAndBounds) {
 }
 
 TEST(MakeTorus, InvalidArguments) {
-  EXPECT_THROW(make_torus(0, 0.5), std::invalid_argument);
-  EXPECT_THROW(make_torus(1, 0), std::invalid_argument);
-  EXPECT_THROW(make_torus(1, 1), std::invalid_argument);  // tube reaches the axis
-  EXPECT_THROW(make_torus(1, 2), std::invalid_argument);
-  EXPECT_THROW(make_torus(2, 1, 2, 8), std::invalid_argument);
-  EXPECT_THROW(make_torus(2, 1, 8, 2), std::invalid_argument);
-  EXPECT_THROW(make_torus(2, std::numeric_limits<Scalar>::quiet_NaN()), std::invalid_argument);
+  EXPECT_THROW(make_torus(0, 0.5), antcd::ArgumentError);
+  EXPECT_THROW(make_torus(1, 0), antcd::ArgumentError);
+  EXPECT_THROW(make_torus(1, 1), antcd::ArgumentError);  // tube reaches the axis
+  EXPECT_THROW(make_torus(1, 2), antcd::ArgumentError);
+  EXPECT_THROW(make_torus(2, 1, 2, 8), antcd::ArgumentError);
+  EXPECT_THROW(make_torus(2, 1, 8, 2), antcd::ArgumentError);
+  EXPECT_THROW(make_torus(2, std::numeric_limits<Scalar>::quiet_NaN()), antcd::ArgumentError);
 }
 
 // ---- merge and transformed ----
@@ -337,7 +337,7 @@ TEST(Merge, ConcatenatesWithOffsets) {
 TEST(Merge, RejectsPartWithBadIndex) {
   Mesh bad = make_box(Vec3(1, 1, 1));
   bad.triangles[3][2] = 8;  // one past the end: after offsetting it would hit the next part
-  EXPECT_THROW(merge({bad, make_box(Vec3(1, 1, 1))}), std::invalid_argument);
+  EXPECT_THROW(merge({bad, make_box(Vec3(1, 1, 1))}), antcd::ArgumentError);
 }
 
 TEST(Transformed, RigidMotionKeepsShape) {

@@ -22,10 +22,9 @@ namespace {
 
 using TrianglePair = std::pair<std::uint32_t, std::uint32_t>;
 
-constexpr SearchMethod kAllMethods[] = {SearchMethod::Aco, SearchMethod::Maco, SearchMethod::Pso,
-                                        SearchMethod::Ga, SearchMethod::Exhaustive};
-constexpr SearchMethod kStochastic[] = {SearchMethod::Aco, SearchMethod::Maco, SearchMethod::Pso,
-                                        SearchMethod::Ga};
+constexpr Method kAllMethods[] = {Method::Aco, Method::Maco, Method::Pso, Method::Ga,
+                                  Method::Exhaustive};
+constexpr Method kStochastic[] = {Method::Aco, Method::Maco, Method::Pso, Method::Ga};
 
 struct Scenario {
   std::string name;
@@ -140,7 +139,7 @@ FeatureSpace build(const Scenario& s, std::uint32_t samples = 1000, std::uint64_
   return build_feature_space(*s.a, s.pose_a, *s.b, s.pose_b, options, seed);
 }
 
-SearchRequest request_for(SearchMethod method, std::uint64_t seed) {
+SearchRequest request_for(Method method, std::uint64_t seed) {
   SearchRequest r;
   r.method = method;
   r.seed = seed;
@@ -179,7 +178,7 @@ TEST(RandomFeatures, ExhaustiveSpaceEqualsBruteForceOverAllTriangles) {
     ASSERT_FALSE(truth.pairs.empty()) << "scenario must touch";
     EXPECT_LE(truth.ambiguous, 2u);
 
-    SearchRequest r = request_for(SearchMethod::Exhaustive, 0);
+    SearchRequest r = request_for(Method::Exhaustive, 0);
     const SearchResult result = search(space, r);
     EXPECT_EQ(result.stop, StopReason::Iterations);
     EXPECT_EQ(result.evaluations, space.cells());
@@ -305,9 +304,9 @@ TEST(RandomSearch, ReportedPairsAreTrueCollidingPairs) {
     const FeatureSpace space = build(s, 1000, 7);
     const auto truth = colliding_cells(space, space.delta);
     ASSERT_FALSE(truth.empty()) << s.name;
-    for (const SearchMethod m : kAllMethods) {
+    for (const Method m : kAllMethods) {
       for (std::uint64_t seed = 0; seed < 3; ++seed) {
-        SCOPED_TRACE(s.name + " " + std::string(to_string(m)) + " seed " + std::to_string(seed));
+        SCOPED_TRACE(s.name + " " + std::string(method_name(m)) + " seed " + std::to_string(seed));
         SearchRequest request = request_for(m, seed);
         request.iterations = 40;
         const SearchResult r = search(space, request);
@@ -326,7 +325,7 @@ TEST(RandomSearch, ReportedPairsAreTrueCollidingPairs) {
           EXPECT_GE(h.distance, r.best_distance);
         }
         EXPECT_DOUBLE_EQ(r.best_distance, space.distance(r.best.i, r.best.j));
-        if (m == SearchMethod::Exhaustive) {
+        if (m == Method::Exhaustive) {
           EXPECT_EQ(distinct.size(), truth.size());
         }
       }
@@ -354,11 +353,11 @@ TEST(RandomSearch, SeparatedModelsAreNeverReported) {
         EXPECT_TRUE(space.empty());
       }
       EXPECT_EQ(count_colliding(space), 0u);
-      for (const SearchMethod m : kAllMethods) {
+      for (const Method m : kAllMethods) {
         SearchRequest r = request_for(m, 11);
         r.iterations = 20;
         const SearchResult res = search(space, r);
-        EXPECT_FALSE(res.found) << to_string(m);
+        EXPECT_FALSE(res.found) << method_name(m);
         EXPECT_TRUE(res.hits.empty());
         if (space.empty()) {
           EXPECT_EQ(res.stop, StopReason::EmptySpace);
@@ -383,7 +382,7 @@ TEST(RandomSearch, MacoDefaultBudgetFindsACollisionOnEveryTouchingPose) {
       const FeatureSpace space = build_feature_space(*s.a, s.pose_a, *s.b, s.pose_b, so, 2);
       ASSERT_GT(count_colliding(space), 0u) << s.name << " factor " << factor;
       for (std::uint64_t seed = 0; seed < 20; ++seed) {
-        SearchRequest r = request_for(SearchMethod::Maco, seed);
+        SearchRequest r = request_for(Method::Maco, seed);
         r.stop.first_hit = true;
         const SearchResult res = search(space, r);
         EXPECT_TRUE(res.found) << s.name << " factor " << factor << " seed " << seed;
@@ -400,7 +399,7 @@ TEST(RandomSearch, MacoDefaultBudgetFindsACollisionOnEveryTouchingPose) {
 TEST(RandomSearch, EachMacoSwitchChangesTheSearch) {
   const Scenario s = touching_scenarios()[0];
   const FeatureSpace space = build(s, 600, 1);
-  SearchRequest all = request_for(SearchMethod::Maco, 42);
+  SearchRequest all = request_for(Method::Maco, 42);
   all.iterations = 12;
   const Fingerprint full = fingerprint(search(space, all));
   ASSERT_FALSE(full.hits.empty());
@@ -416,7 +415,7 @@ TEST(RandomSearch, EachMacoSwitchChangesTheSearch) {
   SearchRequest none = all;
   none.ant.maco = {false, false, false, false};
   SearchRequest aco = all;
-  aco.method = SearchMethod::Aco;
+  aco.method = Method::Aco;
   EXPECT_EQ(fingerprint(search(space, none)), fingerprint(search(space, aco)));
   // ACO ignores the switches.
   SearchRequest aco_switches = aco;
@@ -427,8 +426,8 @@ TEST(RandomSearch, EachMacoSwitchChangesTheSearch) {
 TEST(RandomSearch, SameSeedSameResultDifferentSeedDifferentSearch) {
   const Scenario s = touching_scenarios()[3];
   const FeatureSpace space = build(s, 800, 9);
-  for (const SearchMethod m : kStochastic) {
-    SCOPED_TRACE(to_string(m));
+  for (const Method m : kStochastic) {
+    SCOPED_TRACE(method_name(m));
     SearchRequest r = request_for(m, 123);
     r.iterations = 30;
     const Fingerprint first = fingerprint(search(space, r));
@@ -437,7 +436,7 @@ TEST(RandomSearch, SameSeedSameResultDifferentSeedDifferentSearch) {
     EXPECT_NE(fingerprint(search(space, r)), first);
   }
   // The one-call form is build + search with the request's seed.
-  SearchRequest r = request_for(SearchMethod::Maco, 5);
+  SearchRequest r = request_for(Method::Maco, 5);
   r.iterations = 10;
   SamplingOptions so;
   so.samples_per_side = 300;
@@ -471,8 +470,8 @@ TEST(RandomSearch, StopCriteria) {
   const FeatureSpace space = build(s, 700, 1);
   const std::uint64_t truth = count_colliding(space);
   ASSERT_GT(truth, 20u);
-  for (const SearchMethod m : kAllMethods) {
-    SCOPED_TRACE(to_string(m));
+  for (const Method m : kAllMethods) {
+    SCOPED_TRACE(method_name(m));
     SearchRequest r = request_for(m, 3);
     r.stop.first_hit = true;
     SearchResult res = search(space, r);
@@ -488,7 +487,7 @@ TEST(RandomSearch, StopCriteria) {
     r = request_for(m, 3);
     r.iterations = 7;
     res = search(space, r);
-    if (m == SearchMethod::Exhaustive) {
+    if (m == Method::Exhaustive) {
       EXPECT_EQ(res.iterations, space.a.size());
       EXPECT_EQ(res.evaluations, space.cells());
     } else {
@@ -503,8 +502,8 @@ TEST(RandomSearch, StopCriteria) {
   }
   // Target share: the search stops exactly when the share is reached, with the truth counted by
   // the search or given.
-  for (const SearchMethod m : {SearchMethod::Exhaustive, SearchMethod::Aco, SearchMethod::Maco}) {
-    SCOPED_TRACE(to_string(m));
+  for (const Method m : {Method::Exhaustive, Method::Aco, Method::Maco}) {
+    SCOPED_TRACE(method_name(m));
     SearchRequest r = request_for(m, 3);
     r.iterations = 100000;
     r.stop.target_share = 0.2;
@@ -525,8 +524,8 @@ TEST(RandomSearch, RestartsAndProgressMarks) {
   const Scenario s = touching_scenarios()[0];
   const FeatureSpace space = build(s, 700, 1);
   const std::uint64_t truth = count_colliding(space);
-  for (const SearchMethod m : kStochastic) {
-    SCOPED_TRACE(to_string(m));
+  for (const Method m : kStochastic) {
+    SCOPED_TRACE(method_name(m));
     SearchRequest one = request_for(m, 8);
     one.iterations = 5;
     SearchRequest three = one;
@@ -553,7 +552,7 @@ TEST(RandomSearch, RestartsAndProgressMarks) {
   }
   // Marks against the order hits were found in: exhaustive search is row by row, so the k-th hit
   // and the evaluation count at that moment are known exactly.
-  SearchRequest ex = request_for(SearchMethod::Exhaustive, 0);
+  SearchRequest ex = request_for(Method::Exhaustive, 0);
   ex.progress_marks = {0.5, 0.1, 1.0};
   const SearchResult full = search(space, ex);
   ASSERT_EQ(full.progress.size(), 3u);
@@ -565,7 +564,7 @@ TEST(RandomSearch, RestartsAndProgressMarks) {
   }
   EXPECT_LT(full.progress[1].evaluations, full.progress[0].evaluations);
   EXPECT_LE(full.progress[1].seconds, full.progress[0].seconds);
-  SearchRequest few = request_for(SearchMethod::Maco, 0);
+  SearchRequest few = request_for(Method::Maco, 0);
   few.iterations = 2;
   few.progress_marks = {1e-9, 1.0};
   const SearchResult partial = search(space, few);
@@ -583,29 +582,33 @@ TEST(RandomSearch, InvalidArgumentsThrow) {
     return r;
   };
   EXPECT_THROW(search(space, bad([](SearchRequest& r) { r.delta = std::nan(""); })),
-               std::invalid_argument);
+               antcd::ArgumentError);
   EXPECT_THROW(search(space, bad([](SearchRequest& r) { r.iterations = 0; })),
-               std::invalid_argument);
-  EXPECT_THROW(search(space, bad([](SearchRequest& r) { r.ant.ants = 0; })), std::invalid_argument);
-  EXPECT_THROW(search(space, bad([](SearchRequest& r) { r.ant.rho = 1.5; })),
-               std::invalid_argument);
+               antcd::ArgumentError);
+  EXPECT_THROW(search(space, bad([](SearchRequest& r) { r.ant.ants = 0; })), antcd::ArgumentError);
+  EXPECT_THROW(search(space, bad([](SearchRequest& r) { r.ant.rho = 1.5; })), antcd::ArgumentError);
   EXPECT_THROW(search(space, bad([](SearchRequest& r) { r.stop.target_share = 2; })),
-               std::invalid_argument);
+               antcd::ArgumentError);
   EXPECT_THROW(search(space, bad([](SearchRequest& r) {
                         r.progress_marks = {0.5, 0};
                       })),
-               std::invalid_argument);
+               antcd::ArgumentError);
   EXPECT_THROW(search(space, bad([](SearchRequest& r) {
-                        r.method = SearchMethod::Ga;
+                        r.method = Method::Ga;
                         r.ga.population = 1;
                       })),
-               std::invalid_argument);
+               antcd::ArgumentError);
+  // The deterministic methods are not searches.
+  EXPECT_THROW(search(space, bad([](SearchRequest& r) { r.method = Method::Exact; })),
+               antcd::ArgumentError);
+  EXPECT_THROW(search(space, bad([](SearchRequest& r) { r.method = Method::SphereObb; })),
+               antcd::ArgumentError);
   SamplingOptions so;
   so.samples_per_side = 0;
-  EXPECT_THROW(build_feature_space(*s.a, s.pose_a, *s.b, s.pose_b, so), std::invalid_argument);
+  EXPECT_THROW(build_feature_space(*s.a, s.pose_a, *s.b, s.pose_b, so), antcd::ArgumentError);
   so.samples_per_side = 10;
   so.delta = std::nan("");
-  EXPECT_THROW(build_feature_space(*s.a, s.pose_a, *s.b, s.pose_b, so), std::invalid_argument);
+  EXPECT_THROW(build_feature_space(*s.a, s.pose_a, *s.b, s.pose_b, so), antcd::ArgumentError);
 }
 
 }  // namespace

@@ -136,15 +136,15 @@ TEST(Concurrency, ModelQueriesFromManyThreadsMatchSingleThreaded) {
     c.pose_b = test::random_pose(rng, 1.2);
     c.boolean = collide(a, c.pose_a, b, c.pose_b, {});
     c.all = collide(a, c.pose_a, b, c.pose_b, {.delta = 0.01, .all_contacts = true});
-    c.volumes = leaves_overlap(a, c.pose_a, b, c.pose_b, 0.0);
+    c.volumes = any_leaf_pair_overlaps(a, c.pose_a, b, c.pose_b, 0.0);
     SearchRequest maco;
-    maco.method = SearchMethod::Maco;
+    maco.method = Method::Maco;
     maco.seed = 99;
     maco.iterations = 20;
     maco.progress_marks = {0.5};
     c.maco = random_collide(a, c.pose_a, b, c.pose_b, maco, {.samples_per_side = 200});
     SearchRequest ga = maco;
-    ga.method = SearchMethod::Ga;
+    ga.method = Method::Ga;
     ga.progress_marks.clear();
     c.ga = random_collide(a, c.pose_a, b, c.pose_b, ga, {.samples_per_side = 200});
     colliding += c.boolean.colliding ? 1 : 0;
@@ -163,10 +163,10 @@ TEST(Concurrency, ModelQueriesFromManyThreadsMatchSingleThreaded) {
       bad += same(collide(a, c.pose_a, b, c.pose_b, {.delta = 0.01, .all_contacts = true}), c.all)
                  ? 0
                  : 1;
-      bad += leaves_overlap(a, c.pose_a, b, c.pose_b, 0.0) == c.volumes ? 0 : 1;
+      bad += any_leaf_pair_overlaps(a, c.pose_a, b, c.pose_b, 0.0) == c.volumes ? 0 : 1;
       if ((k + static_cast<std::size_t>(t)) % 3 == 0) {  // a third of the random searches
         SearchRequest maco;
-        maco.method = SearchMethod::Maco;
+        maco.method = Method::Maco;
         maco.seed = 99;
         maco.iterations = 20;
         maco.progress_marks = {0.5};
@@ -174,7 +174,7 @@ TEST(Concurrency, ModelQueriesFromManyThreadsMatchSingleThreaded) {
             same(random_collide(a, c.pose_a, b, c.pose_b, maco, {.samples_per_side = 200}), c.maco)
                 ? 0
                 : 1;
-        maco.method = SearchMethod::Ga;
+        maco.method = Method::Ga;
         maco.progress_marks.clear();
         bad += same(random_collide(a, c.pose_a, b, c.pose_b, maco, {.samples_per_side = 200}), c.ga)
                    ? 0

@@ -481,7 +481,7 @@ void check_group(const std::vector<Config>& group, const std::string& name, Tall
     std::sort(got.begin(), got.end());
     const bool boolean =
         collide(model_a, pose_a, model_b, pose_b, CollisionRequest{0.0, false, 0}).colliding;
-    const bool volumes = leaves_overlap(model_a, pose_a, model_b, pose_b, 0.0);
+    const bool volumes = any_leaf_pair_overlaps(model_a, pose_a, model_b, pose_b, 0.0);
     if (got == expected && boolean == !expected.empty() && all.colliding == boolean &&
         (volumes || expected.empty())) {
       continue;
@@ -490,7 +490,7 @@ void check_group(const std::vector<Config>& group, const std::string& name, Tall
     if (tally.failures <= 10) {
       std::ostringstream msg;
       msg << name << ": collide() at delta 0 differs from the reference: boolean " << boolean
-          << ", leaves_overlap " << volumes << ", pairs";
+          << ", any_leaf_pair_overlaps " << volumes << ", pairs";
       for (const auto& [i, j] : got) msg << " (" << i << "," << j << ")";
       msg << "; reference";
       for (const auto& [i, j] : expected) msg << " (" << i << "," << j << ")";

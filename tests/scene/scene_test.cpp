@@ -152,7 +152,7 @@ TEST(Scene, RandomMethodsOnlyReportCandidatePairsAndAreSeeded) {
 TEST(Scene, RejectsBadQueriesAndFrames) {
   const auto dir = test::fresh_temp_dir("scene_bad");
   const Scene scene(small_scene(dir, 4, 2, 1));
-  EXPECT_THROW((void)scene.run_frame(2, {}), std::out_of_range);
+  EXPECT_THROW((void)scene.run_frame(2, {}), antcd::ArgumentError);
   SceneQuery q;
   q.delta = -1;
   EXPECT_THROW((void)scene.run_frame(0, q), Error);
@@ -161,6 +161,19 @@ TEST(Scene, RejectsBadQueriesAndFrames) {
   EXPECT_THROW((void)scene.run_frame(0, q), Error);
   EXPECT_THROW(parse_method("bogus"), Error);
   EXPECT_EQ(parse_method("sphere-obb"), Method::SphereObb);
+  // One name table: every method's name parses back to it, and an unknown name is refused with
+  // the list of accepted names.
+  for (const Method m : {Method::Exact, Method::SphereObb, Method::Aco, Method::Maco, Method::Pso,
+                         Method::Ga, Method::Exhaustive}) {
+    EXPECT_EQ(parse_method(method_name(m)), m);
+  }
+  try {
+    (void)parse_method("bogus");
+    ADD_FAILURE() << "parse_method accepted 'bogus'";
+  } catch (const ArgumentError& e) {
+    EXPECT_NE(std::string(e.what()).find("maco"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("exhaustive"), std::string::npos) << e.what();
+  }
   // Random methods: parameters that would make the search meaningless are refused up front.
   const auto expect_refused = [&](const SceneQuery& bad, const char* needle) {
     try {

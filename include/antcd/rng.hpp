@@ -1,10 +1,14 @@
-// Private: the seed mixer and the random stream of the searches.
+// antcd/rng.hpp — the seed mixer and the random stream of antcd's stochastic methods, for the
+// library and its tools alike. Header only.
+//
+// Every stochastic method takes a 64-bit seed; related seeds (0, 1, 2, ... or a seed combined with
+// a frame and object indices) are spread with mix_seed before they start a stream.
 #pragma once
 
 #include <cstdint>
 #include <random>
 
-namespace antcd::detail {
+namespace antcd {
 
 /// SplitMix64 finaliser: turns related seeds (0, 1, 2, ...) into unrelated 64-bit states.
 constexpr std::uint64_t mix_seed(std::uint64_t x) {
@@ -38,4 +42,4 @@ class Rng {
   std::mt19937_64 engine_;
 };
 
-}  // namespace antcd::detail
+}  // namespace antcd

@@ -1,4 +1,4 @@
-// Reliability (issue 6): every bad input gives a clear error, never a crash or a hang, and nothing
+// Bad input: every bad input gives a clear error, never a crash or a hang, and nothing
 // is lost.
 //
 // Library level: each load error is an antcd::Error (MeshError for meshes, SceneError for scenes)
@@ -256,14 +256,14 @@ INSTANTIATE_TEST_SUITE_P(AssimpModels, TruncatedModel,
                            return name;
                          });
 
-// ---- regressions found by fuzzing (fuzz/fuzz_mesh_load; inputs in tests/reliability/data) ----
+// ---- regressions found by fuzzing (fuzz/fuzz_mesh_load; inputs in tests/bad_input/data) ----
 
 TEST(FuzzRegression, PlyHeaderWithoutEndHeaderDoesNotHang) {
   // A timeout found by fuzz/fuzz_mesh_load: assimp's PLY reader never returns when the file ends
   // inside the header (it parses the last header line again and again, growing memory). load_mesh
   // now refuses a PLY file without an end_header line before assimp reads it.
   const fs::path found =
-      fs::path(ANTCD_RELIABILITY_DATA) / "fuzz-timeout-ply-header-without-end.ply";
+      fs::path(ANTCD_BAD_INPUT_DATA) / "fuzz-timeout-ply-header-without-end.ply";
   ASSERT_TRUE(fs::exists(found)) << found;
   const auto start = std::chrono::steady_clock::now();
   expect_refused(found, "the PLY header has no end_header line");
@@ -320,7 +320,7 @@ TEST(FuzzRegression, OffWithMoreSkippedFaceLinesThanFacesDoesNotCrash) {
   // more such lines than the header's faces the count wraps around and assimp reads far past its
   // face array. load_mesh now walks the file as that reader does and refuses it first.
   const fs::path found =
-      fs::path(ANTCD_RELIABILITY_DATA) / "fuzz-crash-off-face-count-underflow.off";
+      fs::path(ANTCD_BAD_INPUT_DATA) / "fuzz-crash-off-face-count-underflow.off";
   ASSERT_TRUE(fs::exists(found)) << found;
   expect_refused(found, "more face lines with 0 or over 9 corners than faces in the OFF header");
   const auto dir = fresh_temp_dir("fuzz_off_faces");

@@ -1,0 +1,51 @@
+// antcd/error.hpp — what antcd throws.
+//
+// Every exception antcd throws on bad input is an antcd::Error, whose what() is one line naming the
+// input (file, object, function argument) and the problem:
+// - MeshError: a mesh could not be loaded or is invalid;
+// - SceneError: a scene file is invalid;
+// - ArgumentError: a library call got an invalid argument (a negative threshold, a frame out of
+//   range, a search request without agents, ...).
+// Besides these only std::bad_alloc can escape a library call (out of memory).
+#pragma once
+
+#include <antcd/export.hpp>
+
+#include <stdexcept>
+#include <string>
+#include <utility>
+
+namespace antcd {
+
+/// Base of every error antcd throws. what() is one line that names the input (file, object,
+/// argument) and the problem.
+class ANTCD_API Error : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// A mesh could not be loaded or is invalid. what() is "<source>: <problem>".
+class ANTCD_API MeshError : public Error {
+ public:
+  MeshError(std::string source, const std::string& problem)
+      : Error(source + ": " + problem), source_(std::move(source)) {}
+  [[nodiscard]] const std::string& source() const { return source_; }
+
+ private:
+  std::string source_;
+};
+
+/// A scene file is invalid. what() is "<file>: <object or field>: <problem>".
+class ANTCD_API SceneError : public Error {
+ public:
+  using Error::Error;
+};
+
+/// A library call got an invalid argument. what() names the function or the argument and the
+/// problem.
+class ANTCD_API ArgumentError : public Error {
+ public:
+  using Error::Error;
+};
+
+}  // namespace antcd
