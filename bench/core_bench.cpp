@@ -28,9 +28,9 @@
 
 #include <benchmark/benchmark.h>
 
-#include <fcl/geometry/bvh/BVH_model.h>
-#include <fcl/math/bv/OBBRSS.h>
-#include <fcl/narrowphase/collision.h>
+#include "peers/adapters/fcl.hpp"
+#include "peers/adapters/peer_mesh.hpp"
+#include "shared/rng.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -60,26 +60,8 @@ enum class Shape { Sphere, Torus };
 
 const char* shape_name(Shape shape) { return shape == Shape::Sphere ? "sphere" : "torus"; }
 
-/// Tessellation parameter k for a nominal triangle count: a sphere with 2k slices and k stacks has
-/// 4k(k - 1) triangles, a torus with 2k by k segments 4k² (sphere 960 / 9 800 / 99 224 / 998 000,
-/// torus 1 024 / 10 000 / 99 856 / 1 000 000).
-int tessellation(std::int64_t nominal) {
-  switch (nominal) {
-    case 1'000:
-      return 16;
-    case 10'000:
-      return 50;
-    case 100'000:
-      return 158;
-    case 1'000'000:
-      return 500;
-    default:
-      return static_cast<int>(std::lround(std::sqrt(static_cast<double>(nominal) / 4.0)));
-  }
-}
-
 antcd::Mesh make_mesh(Shape shape, std::int64_t nominal) {
-  const int k = tessellation(nominal);
+  const int k = antcd::peers::tessellation_for(static_cast<std::size_t>(nominal));
   return shape == Shape::Sphere ? antcd::make_sphere(1.0, 2 * k, k)
                                 : antcd::make_torus(1.0, 0.4, 2 * k, k);
 }
@@ -94,46 +76,16 @@ const antcd::Mesh& mesh_for(Shape shape, std::int64_t nominal) {
 
 using FclModel = fcl::BVHModel<fcl::OBBRSSd>;
 
-/// The mesh in FCL's input form: same vertices, same triangles, same order (so FCL's primitive
-/// ids are antcd's triangle indices).
-struct FclInput {
-  std::vector<fcl::Vector3d> vertices;
-  std::vector<fcl::Triangle> triangles;
-};
-
-FclInput fcl_input(const antcd::Mesh& mesh) {
-  FclInput in;
-  in.vertices.reserve(mesh.vertices.size());
-  for (const Vec3& v : mesh.vertices) in.vertices.emplace_back(v.x(), v.y(), v.z());
-  in.triangles.reserve(mesh.triangles.size());
-  for (const auto& t : mesh.triangles) in.triangles.emplace_back(t[0], t[1], t[2]);
-  return in;
-}
-
-std::unique_ptr<FclModel> build_fcl_model(const FclInput& in) {
-  auto model = std::make_unique<FclModel>();
-  model->beginModel(static_cast<int>(in.triangles.size()), static_cast<int>(in.vertices.size()));
-  model->addSubModel(in.vertices, in.triangles);
-  model->endModel();
-  return model;
-}
-
 // ---------------------------------------------------------------------------------------------
 // Poses
 
-/// SplitMix64: a tiny generator whose output is the same on every platform (the standard
+/// SplitMix64 (shared/rng.hpp): its output is the same on every platform (the standard
 /// distributions are not), so the pose set is reproducible everywhere.
 class Random {
  public:
-  explicit Random(std::uint64_t seed) : state_(seed) {}
-  std::uint64_t next() {
-    std::uint64_t z = (state_ += 0x9e3779b97f4a7c15ULL);
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-    return z ^ (z >> 31);
-  }
+  explicit Random(std::uint64_t seed) : rng_(seed) {}
   /// Uniform in [0, 1).
-  double uniform() { return static_cast<double>(next() >> 11) * 0x1.0p-53; }
+  double uniform() { return rng_.uniform(); }
 
   /// Uniformly distributed rotation (unit quaternion from three uniforms, Shoemake 1992).
   antcd::Mat3 rotation() {
@@ -156,7 +108,7 @@ class Random {
   }
 
  private:
-  std::uint64_t state_;
+  antcd::shared::SplitMix64 rng_;
 };
 
 enum class Category { Deep, Shallow, Separated };
@@ -180,12 +132,7 @@ struct PosePair {
   fcl::Transform3d fcl_b = fcl::Transform3d::Identity();
 };
 
-fcl::Transform3d to_fcl(const antcd::Transform& t) {
-  fcl::Transform3d out = fcl::Transform3d::Identity();
-  out.linear() = t.rotation;
-  out.translation() = t.translation;
-  return out;
-}
+using antcd::peers::to_fcl;
 
 constexpr int kPoses = 64;
 constexpr std::uint64_t kPoseSeed = 0x616e746364ULL;  // fixed: identical draws at every size
@@ -264,7 +211,7 @@ std::vector<PosePair> make_poses(const antcd::Model& model) {
 // ---------------------------------------------------------------------------------------------
 // Queries (the code that is timed)
 
-constexpr std::size_t kFclAllContacts = 10'000'000;
+using antcd::peers::kFclAllContacts;
 
 const antcd::CollisionRequest kAntcdBoolean{0, false, 0};
 const antcd::CollisionRequest kAntcdAll{0, true, 0};
@@ -293,12 +240,14 @@ PairSet antcd_pairs(const antcd::CollisionResult& r) {
 }
 
 /// FCL's colliding pairs, each once (with enable_contact one pair may give two contacts).
-PairSet fcl_pairs(const fcl::CollisionResultd& r) {
+/// FCL's primitive ids index the peer mesh; `mesh_index` maps them back to antcd's triangles.
+PairSet fcl_pairs(const fcl::CollisionResultd& r, const std::vector<std::uint32_t>& mesh_index) {
   PairSet out;
   out.reserve(r.numContacts());
   for (std::size_t i = 0; i < r.numContacts(); ++i) {
     const auto& c = r.getContact(i);
-    out.emplace_back(static_cast<std::uint32_t>(c.b1), static_cast<std::uint32_t>(c.b2));
+    out.emplace_back(mesh_index[static_cast<std::size_t>(c.b1)],
+                     mesh_index[static_cast<std::size_t>(c.b2)]);
   }
   std::sort(out.begin(), out.end());
   out.erase(std::unique(out.begin(), out.end()), out.end());
@@ -323,7 +272,8 @@ struct Scene {
   Shape shape = Shape::Sphere;
   std::size_t triangles = 0;
   std::unique_ptr<antcd::Model> model;
-  std::unique_ptr<FclModel> fcl_model;
+  std::vector<std::uint32_t> fcl_to_mesh;  // FCL primitive id → antcd triangle
+  std::shared_ptr<FclModel> fcl_model;
   std::vector<PosePair> poses;
   std::string error;         // first disagreement antcd vs FCL (empty: all agree)
   std::string points_error;  // same, against FCL with enable_contact = true
@@ -339,7 +289,9 @@ std::unique_ptr<Scene> make_scene(Shape shape, std::int64_t nominal) {
   const antcd::Mesh& mesh = mesh_for(shape, nominal);
   scene->triangles = mesh.triangles.size();
   scene->model = std::make_unique<antcd::Model>(mesh);
-  scene->fcl_model = build_fcl_model(fcl_input(mesh));
+  const antcd::peers::PeerMesh peer = antcd::peers::peer_mesh(mesh);
+  scene->fcl_to_mesh = peer.mesh_index;
+  scene->fcl_model = antcd::peers::build_fcl<fcl::OBBRSSd>(peer);
   scene->poses = make_poses(*scene->model);
 
   antcd::CollisionResult ab;
@@ -362,8 +314,8 @@ std::unique_ptr<Scene> make_scene(Shape shape, std::int64_t nominal) {
     const bool fcl_all = fcl_query(*scene->fcl_model, p, kFclAll, fa);
     const bool fcl_points = fcl_query(*scene->fcl_model, p, kFclAllPoints, fp);
     const PairSet xa = antcd_pairs(aa);
-    const PairSet xf = fcl_pairs(fa);
-    const PairSet xp = fcl_pairs(fp);
+    const PairSet xf = fcl_pairs(fa, scene->fcl_to_mesh);
+    const PairSet xp = fcl_pairs(fp, scene->fcl_to_mesh);
     colliding[cat] += antcd_bool ? 1 : 0;
     pairs += xa.size();
     fcl_point_contacts += fp.numContacts();
@@ -452,11 +404,11 @@ void build_antcd(benchmark::State& state, Shape shape) {
 
 void build_fcl(benchmark::State& state, Shape shape) {
   const antcd::Mesh& mesh = mesh_for(shape, state.range(0));
-  const FclInput in = fcl_input(mesh);
+  const antcd::peers::FclInput in = antcd::peers::fcl_input(antcd::peers::peer_mesh(mesh));
   int nodes = 0;
   for (auto _ : state) {
     const double start = thread_seconds();
-    const auto model = build_fcl_model(in);  // copies the vertices and triangles, like antcd
+    const auto model = antcd::peers::build_fcl<fcl::OBBRSSd>(in);  // copies them, like antcd
     state.SetIterationTime(thread_seconds() - start);
     nodes = model->getNumBVs();
     benchmark::DoNotOptimize(nodes);

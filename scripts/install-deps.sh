@@ -9,6 +9,7 @@ packages=(
   libeigen3-dev libassimp-dev libtbb-dev libcli11-dev nlohmann-json3-dev
   libgtest-dev libgmock-dev libbenchmark-dev libcgal-dev
   libfcl-dev libbullet-dev
+  libkainjow-mustache-dev
   assimp-testmodels gnuplot-nox
   "$@"
 )

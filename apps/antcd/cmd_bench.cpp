@@ -1,12 +1,12 @@
 // antcd bench: benchmark suites. `bench paper` reproduces the experiments of the paper's section 5
-// (experiments/paper_bench.hpp). Each suite registers itself on the `bench` command through an
+// (experiments/paper/paper_bench.hpp). Each suite registers itself on the `bench` command through an
 // add_bench_*_command(CLI::App& bench, int& code) function; add new suites in add_bench_commands.
 #include <iostream>
 #include <memory>
 #include <string>
 
 #include "cli_util.hpp"
-#include "paper_bench.hpp"
+#include "paper/paper_bench.hpp"
 
 namespace antcd::cli {
 

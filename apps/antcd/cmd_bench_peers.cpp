@@ -1,5 +1,5 @@
 // antcd bench peers: antcd against FCL and Bullet on the same scenes and mesh pairs
-// (experiments/peers_bench.hpp). Built with the peers only when FCL and Bullet were found
+// (experiments/peers/peers_bench.hpp). Built with the peers only when FCL and Bullet were found
 // (ANTCD_HAVE_PEERS); otherwise the command exists and says what is missing.
 #include <antcd/io.hpp>
 
@@ -11,7 +11,7 @@
 #include "cli_util.hpp"
 
 #ifdef ANTCD_HAVE_PEERS
-#include "peers_bench.hpp"
+#include "peers/peers_bench.hpp"
 #endif
 
 namespace antcd::cli {

@@ -14,8 +14,8 @@
 #include <thread>
 
 #include "cli_util.hpp"
-#include "production_line.hpp"
-#include "run_result.hpp"
+#include "shared/production_line.hpp"
+#include "shared/run_result.hpp"
 
 namespace antcd::cli {
 
@@ -43,7 +43,7 @@ struct TempDir {
   }
 };
 
-void print_row(const char* name, const experiments::Metrics& m) {
+void print_row(const char* name, const shared::Metrics& m) {
   std::printf("%-12s %10.3f %10.3f %9.4f %9.4f %9.4f\n", name, m.mean_ms, m.p99_ms, m.recall,
               m.precision, m.accuracy);
 }
@@ -57,13 +57,13 @@ void print_progress(const char* label, std::size_t done, std::size_t total) {
   std::fflush(stderr);
 }
 
-experiments::RunResult run(const Scene& scene, const SceneQuery& query, const std::string& name,
+shared::RunResult run(const Scene& scene, const SceneQuery& query, const std::string& name,
                            const char* label, std::size_t frame_step = 1) {
   std::function<void(std::size_t, std::size_t)> progress;
   if (isatty(STDERR_FILENO) != 0) {
     progress = [label](std::size_t done, std::size_t total) { print_progress(label, done, total); };
   }
-  return experiments::run_scene(scene, query, name, progress, frame_step);
+  return shared::run_scene(scene, query, name, progress, frame_step);
 }
 
 int run_demo(const DemoOptions& o) {
@@ -72,12 +72,12 @@ int run_demo(const DemoOptions& o) {
   dir.path = std::filesystem::temp_directory_path() /
              ("antcd-demo-" + std::to_string(getpid()) + "-" +
               std::to_string(std::chrono::steady_clock::now().time_since_epoch().count()));
-  experiments::ProductionLineOptions options;
+  shared::ProductionLineOptions options;
   options.objects = o.objects;
   options.frames = o.frames;
   options.seed = o.seed;
-  const auto generated = experiments::generate_production_line(options);
-  const auto scene_path = experiments::write_scene(generated, dir.path);
+  const auto generated = shared::generate_production_line(options);
+  const auto scene_path = shared::write_scene(generated, dir.path);
   const Scene scene(load_scene(scene_path));
   std::size_t triangles = 0;
   for (std::size_t i = 0; i < scene.object_count(); ++i) {
@@ -104,9 +104,9 @@ int run_demo(const DemoOptions& o) {
   maco.seed = o.seed;
   const auto result = run(scene, maco, name, "maco", o.maco_step);
   // The ground truth on the frames maco ran.
-  experiments::RunResult truth_at_maco = truth;
+  shared::RunResult truth_at_maco = truth;
   std::erase_if(truth_at_maco.frames,
-                [&](const experiments::FrameRecord& f) { return f.frame % o.maco_step != 0; });
+                [&](const shared::FrameRecord& f) { return f.frame % o.maco_step != 0; });
 
   // The paper's A/B needs every search run for its full N iterations and each feature space
   // enumerated: far dearer than a verdict, so it is measured on evenly spaced frames only.
@@ -138,9 +138,9 @@ int run_demo(const DemoOptions& o) {
       static_cast<double>(colliding) / nframes, static_cast<double>(candidates) / nframes);
   std::printf("%-12s %10s %10s %9s %9s %9s\n", "method", "mean ms", "p99 ms", "recall", "precision",
               "accuracy");
-  print_row("exact", experiments::compare_runs(truth, truth));
-  print_row("sphere-obb", experiments::compare_runs(truth, boxes));
-  print_row("maco", experiments::compare_runs(truth_at_maco, result));
+  print_row("exact", shared::compare_runs(truth, truth));
+  print_row("sphere-obb", shared::compare_runs(truth, boxes));
+  print_row("maco", shared::compare_runs(truth_at_maco, result));
   std::printf(
       "\nmean/p99 ms: query time per frame (poses, broad phase, narrow phase). recall, precision,\n"
       "accuracy: colliding object pairs against exact, over the broad phase's candidate pairs.\n"

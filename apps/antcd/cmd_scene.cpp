@@ -10,8 +10,9 @@
 #include <memory>
 
 #include "cli_util.hpp"
-#include "production_line.hpp"
-#include "run_result.hpp"
+#include "shared/production_line.hpp"
+#include "shared/run_result.hpp"
+#include "shared/statistics.hpp"
 
 namespace antcd::cli {
 
@@ -55,12 +56,12 @@ int run_run(const RunOptions& o) {
   query.search_all = o.search_all;
   const Scene scene(load_scene(o.scene));
   const bool tty = isatty(STDERR_FILENO) != 0;
-  const experiments::RunResult result =
-      experiments::run_scene(scene, query, o.scene,
+  const shared::RunResult result =
+      shared::run_scene(scene, query, o.scene,
                              tty ? std::function<void(std::size_t, std::size_t)>(print_progress)
                                  : std::function<void(std::size_t, std::size_t)>());
   if (!o.out.empty()) {
-    write_file_atomic(o.out, experiments::to_json(result));
+    write_file_atomic(o.out, shared::to_json(result));
     return 0;
   }
   std::size_t colliding = 0;
@@ -78,7 +79,7 @@ int run_run(const RunOptions& o) {
   std::printf("build: %.1f ms\n", result.build_ms);
   std::printf("frames: total %.1f ms, mean %.3f ms, p99 %.3f ms\n", result.total_ms,
               result.total_ms / static_cast<double>(result.frames.size()),
-              experiments::quantile(times, 0.99));
+              shared::quantile(times, 0.99));
   std::printf(
       "colliding pairs: %zu over all frames (%.2f per frame), broad-phase candidates %.2f per "
       "frame\n",
@@ -97,7 +98,7 @@ struct GenerateOptions {
 };
 
 int run_generate(const GenerateOptions& o) {
-  experiments::ProductionLineOptions options;
+  shared::ProductionLineOptions options;
   options.objects = o.objects;
   options.vertices = o.vertices;
   options.frames = o.frames;
@@ -107,8 +108,8 @@ int run_generate(const GenerateOptions& o) {
     (void)load_model(m, {});
     options.mesh_files.emplace_back(m);
   }
-  const auto generated = experiments::generate_production_line(options);
-  const auto path = experiments::write_scene(generated, o.out);
+  const auto generated = shared::generate_production_line(options);
+  const auto path = shared::write_scene(generated, o.out);
   std::printf("wrote %s (%zu objects, %zu meshes, %zu frames)\n", path.string().c_str(),
               generated.scene.objects.size(), generated.meshes.size(), generated.scene.frames);
   return 0;
@@ -119,9 +120,9 @@ struct CompareOptions {
 };
 
 int run_compare(const CompareOptions& o) {
-  const auto truth = experiments::parse_run_result(read_file(o.truth), o.truth);
-  const auto result = experiments::parse_run_result(read_file(o.result), o.result);
-  const experiments::Metrics m = experiments::compare_runs(truth, result);
+  const auto truth = shared::parse_run_result(read_file(o.truth), o.truth);
+  const auto result = shared::parse_run_result(read_file(o.result), o.result);
+  const shared::Metrics m = shared::compare_runs(truth, result);
   std::printf("truth:  %s (%s)\nresult: %s (%s)\nframes: %zu\n", o.truth.c_str(),
               truth.method.c_str(), o.result.c_str(), result.method.c_str(), m.frames);
   std::printf("object-pair recall:    %.4f  (%llu of %llu colliding pairs)\n", m.recall,

@@ -1,5 +1,5 @@
 // antcd against FCL (and Bullet) on a small generated scene: the quick cross-check behind
-// `antcd bench peers` (experiments/peers_bench.hpp). Built only when FCL and Bullet are found.
+// `antcd bench peers` (experiments/peers/peers_bench.hpp). Built only when FCL and Bullet are found.
 #include <antcd/scene.hpp>
 
 #include <gtest/gtest.h>
@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
-#include "peers_bench.hpp"
-#include "production_line.hpp"
+#include "peers/peers_bench.hpp"
+#include "shared/production_line.hpp"
 #include "support/test_support.hpp"
 
 namespace antcd {
@@ -36,15 +36,15 @@ std::string describe(const std::vector<experiments::Disagreement>& list) {
 // A small production line (two stations' worth of objects, coarse meshes), packed along the line
 // so that neighbouring equipment overlaps too: resting contacts, deep overlaps and near misses.
 std::unique_ptr<Scene> small_scene(std::size_t frames) {
-  experiments::ProductionLineOptions o;
+  shared::ProductionLineOptions o;
   o.objects = 40;
   o.vertices = 150;
   o.frames = frames;
-  experiments::GeneratedScene g = experiments::generate_production_line(o);
+  shared::GeneratedScene g = shared::generate_production_line(o);
   for (SceneObject& obj : g.scene.objects) {
     for (Transform& t : obj.poses) t.translation.x() *= 0.6;
   }
-  const auto file = experiments::write_scene(g, test::fresh_temp_dir("peers_scene"));
+  const auto file = shared::write_scene(g, test::fresh_temp_dir("peers_scene"));
   return std::make_unique<Scene>(load_scene(file));
 }
 

@@ -1,5 +1,5 @@
 // `antcd bench paper --quick`: every promised file is written, well formed and in range.
-#include "paper_bench.hpp"
+#include "paper/paper_bench.hpp"
 
 #include <gtest/gtest.h>
 #include <antcd/io.hpp>

@@ -17,7 +17,7 @@
 #include <thread>
 #include <vector>
 
-#include "production_line.hpp"
+#include "shared/production_line.hpp"
 #include "support/test_support.hpp"
 
 namespace antcd {
@@ -189,7 +189,7 @@ TEST(Concurrency, ModelQueriesFromManyThreadsMatchSingleThreaded) {
 // ---- one Scene ----------------------------------------------------------------------------------
 
 TEST(Concurrency, SceneFramesFromManyThreadsMatchSingleThreaded) {
-  experiments::ProductionLineOptions options;
+  shared::ProductionLineOptions options;
   options.objects = 12;
   options.vertices = 120;
   options.frames = 4;
@@ -199,7 +199,7 @@ TEST(Concurrency, SceneFramesFromManyThreadsMatchSingleThreaded) {
   const tbb::global_control workers(tbb::global_control::max_allowed_parallelism, 2 * kThreads);
   const auto dir = test::fresh_temp_dir("concurrency_scene");
   const Scene scene(
-      load_scene(experiments::write_scene(experiments::generate_production_line(options), dir)));
+      load_scene(shared::write_scene(shared::generate_production_line(options), dir)));
 
   struct Job {
     SceneQuery query;

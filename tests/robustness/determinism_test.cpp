@@ -23,7 +23,7 @@
 #include <string>
 #include <vector>
 
-#include "production_line.hpp"
+#include "shared/production_line.hpp"
 #include "support/test_support.hpp"
 
 namespace antcd {
@@ -32,10 +32,10 @@ namespace {
 constexpr std::array<Method, 6> kMethods = {Method::Exact, Method::SphereObb, Method::Aco,
                                             Method::Maco,  Method::Pso,       Method::Ga};
 
-Scene make_scene(const experiments::ProductionLineOptions& options, const std::string& name) {
+Scene make_scene(const shared::ProductionLineOptions& options, const std::string& name) {
   const auto dir = test::fresh_temp_dir(name);
   return Scene(
-      load_scene(experiments::write_scene(experiments::generate_production_line(options), dir)));
+      load_scene(shared::write_scene(shared::generate_production_line(options), dir)));
 }
 
 SceneQuery query_for(Method method, std::uint64_t seed, bool search_all) {
@@ -74,7 +74,7 @@ TEST(Determinism, SameSeedSameFramesAcrossRunsAndThreadCounts) {
   // oneTBB caps its workers at the core count minus one by default: allow 8 threads to really
   // take part whatever the machine.
   const tbb::global_control workers(tbb::global_control::max_allowed_parallelism, 8);
-  experiments::ProductionLineOptions options;
+  shared::ProductionLineOptions options;
   options.objects = 10;
   options.vertices = 100;
   options.frames = 3;
@@ -141,8 +141,8 @@ std::uint64_t frames_hash(const std::vector<FrameResult>& frames) {
   return h.value();
 }
 
-experiments::ProductionLineOptions golden_options() {
-  experiments::ProductionLineOptions options;
+shared::ProductionLineOptions golden_options() {
+  shared::ProductionLineOptions options;
   options.objects = 12;
   options.vertices = 120;
   options.frames = 5;

@@ -1,7 +1,7 @@
-// experiments/paper_bench.hpp — `antcd bench paper`: the experiments of the paper's section 5.
+// experiments/paper/paper_bench.hpp — `antcd bench paper`: the experiments of the paper's section 5.
 //
-// run_paper_bench generates the veneer production line (production_line.hpp), runs the exact method
-// over it as ground truth, and measures:
+// run_paper_bench generates the veneer production line (shared/production_line.hpp), runs the
+// exact method over it as ground truth, and measures:
 // - Table 1: time for the improved ant colony (MACO) to find 20/40/60/80 % of the colliding feature
 //   pairs of one object pair, for 1000² … 5000² feature pairs;
 // - Table 2: at those rates, A/B = colliding triangle pairs found (confirmed by the exact triangle

@@ -1,8 +1,9 @@
-// experiments/peers_bench.hpp — antcd against FCL 0.7 and Bullet 3.24 on the same scenes and
+// experiments/peers/peers_bench.hpp — antcd against FCL 0.7 and Bullet 3.24 on the same scenes and
 // mesh pairs, measured side by side (`antcd bench peers`, docs/performance.md).
 //
-// This code links FCL and Bullet; it is built (as the static library antcd_peers) only when both
-// are found, and never linked into the antcd library itself.
+// This code links FCL and Bullet (through the adapters in adapters/); it is built (as the static
+// library antcd_peers) only when both are found, and never linked into the antcd library itself.
+// Parts: scenes, pairs, build, scale (the protocols), machine (/proc), report.
 //
 // Sections of the report:
 // - scenes: a scene (the generated paper production line and a denser variant, or a scene file)

@@ -1,6 +1,6 @@
 // Tests of the production-line scene generator: options, structure, vertex budget, determinism,
 // files, and that the motions bring objects in and out of contact under the exact narrow phase.
-#include "production_line.hpp"
+#include "shared/production_line.hpp"
 #include "support/test_support.hpp"
 
 #include <antcd/io.hpp>
@@ -19,7 +19,7 @@
 #include <utility>
 #include <vector>
 
-namespace antcd::experiments {
+namespace antcd::shared {
 namespace {
 
 using Pair = std::pair<std::uint32_t, std::uint32_t>;
@@ -383,4 +383,4 @@ TEST(ProductionLine, MissingMeshFileIsAMeshError) {
 }
 
 }  // namespace
-}  // namespace antcd::experiments
+}  // namespace antcd::shared

@@ -1,4 +1,6 @@
-#include "run_result.hpp"
+#include "shared/run_result.hpp"
+
+#include "shared/statistics.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -6,7 +8,7 @@
 #include <cmath>
 #include <set>
 
-namespace antcd::experiments {
+namespace antcd::shared {
 
 namespace {
 
@@ -161,13 +163,6 @@ RunResult parse_run_result(std::string_view text, const std::string& source) {
   return out;
 }
 
-double quantile(std::vector<double> values, double q) {
-  if (values.empty()) return 0;
-  std::sort(values.begin(), values.end());
-  const auto rank = static_cast<std::size_t>(std::ceil(q * static_cast<double>(values.size())));
-  return values[std::clamp<std::size_t>(rank, 1, values.size()) - 1];
-}
-
 Metrics compare_runs(const RunResult& truth, const RunResult& result) {
   if (truth.frames.size() != result.frames.size()) {
     throw Error("the runs cover different frames (" + std::to_string(truth.frames.size()) + " vs " +
@@ -212,11 +207,6 @@ Metrics compare_runs(const RunResult& truth, const RunResult& result) {
   m.precision = ratio(m.true_positives, m.reported_pairs);
   m.accuracy = ratio(m.correct_candidates, m.candidate_pairs);
   if (have_features) m.feature_recall = ratio(hits, truth_features);
-  const auto mean = [](const std::vector<double>& v) {
-    double s = 0;
-    for (const double x : v) s += x;
-    return v.empty() ? 0.0 : s / static_cast<double>(v.size());
-  };
   m.mean_ms = mean(times);
   m.p99_ms = quantile(times, 0.99);
   m.truth_mean_ms = mean(truth_times);
@@ -224,4 +214,4 @@ Metrics compare_runs(const RunResult& truth, const RunResult& result) {
   return m;
 }
 
-}  // namespace antcd::experiments
+}  // namespace antcd::shared

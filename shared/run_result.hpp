@@ -1,4 +1,4 @@
-// Results of a scene run (the `antcd run` output format) and the metrics that compare two runs.
+// shared/run_result.hpp — results of a scene run (the `antcd run` output format) and the metrics that compare two runs.
 //
 // Output format (JSON):
 //   { "method": "maco", "build_ms": 41.0, "total_ms": 36.2,
@@ -16,7 +16,7 @@
 #include <utility>
 #include <vector>
 
-namespace antcd::experiments {
+namespace antcd::shared {
 
 using NamePair = std::pair<std::string, std::string>;
 
@@ -62,7 +62,7 @@ struct Metrics {
   double precision = 0;                  ///< TP / reported pairs (1 when nothing was reported)
   double accuracy = 0;                   ///< correct / candidates (1 when there are none)
   std::optional<double> feature_recall;  ///< Σ feature_hits / Σ feature_truth (the paper's A/B)
-  double mean_ms = 0;                    ///< of the result's frames
+  double mean_ms = 0;  ///< of the result's frames (statistics.hpp: NaN when there are none)
   double p99_ms = 0;
   double truth_mean_ms = 0;
   double truth_p99_ms = 0;
@@ -72,7 +72,4 @@ struct Metrics {
 /// antcd::Error if the two runs do not cover the same frames.
 Metrics compare_runs(const RunResult& truth, const RunResult& result);
 
-/// The value at quantile q in [0, 1] (nearest rank) of `values`; 0 for an empty list.
-double quantile(std::vector<double> values, double q);
-
-}  // namespace antcd::experiments
+}  // namespace antcd::shared

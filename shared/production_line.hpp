@@ -1,4 +1,6 @@
-// experiments/production_line.hpp — a procedural scene of a veneer production line.
+// shared/production_line.hpp — a procedural scene of a veneer production line (the generator
+// behind `antcd demo`, `antcd scene generate`, the tests and the benchmarks; its parts are in
+// production_line/: tessellation, equipment, robot arm, line builder, file mode, writer).
 //
 // The paper's experiment (section 5.1) runs collision detection on 90 models of the equipment of a
 // veneer production line, about 750 vertices each, over 300 simulation runs. This generator builds
@@ -27,7 +29,7 @@
 #include <utility>
 #include <vector>
 
-namespace antcd::experiments {
+namespace antcd::shared {
 
 /// Limits of ProductionLineOptions (they keep memory use sane).
 inline constexpr std::size_t kMinObjects = 2;
@@ -86,4 +88,4 @@ struct SceneStats {
 };
 SceneStats scene_stats(const GeneratedScene& generated);
 
-}  // namespace antcd::experiments
+}  // namespace antcd::shared

@@ -1,0 +1,472 @@
+// The measurements of `antcd bench paper` (see paper_bench.hpp): the scene and its ground truth,
+// the measured pair (Tables 1-2, Figure 3) and the scene's candidate pairs (Figures 4-5), then
+// the files. One function, in the order of the steps it runs.
+#include "paper/paper_bench.hpp"
+
+#include "paper/format.hpp"
+#include "paper/gnuplot.hpp"
+#include "paper/plan.hpp"
+#include "paper/plots.hpp"
+#include "paper/report.hpp"
+#include "paper/results.hpp"
+#include "paper/tables.hpp"
+#include "shared/production_line.hpp"
+#include "shared/rng.hpp"
+
+#include <antcd/collide.hpp>
+#include <antcd/error.hpp>
+#include <antcd/io.hpp>
+#include <antcd/random.hpp>
+#include <antcd/scene.hpp>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <exception>
+#include <limits>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <ostream>
+#include <set>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace antcd::experiments {
+namespace {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+using namespace paper;
+using shared::GeneratedScene;
+using shared::ProductionLineOptions;
+using shared::SceneStats;
+
+/// The exact method's verdicts on one frame.
+struct FrameTruth {
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> candidates;
+  double time_ms = 0;
+};
+
+double ms_since(Clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+/// Runs f(0) … f(count - 1) on up to `threads` oneTBB workers; rethrows the first exception.
+template <typename F>
+void parallel_for(std::size_t count, int threads, F&& f) {
+  if (threads <= 1 || count <= 1) {
+    for (std::size_t k = 0; k < count; ++k) f(k);
+    return;
+  }
+  // One task per index (runs are long and uneven); oneTBB rethrows the first exception.
+  tbb::task_arena arena(threads);
+  arena.execute([&] {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, 1),
+                      [&](const tbb::blocked_range<std::size_t>& range) {
+                        for (std::size_t k = range.begin(); k != range.end(); ++k) f(k);
+                      });
+  });
+}
+
+}  // namespace
+
+void run_paper_bench(const PaperBenchOptions& options, std::ostream& log) {
+  if (options.out.empty()) throw antcd::ArgumentError("bench paper: --out must not be empty");
+  if (options.threads < 1) throw antcd::ArgumentError("bench paper: --threads must be >= 1");
+  const auto start = Clock::now();
+  const fs::path out = options.out;
+  std::error_code ec;
+  fs::create_directories(out, ec);
+  if (ec || !fs::is_directory(out)) {
+    throw Error(out.string() + ": cannot create the output folder" +
+                (ec ? ": " + ec.message() : std::string()));
+  }
+  const Gnuplot gnuplot(options.gnuplot, out);
+  gnuplot.check();
+
+  Results R;
+  R.plan = make_plan(options.quick);
+  R.options = options;
+  const Plan& P = R.plan;
+  auto stage = [&](const std::string& what) {
+    log << "[" << num(ms_since(start) / 1000, 1) << " s] " << what << std::endl;
+  };
+
+  // 1. The scene: generate, write, load.
+  stage("generating the production line into " + (out / "scene").string());
+  ProductionLineOptions line;
+  line.seed = options.seed;
+  const GeneratedScene generated = shared::generate_production_line(line);
+  const SceneStats stats = shared::scene_stats(generated);
+  R.objects = stats.objects;
+  R.meshes = stats.meshes;
+  R.average_vertices = stats.average_vertices;
+  const fs::path scene_file = shared::write_scene(generated, out / "scene");
+  const Scene scene(load_scene(scene_file));
+  R.frames = scene.description().frames;
+
+  // 2. Exact pass: the ground truth of every frame.
+  stage("exact pass over " + std::to_string(R.frames) + " frames");
+  std::vector<FrameTruth> truth(R.frames);
+  {
+    SceneQuery exact;
+    exact.method = Method::Exact;
+    parallel_for(R.frames, options.threads, [&](std::size_t f) {
+      const FrameResult fr = scene.run_frame(f, exact);
+      truth[f] = {fr.pairs, fr.candidates, fr.time_ms};
+    });
+  }
+  std::map<std::pair<std::uint32_t, std::uint32_t>, std::vector<std::size_t>> contact_frames;
+  double exact_ms = 0;
+  for (std::size_t f = 0; f < R.frames; ++f) {
+    for (const auto& pr : truth[f].pairs) contact_frames[pr].push_back(f);
+    R.scene_colliding += truth[f].pairs.size();
+    R.scene_candidates += truth[f].candidates.size();
+    exact_ms += truth[f].time_ms;
+  }
+  R.exact_frame_ms = exact_ms / static_cast<double>(std::max<std::size_t>(1, R.frames));
+  if (contact_frames.empty()) throw Error("bench paper: the generated scene has no collision");
+  auto chosen = contact_frames.begin();
+  for (auto it = contact_frames.begin(); it != contact_frames.end(); ++it) {
+    if (it->second.size() > chosen->second.size()) chosen = it;
+  }
+  const std::uint32_t obj_a = chosen->first.first;
+  const std::uint32_t obj_b = chosen->first.second;
+  R.name_a = scene.description().objects[obj_a].name;
+  R.name_b = scene.description().objects[obj_b].name;
+  R.contact_frames = chosen->second.size();
+  log << "  measured pair: " << R.name_a << " - " << R.name_b << ", in contact in "
+      << R.contact_frames << " frames" << std::endl;
+
+  // 3. The measured pair, re-tessellated (same layout, finer meshes).
+  stage("re-tessellating the measured pair with " + std::to_string(P.fine_vertices) +
+        " vertices per mesh");
+  ProductionLineOptions fine_line = line;
+  fine_line.vertices = P.fine_vertices;
+  const GeneratedScene fine = shared::generate_production_line(fine_line);
+  auto fine_object = [&](const std::string& name) -> const SceneObject& {
+    for (const SceneObject& o : fine.scene.objects) {
+      if (o.name == name) return o;
+    }
+    throw Error("bench paper: object '" + name + "' is missing from the re-tessellated scene");
+  };
+  auto fine_model = [&](const SceneObject& o) {
+    for (const auto& [file, mesh] : fine.meshes) {
+      if (file == o.mesh_text) return std::make_unique<Model>(mesh, BuildOptions{}, file);
+    }
+    throw Error("bench paper: mesh '" + o.mesh_text + "' is missing from the re-tessellated scene");
+  };
+  const SceneObject& fine_a = fine_object(R.name_a);
+  const SceneObject& fine_b = fine_object(R.name_b);
+  const std::unique_ptr<Model> model_a = fine_model(fine_a);
+  const std::unique_ptr<Model> model_b = fine_model(fine_b);
+  R.fine_triangles_a = model_a->mesh().triangles.size();
+  R.fine_triangles_b = model_b->mesh().triangles.size();
+  R.fine_delta = default_delta(*model_a, *model_b);
+
+  // Frames of the pair: evenly spread over its contact frames, kept when the fine meshes touch.
+  struct PairFrame {
+    std::size_t frame = 0;
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> contacts;  ///< sorted
+  };
+  std::vector<PairFrame> pair_frames;
+  {
+    const std::vector<std::size_t>& frames = chosen->second;
+    std::set<std::size_t> used;
+    for (std::size_t k = 0; k < P.pair_frames; ++k) {
+      const std::size_t first = (2 * k + 1) * frames.size() / (2 * P.pair_frames);
+      for (std::size_t step = 0; step < frames.size(); ++step) {
+        const std::size_t f = frames[(first + step) % frames.size()];
+        if (used.count(f)) continue;
+        used.insert(f);
+        const CollisionResult c =
+            collide(*model_a, fine_a.pose(f), *model_b, fine_b.pose(f), {0.0, true, 0});
+        if (c.contacts.empty()) continue;
+        PairFrame pf;
+        pf.frame = f;
+        for (const Contact& x : c.contacts) pf.contacts.emplace_back(x.triangle_a, x.triangle_b);
+        std::sort(pf.contacts.begin(), pf.contacts.end());
+        pf.contacts.erase(std::unique(pf.contacts.begin(), pf.contacts.end()), pf.contacts.end());
+        pair_frames.push_back(std::move(pf));
+        break;
+      }
+      if (used.size() >= frames.size()) break;
+    }
+  }
+  if (pair_frames.empty()) {
+    throw Error("bench paper: the re-tessellated pair " + R.name_a + " - " + R.name_b +
+                " never touches");
+  }
+  std::sort(pair_frames.begin(), pair_frames.end(),
+            [](const PairFrame& x, const PairFrame& y) { return x.frame < y.frame; });
+  for (const PairFrame& pf : pair_frames) R.pair_frames.push_back(pf.frame);
+
+  auto build_space = [&](const PairFrame& pf, std::uint32_t n, std::uint64_t seed) {
+    SamplingOptions sampling;
+    sampling.samples_per_side = n;
+    return build_feature_space(*model_a, fine_a.pose(pf.frame), *model_b, fine_b.pose(pf.frame),
+                               sampling, seed);
+  };
+
+  // 4. Tables 1-2: one run per (features, frame, seed), every search on the same space.
+  {
+    struct Spec {
+      std::uint32_t n;
+      std::size_t frame_index;
+      std::size_t seed_index;
+    };
+    std::vector<Spec> specs;
+    for (const std::uint32_t n : P.features) {
+      for (std::size_t k = 0; k < pair_frames.size(); ++k) {
+        for (std::size_t s = 0; s < P.pair_seeds; ++s) specs.push_back({n, k, s});
+      }
+    }
+    stage("Tables 1-2: " + std::to_string(specs.size()) + " runs × " +
+          std::to_string(std::size(kTableMethods)) + " searches");
+    R.runs.resize(specs.size());
+    std::atomic<std::size_t> done{0};
+    std::mutex log_mutex;
+    parallel_for(specs.size(), options.threads, [&](std::size_t idx) {
+      const Spec& sp = specs[idx];
+      const PairFrame& pf = pair_frames[sp.frame_index];
+      const std::uint64_t seed = shared::derive_seed(options.seed, 1, sp.n, pf.frame, sp.seed_index);
+      PairRun run;
+      run.features = sp.n;
+      run.frame = pf.frame;
+      const auto t0 = Clock::now();
+      const FeatureSpace space = build_space(pf, sp.n, seed);
+      run.build_ms = ms_since(t0);
+      run.space_a = space.a.size();
+      run.space_b = space.b.size();
+      run.candidates_a = space.candidates_a;
+      run.candidates_b = space.candidates_b;
+      run.truth = count_colliding(space);
+      run.contacts = pf.contacts.size();
+      const std::set<std::uint32_t> in_a(space.a.triangle.begin(), space.a.triangle.end());
+      const std::set<std::uint32_t> in_b(space.b.triangle.begin(), space.b.triangle.end());
+      for (const auto& [ta, tb] : pf.contacts) {
+        run.contacts_in_space += in_a.count(ta) && in_b.count(tb) ? 1 : 0;
+      }
+      run.marks.assign(std::size(kTableMethods), std::vector<MarkResult>(4));
+      if (run.truth > 0) {
+        for (std::size_t g = 0; g < std::size(kTableMethods); ++g) {
+          SearchRequest req = paper_request(kTableMethods[g], shared::derive_seed(seed, 2, g));
+          req.restarts = std::numeric_limits<std::uint32_t>::max();
+          req.progress_marks.assign(std::begin(kRates), std::end(kRates));
+          req.stop.target_share = kRates[3];
+          req.stop.reference_count = run.truth;
+          req.stop.max_evaluations = P.table_cap;
+          const SearchResult res = search(space, req);
+          for (std::size_t k = 0; k < 4 && k < res.progress.size(); ++k) {
+            const ProgressMark& pm = res.progress[k];
+            MarkResult& m = run.marks[g][k];
+            if (!pm.reached) continue;
+            m.reached = true;
+            m.ms = pm.seconds * 1000;
+            m.evaluations = static_cast<double>(pm.evaluations);
+            std::set<std::pair<std::uint32_t, std::uint32_t>> found;
+            const std::size_t upto = std::min<std::size_t>(pm.hits, res.hits.size());
+            for (std::size_t h = 0; h < upto; ++h) {
+              const auto key = std::make_pair(res.hits[h].triangle_a, res.hits[h].triangle_b);
+              if (std::binary_search(pf.contacts.begin(), pf.contacts.end(), key)) {
+                found.insert(key);
+              }
+            }
+            m.found_contacts = found.size();
+          }
+        }
+      }
+      R.runs[idx] = std::move(run);
+      const std::size_t d = ++done;
+      const std::lock_guard<std::mutex> lock(log_mutex);
+      if (d % std::max<std::size_t>(1, specs.size() / 10) == 0 || d == specs.size()) {
+        log << "  " << d << "/" << specs.size() << " runs done (" << num(ms_since(start) / 1000, 1)
+            << " s)" << std::endl;
+      }
+    });
+  }
+
+  // 5. Figure 3: MACO with each colony size for N = 100 iterations.
+  {
+    struct Spec {
+      std::uint32_t n;
+      std::size_t frame_index;
+      std::size_t seed_index;
+    };
+    std::vector<Spec> specs;
+    const std::size_t frames = std::min(P.fig3_frames, pair_frames.size());
+    for (const std::uint32_t n : P.features) {
+      for (std::size_t k = 0; k < frames; ++k) {
+        for (std::size_t s = 0; s < P.fig3_seeds; ++s) specs.push_back({n, k, s});
+      }
+    }
+    stage("Figure 3: " + std::to_string(specs.size()) + " spaces × " +
+          std::to_string(P.colony_sizes.size()) + " colony sizes");
+    std::vector<std::vector<Fig3Run>> found(specs.size());
+    parallel_for(specs.size(), options.threads, [&](std::size_t idx) {
+      const Spec& sp = specs[idx];
+      const PairFrame& pf = pair_frames[sp.frame_index];
+      const std::uint64_t seed = shared::derive_seed(options.seed, 1, sp.n, pf.frame, sp.seed_index);
+      const FeatureSpace space = build_space(pf, sp.n, seed);
+      const std::uint64_t t = count_colliding(space);
+      if (t == 0) return;
+      for (const std::uint32_t m : P.colony_sizes) {
+        SearchRequest req = paper_request(Method::Maco, shared::derive_seed(seed, 3, m));
+        req.ant.ants = m;
+        const auto t0 = Clock::now();
+        const SearchResult res = search(space, req);
+        found[idx].push_back({sp.n, m,
+                              static_cast<double>(res.hits.size()) / static_cast<double>(t),
+                              ms_since(t0), static_cast<double>(res.evaluations)});
+      }
+    });
+    for (auto& v : found) R.fig3.insert(R.fig3.end(), v.begin(), v.end());
+  }
+
+  // 6. Figures 4-5: every candidate pair of sampled frames, every method and budget.
+  {
+    for (std::size_t k = 0; k < P.scene_frames && k < R.frames; ++k) {
+      R.scene_frames.push_back((2 * k + 1) * R.frames / (2 * P.scene_frames));
+    }
+    R.scene_frames.erase(std::unique(R.scene_frames.begin(), R.scene_frames.end()),
+                         R.scene_frames.end());
+    struct Task {
+      std::size_t frame;
+      std::uint32_t i, j;
+      bool truth;
+    };
+    std::vector<Task> tasks;
+    for (const std::size_t f : R.scene_frames) {
+      for (const auto& [i, j] : truth[f].candidates) {
+        const bool t =
+            std::binary_search(truth[f].pairs.begin(), truth[f].pairs.end(), std::make_pair(i, j));
+        tasks.push_back({f, i, j, t});
+      }
+    }
+    stage("Figures 4-5: " + std::to_string(R.scene_frames.size()) + " frames, " +
+          std::to_string(tasks.size()) + " candidate pairs × " +
+          std::to_string(std::size(kSceneMethods)) + " searches × " +
+          std::to_string(P.budgets.size()) + " budgets");
+    struct TaskResult {
+      Tally exact, sphere;
+      std::vector<Tally> random;  ///< [method * budgets + budget]
+      std::vector<Tally> sensitivity;
+      double delta = 0;
+    };
+    std::vector<TaskResult> results(tasks.size());
+    std::atomic<std::size_t> done{0};
+    std::mutex log_mutex;
+    parallel_for(tasks.size(), options.threads, [&](std::size_t idx) {
+      const Task& t = tasks[idx];
+      const Model& a = scene.model_of(t.i);
+      const Model& b = scene.model_of(t.j);
+      const Transform pa = scene.description().objects[t.i].pose(t.frame);
+      const Transform pb = scene.description().objects[t.j].pose(t.frame);
+      TaskResult& out = results[idx];
+      {
+        CollisionResult c;
+        const auto t0 = Clock::now();
+        const bool hit = collide(a, pa, b, pb, CollisionRequest{0.0, false, 0}, c);
+        out.exact.add(hit, t.truth, ms_since(t0));
+      }
+      {
+        const auto t0 = Clock::now();
+        const bool hit = any_leaf_pair_overlaps(a, pa, b, pb, 0.0);
+        out.sphere.add(hit, t.truth, ms_since(t0));
+      }
+      const std::uint64_t seed = shared::derive_seed(options.seed, 4, t.frame, t.i, t.j);
+      SamplingOptions sampling;
+      sampling.samples_per_side = P.scene_samples;
+      const auto t0 = Clock::now();
+      const FeatureSpace space = build_feature_space(a, pa, b, pb, sampling, seed);
+      const double build_ms = ms_since(t0);
+      out.delta = space.delta;
+      auto detect = [&](const FeatureSpace& sp, Method method, std::uint64_t budget, double base_ms,
+                        std::size_t salt) {
+        SearchRequest req = paper_request(method, shared::derive_seed(seed, 5, salt));
+        req.restarts = std::numeric_limits<std::uint32_t>::max();
+        req.stop.first_hit = true;
+        req.stop.max_evaluations = budget;
+        const auto s0 = Clock::now();
+        const SearchResult res = search(sp, req);
+        Tally tally;
+        tally.add(res.found, t.truth, base_ms + ms_since(s0));
+        return tally;
+      };
+      for (std::size_t g = 0; g < std::size(kSceneMethods); ++g) {
+        for (std::size_t q = 0; q < P.budgets.size(); ++q) {
+          out.random.push_back(detect(space, kSceneMethods[g], P.budgets[q], build_ms, g));
+        }
+      }
+      for (const double scale : P.delta_scales) {
+        SamplingOptions small = sampling;
+        small.delta = space.delta * scale;
+        const auto s0 = Clock::now();
+        const FeatureSpace sp = build_feature_space(a, pa, b, pb, small, seed);
+        out.sensitivity.push_back(detect(sp, Method::Maco, P.budgets.back(), ms_since(s0), 0));
+      }
+      const std::size_t d = ++done;
+      const std::lock_guard<std::mutex> lock(log_mutex);
+      if (d % std::max<std::size_t>(1, tasks.size() / 10) == 0 || d == tasks.size()) {
+        log << "  " << d << "/" << tasks.size() << " pairs done (" << num(ms_since(start) / 1000, 1)
+            << " s)" << std::endl;
+      }
+    });
+    double delta_sum = 0;
+    for (const TaskResult& x : results) {
+      R.exact.merge(x.exact);
+      R.sphere_obb.merge(x.sphere);
+      delta_sum += x.delta;
+      for (std::size_t g = 0; g < std::size(kSceneMethods); ++g) {
+        for (std::size_t q = 0; q < P.budgets.size(); ++q) {
+          R.random[{method_key(kSceneMethods[g]), P.budgets[q]}].merge(
+              x.random[g * P.budgets.size() + q]);
+        }
+      }
+      for (std::size_t k = 0; k < P.delta_scales.size(); ++k) {
+        R.sensitivity[P.delta_scales[k]].merge(x.sensitivity[k]);
+      }
+    }
+    R.feature_delta_mean = results.empty() ? 0 : delta_sum / static_cast<double>(results.size());
+    // Budgets that no pair was run with still get (empty) series.
+    for (const Method g : kSceneMethods) {
+      for (const std::uint64_t b : P.budgets) R.random[{method_key(g), b}];
+    }
+  }
+
+  // 7. Files.
+  stage("writing tables, plots and report.md");
+  R.seconds = ms_since(start) / 1000;
+  const std::vector<std::string> fig4_methods = {"sphere-obb", "aco", "maco"};
+  const std::vector<std::string> fig5_methods = {"maco", "pso", "ga", "exact"};
+  write_file_atomic(out / "table1.csv", table1_csv(R));
+  write_file_atomic(out / "table1.md", table1_md(R));
+  write_file_atomic(out / "table2.csv", table2_csv(R));
+  write_file_atomic(out / "table2.md", table2_md(R));
+  write_file_atomic(out / "fig3.csv", fig3_csv(R));
+  write_file_atomic(out / "fig4.csv", scene_csv(R, fig4_methods));
+  write_file_atomic(out / "fig5.csv", scene_csv(R, fig5_methods));
+  write_file_atomic(out / "delta_sensitivity.csv", delta_sensitivity_csv(R));
+  gnuplot.plot("table1", table_plot(R, true));
+  gnuplot.plot("table2", table_plot(R, false));
+  gnuplot.plot("fig3", fig3_plot(R));
+  gnuplot.plot("fig4",
+               scene_plot(R, "Figure 4: detection against time, Sphere-OBB, ACO and MACO",
+                          fig4_methods, {{"sphere-obb", 0.65}, {"aco", 0.80}, {"maco", 0.85}}));
+  gnuplot.plot("fig5", scene_plot(R, "Figure 5: detection against time, MACO, PSO, GA and exact",
+                                  fig5_methods, {{"maco", 0.85}, {"pso", 0.80}}));
+  R.seconds = ms_since(start) / 1000;
+  write_file_atomic(out / "report.md", write_report(R));
+  stage("done: " + (out / "report.md").string());
+}
+
+}  // namespace antcd::experiments
