@@ -42,12 +42,14 @@
 #include <thread>
 #include <vector>
 
+#include "support/mesh_files.hpp"
 #include "support/test_support.hpp"
 
 namespace antcd {
 namespace {
 
 namespace fs = std::filesystem;
+using test::binary_stl;
 using test::fresh_temp_dir;
 using test::write_file;
 
@@ -128,32 +130,6 @@ std::string random_bytes(std::size_t n, std::uint64_t seed) {
   std::mt19937_64 rng(seed);
   std::string out(n, '\0');
   for (char& c : out) c = static_cast<char>(rng() & 0xFF);
-  return out;
-}
-
-void append_f32(std::string& out, float x) {
-  char bytes[4];
-  std::memcpy(bytes, &x, 4);  // binary STL is little-endian, like every platform antcd targets
-  out.append(bytes, 4);
-}
-
-void append_u32(std::string& out, std::uint32_t x) {
-  for (int k = 0; k < 4; ++k) out.push_back(static_cast<char>((x >> (8 * k)) & 0xFF));
-}
-
-/// A binary STL of `m` whose header announces `count` triangles (default: the true count).
-std::string binary_stl(const Mesh& m, std::int64_t count = -1,
-                       std::string header = std::string(80, '\0')) {
-  header.resize(80, '\0');
-  std::string out = header;
-  append_u32(out, static_cast<std::uint32_t>(count < 0 ? std::int64_t(m.triangles.size()) : count));
-  for (const auto& t : m.triangles) {
-    for (int k = 0; k < 3; ++k) append_f32(out, 0.0f);  // normal: unused
-    for (const auto i : t) {
-      for (int k = 0; k < 3; ++k) append_f32(out, static_cast<float>(m.vertices[i][k]));
-    }
-    out.append(2, '\0');
-  }
   return out;
 }
 
@@ -417,7 +393,7 @@ TEST(BadMeshFile, BinaryStlCountLies) {
     for (const bool solid : {false, true}) {
       SCOPED_TRACE("count " + std::to_string(lie) + (solid ? ", header 'solid'" : ""));
       const fs::path path = dir / ("lie_" + std::to_string(lie) + (solid ? "_solid" : "") + ".stl");
-      write_file(path, binary_stl(cube, lie, solid ? "solid exported" : std::string(80, '\0')));
+      write_file(path, binary_stl(cube, solid ? "solid exported" : "", lie));
       expect_refused(path);
     }
   }

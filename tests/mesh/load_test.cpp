@@ -12,6 +12,7 @@
 //   at ±0.5 and 36 indices -> 12 triangles, 8 distinct positions. The root node's matrix is a
 //   rotation by -90° about x, which maps the cube onto itself: bounds [-0.5, 0.5]³.
 // - PLY/Wuson.ply and OFF/Wuson.off are the same model: 3732 triangles on 2117 positions.
+#include "support/mesh_files.hpp"
 #include "support/test_support.hpp"
 
 #include <antcd/mesh.hpp>
@@ -38,7 +39,12 @@
 namespace antcd {
 namespace {
 
+using test::append_f32;
+using test::append_stl_facet;
+using test::append_u32;
+using test::ascii_stl;
 using test::assimp_model;
+using test::binary_stl;
 using test::fresh_temp_dir;
 using test::write_file;
 
@@ -79,55 +85,6 @@ void expect_bounds(const Mesh& m, const Vec3& lo, const Vec3& hi, Scalar tol = 0
     EXPECT_NEAR(b.min[k], lo[k], tol) << "axis " << k;
     EXPECT_NEAR(b.max[k], hi[k], tol) << "axis " << k;
   }
-}
-
-void append_f32(std::string& out, float x) {
-  char bytes[4];
-  std::memcpy(bytes, &x, 4);  // binary STL is little-endian, like every platform antcd targets
-  out.append(bytes, 4);
-}
-
-void append_u32(std::string& out, std::uint32_t x) {
-  for (int k = 0; k < 4; ++k) out.push_back(static_cast<char>((x >> (8 * k)) & 0xFF));
-}
-
-/// One binary STL facet record: normal, three corners, attribute byte count.
-void append_facet(std::string& out, const std::array<Vec3, 3>& corners) {
-  const Vec3 n = (corners[1] - corners[0]).cross(corners[2] - corners[0]).normalized();
-  for (int k = 0; k < 3; ++k) append_f32(out, static_cast<float>(n[k]));
-  for (const Vec3& c : corners) {
-    for (int k = 0; k < 3; ++k) append_f32(out, static_cast<float>(c[k]));
-  }
-  out.append(2, '\0');
-}
-
-std::string binary_stl(const Mesh& m, std::string header = std::string(80, '\0')) {
-  header.resize(80, '\0');
-  std::string out = header;
-  append_u32(out, static_cast<std::uint32_t>(m.triangles.size()));
-  for (const auto& t : m.triangles) {
-    append_facet(out, {m.vertices[t[0]], m.vertices[t[1]], m.vertices[t[2]]});
-  }
-  return out;
-}
-
-std::string ascii_stl(const Mesh& m) {
-  std::ostringstream out;
-  out.precision(9);
-  out << "solid cube\n";
-  for (const auto& t : m.triangles) {
-    const Vec3 n = (m.vertices[t[1]] - m.vertices[t[0]])
-                       .cross(m.vertices[t[2]] - m.vertices[t[0]])
-                       .normalized();
-    out << "  facet normal " << n.x() << ' ' << n.y() << ' ' << n.z() << "\n    outer loop\n";
-    for (const auto i : t) {
-      out << "      vertex " << m.vertices[i].x() << ' ' << m.vertices[i].y() << ' '
-          << m.vertices[i].z() << '\n';
-    }
-    out << "    endloop\n  endfacet\n";
-  }
-  out << "endsolid cube\n";
-  return out.str();
 }
 
 /// The positions of every triangle's corners, in triangle order: equal for two meshes exactly
@@ -715,8 +672,8 @@ TEST(LoadMeshLarge, FiveMillionTriangleBinaryStl) {
     append_u32(chunk, triangle_count);
     for (std::uint32_t i = 0; i < nx; ++i) {
       for (std::uint32_t j = 0; j < ny; ++j) {
-        append_facet(chunk, {point(i, j), point(i + 1, j), point(i + 1, j + 1)});
-        append_facet(chunk, {point(i, j), point(i + 1, j + 1), point(i, j + 1)});
+        append_stl_facet(chunk, {point(i, j), point(i + 1, j), point(i + 1, j + 1)});
+        append_stl_facet(chunk, {point(i, j), point(i + 1, j + 1), point(i, j + 1)});
       }
       out.write(chunk.data(), static_cast<std::streamsize>(chunk.size()));
       chunk.clear();
