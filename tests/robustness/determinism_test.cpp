@@ -4,7 +4,7 @@
 //
 // Golden values. kGolden below holds an FNV-1a 64-bit hash, per method, over every frame's
 // (frame, pairs, candidates, feature_hits) on the scene of golden_options(). They depend on the
-// scene generator (experiments/production_line.cpp), mesh writing and loading, the hierarchy
+// scene generator (shared/production_line/), mesh writing and loading, the hierarchy
 // build, the broad phase, the narrow phases and the random searches, and on floating-point
 // results. A deliberate change to any of these may change them: then check that the change is
 // meant, regenerate with
