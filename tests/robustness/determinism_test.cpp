@@ -179,6 +179,8 @@ const char* enumerator(Method m) {
       return "Pso";
     case Method::Ga:
       return "Ga";
+    case Method::Exhaustive:
+      return "Exhaustive";
   }
   return "?";
 }
