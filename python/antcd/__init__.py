@@ -1,0 +1,40 @@
+"""antcd: exact and random (ant colony) mesh-vs-mesh collision detection.
+
+Meshes are numpy arrays in and out: ``load_mesh`` gives ``(vertices float64[n, 3], faces int64[m, 3])``,
+``Model(vertices, faces)`` builds the Sphere-OBB hierarchy once, ``collide`` answers exactly,
+``random_collide`` runs the paper's improved ant colony (MACO) and its baselines, ``Scene`` /
+``run_scene`` play an antcd-scene/1 file, and ``CollisionManager`` is a drop-in for
+``trimesh.collision.CollisionManager``.
+
+Poses are 4x4 homogeneous matrices or ``(rotation 3x3, translation 3)`` pairs (rigid motions
+only); contact points are in world coordinates. Queries release the GIL and Models may be shared
+by any number of threads.
+"""
+from ._antcd import (
+    CollisionResult,
+    Model,
+    RandomResult,
+    Scene,
+    SceneRun,
+    __version__,
+    collide,
+    load_mesh,
+    random_collide,
+    run_scene,
+)
+from .collision import CollisionManager, ContactData
+
+__all__ = [
+    "CollisionManager",
+    "CollisionResult",
+    "ContactData",
+    "Model",
+    "RandomResult",
+    "Scene",
+    "SceneRun",
+    "__version__",
+    "collide",
+    "load_mesh",
+    "random_collide",
+    "run_scene",
+]

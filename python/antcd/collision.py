@@ -1,0 +1,221 @@
+"""A collision manager with trimesh's interface, on antcd's exact mesh-vs-mesh query.
+
+``antcd.CollisionManager`` keeps the method names, arguments and return conventions of
+``trimesh.collision.CollisionManager`` so that a script using trimesh's manager runs after
+changing its import: ``add_object(name, mesh, transform=None)`` (same name replaces),
+``remove_object`` / ``set_transform`` (ValueError for an unknown name), ``in_collision_single`` /
+``in_collision_internal`` / ``in_collision_other`` returning ``is_collision`` and, on request, the
+names (a set of names; a set of 2-tuples sorted alphabetically; a set of (this, other) tuples) and
+a list of ``ContactData``, one per colliding triangle pair.
+
+Differences from trimesh/FCL, all documented on the methods: meshes may be ``antcd.Model``s
+(shared, built once), trimesh meshes, or ``(vertices, faces)`` pairs; collision means the surfaces
+share a point (touching counts, a mesh entirely inside another does not collide); a contact's
+``depth`` is NaN because antcd does not compute penetration depth (``distance`` is 0 for
+intersecting triangles).
+"""
+from __future__ import annotations
+
+import math
+from typing import Any, Iterable
+
+import numpy as np
+
+from . import _antcd
+from ._antcd import CollisionResult, Model
+
+__all__ = ["CollisionManager", "ContactData"]
+
+
+def _as_model(mesh: Any) -> Model:
+    if isinstance(mesh, Model):
+        return mesh
+    if isinstance(mesh, (tuple, list)) and len(mesh) == 2:
+        return Model(mesh[0], mesh[1])
+    if hasattr(mesh, "vertices") and hasattr(mesh, "faces"):
+        return Model(np.asarray(mesh.vertices), np.asarray(mesh.faces))
+    raise TypeError(
+        "mesh must be an antcd.Model, a (vertices, faces) pair or an object with .vertices and "
+        f".faces (e.g. trimesh.Trimesh), got {type(mesh).__name__}"
+    )
+
+
+def _unit_normals(model: Model, pose: np.ndarray, triangles: np.ndarray) -> np.ndarray:
+    v = model.vertices[model.faces[triangles]]  # (k, 3, 3), model frame
+    n = np.cross(v[:, 1] - v[:, 0], v[:, 2] - v[:, 0]) @ pose[:3, :3].T
+    length = np.linalg.norm(n, axis=1, keepdims=True)
+    return n / np.where(length > 0, length, 1.0)
+
+
+class ContactData:
+    """One contact: a pair of colliding triangles of two named objects.
+
+    ``names`` is the set of the two names; ``index(name)`` the face index of that object's
+    triangle; ``point`` a world-frame point both triangles share (or, with a collision threshold,
+    the midpoint of their closest points); ``normal`` the world-frame unit normal of the first
+    object's triangle (its winding order); ``distance`` the triangle distance (0 when they
+    intersect); ``depth`` NaN: antcd does not compute penetration depth.
+    """
+
+    __slots__ = ("names", "_inds", "_point", "_normal", "_distance")
+
+    def __init__(self, names: tuple[str, str], triangles: tuple[int, int], point: np.ndarray,
+                 normal: np.ndarray, distance: float) -> None:
+        self.names = set(names)
+        self._inds = {names[0]: int(triangles[0]), names[1]: int(triangles[1])}
+        self._point = point
+        self._normal = normal
+        self._distance = float(distance)
+
+    @property
+    def point(self) -> np.ndarray:
+        """(3,) float: the contact point, world frame."""
+        return self._point
+
+    @property
+    def normal(self) -> np.ndarray:
+        """(3,) float: unit normal of the first object's triangle, world frame."""
+        return self._normal
+
+    @property
+    def depth(self) -> float:
+        """Penetration depth: NaN, antcd does not compute it (see ``distance``)."""
+        return math.nan
+
+    @property
+    def distance(self) -> float:
+        """Distance between the two triangles (0 when they intersect)."""
+        return self._distance
+
+    def index(self, name: str) -> int:
+        """Face index of the triangle in contact on the object called ``name``."""
+        return self._inds[name]
+
+    def __repr__(self) -> str:
+        return f"<antcd.ContactData {sorted(self.names)} point={self._point.tolist()}>"
+
+
+def _contacts(names: tuple[str, str], model: Model, pose: np.ndarray,
+              result: CollisionResult) -> Iterable[ContactData]:
+    ta, tb = result.triangles_a, result.triangles_b
+    points, distances = result.points, result.distances
+    normals = _unit_normals(model, pose, ta)
+    for k in range(len(ta)):
+        yield ContactData(names, (ta[k], tb[k]), points[k], normals[k], distances[k])
+
+
+def _answer(result: bool, names: set, data: list, return_names: bool, return_data: bool) -> Any:
+    if return_names and return_data:
+        return result, names, data
+    if return_names:
+        return result, names
+    if return_data:
+        return result, data
+    return result
+
+
+def _mode(return_names: bool, return_data: bool) -> str:
+    return "contacts" if return_data else ("pairs" if return_names else "verdict")
+
+
+class CollisionManager:
+    """A set of named, posed meshes checked for collisions (trimesh's CollisionManager interface).
+
+    Backed by a broad phase over world-aligned boxes of each model's root OBB (sweep and prune)
+    and antcd's exact triangle-level query. Queries release the GIL; objects may be moved by one
+    thread while another queries.
+    """
+
+    def __init__(self) -> None:
+        self._world = _antcd._World()
+        self._ids: dict[str, int] = {}
+        # id -> name. Ids are never reused and entries are kept after removal, so a query racing a
+        # removal in another thread can still name what it found.
+        self._names: dict[int, str] = {}
+
+    def add_object(self, name: str, mesh: Any, transform: Any = None) -> Model:
+        """Adds (or, for a name already present, replaces) an object.
+
+        mesh: an antcd.Model (shared, not copied), a trimesh.Trimesh or any object with
+        .vertices and .faces, or a (vertices, faces) pair. transform: 4x4 homogeneous matrix,
+        (rotation, translation) pair or None (identity); rigid only (ValueError otherwise).
+        Returns the object's Model.
+        """
+        model = _as_model(mesh)
+        new_id = self._world.add(model, transform)
+        old_id = self._ids.get(name)
+        if old_id is not None:
+            self._world.remove(old_id)
+        self._ids[name] = new_id
+        self._names[new_id] = name
+        return model
+
+    def remove_object(self, name: str) -> None:
+        """Removes an object; ValueError if there is none by that name."""
+        if name not in self._ids:
+            raise ValueError(f"{name} not in collision manager!")
+        self._world.remove(self._ids.pop(name))
+
+    def set_transform(self, name: str, transform: Any) -> None:
+        """Replaces an object's pose; ValueError if there is none by that name or the transform
+        is not a rigid motion."""
+        if name not in self._ids:
+            raise ValueError(f"{name} not in collision manager!")
+        self._world.set_pose(self._ids[name], transform)
+
+    def in_collision_single(self, mesh: Any, transform: Any = None, return_names: bool = False,
+                            return_data: bool = False) -> Any:
+        """Checks one mesh (not added) against every object.
+
+        Returns is_collision, plus (return_names) the set of names of the objects it touches and
+        (return_data) a list of ContactData whose names are (object name, '__external').
+        """
+        model = _as_model(mesh)
+        hits = self._world.collide_single(model, transform, _mode(return_names, return_data))
+        names: set = set()
+        data: list = []
+        for object_id, _, result, object_model, object_pose in hits:
+            name = self._names[object_id]
+            names.add(name)
+            if return_data:
+                data.extend(_contacts((name, "__external"), object_model, object_pose, result))
+        return _answer(bool(hits), names, data, return_names, return_data)
+
+    def in_collision_internal(self, return_names: bool = False, return_data: bool = False) -> Any:
+        """Checks every pair of objects.
+
+        Returns is_collision, plus (return_names) a set of 2-tuples of names in alphabetical order
+        and (return_data) a list of ContactData, one per colliding triangle pair.
+        """
+        hits = self._world.collide_internal(_mode(return_names, return_data))
+        return self._pairs(hits, self, return_names, return_data, sort_names=True)
+
+    def in_collision_other(self, other_manager: "CollisionManager", return_names: bool = False,
+                           return_data: bool = False) -> Any:
+        """Checks every object of this manager against every object of another.
+
+        Returns is_collision, plus (return_names) a set of (name in this manager, name in the
+        other) tuples and (return_data) a list of ContactData.
+        """
+        if not isinstance(other_manager, CollisionManager):
+            raise TypeError("other_manager must be an antcd.CollisionManager, got "
+                            f"{type(other_manager).__name__}")
+        hits = self._world.collide_other(other_manager._world, _mode(return_names, return_data))
+        return self._pairs(hits, other_manager, return_names, return_data, sort_names=False)
+
+    def _pairs(self, hits: list, other: "CollisionManager", return_names: bool, return_data: bool,
+               sort_names: bool) -> Any:
+        names: set = set()
+        data: list = []
+        for id_a, id_b, result, model_a, pose_a in hits:
+            pair = (self._names[id_a], other._names[id_b])
+            names.add(tuple(sorted(pair)) if sort_names else pair)
+            if return_data:
+                data.extend(_contacts(pair, model_a, pose_a, result))
+        return _answer(bool(hits), names, data, return_names, return_data)
+
+    def __len__(self) -> int:
+        return len(self._ids)
+
+    def __contains__(self, name: object) -> bool:
+        return name in self._ids

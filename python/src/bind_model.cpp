@@ -1,0 +1,152 @@
+// python/src/bind_model.cpp — antcd.load_mesh and antcd.Model.
+#include <antcd/bvh.hpp>
+#include <antcd/mesh.hpp>
+
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <memory>
+#include <string>
+
+#include "bindings.hpp"
+#include "convert.hpp"
+#include "paths.hpp"
+
+namespace antcd::python {
+
+namespace {
+
+BuildOptions build_options(py::handle leaf_size, const std::string& covariance) {
+  BuildOptions o;
+  o.leaf_size = static_cast<std::uint32_t>(to_count(leaf_size, "leaf_size", 1, 1u << 20));
+  o.covariance = parse_covariance(covariance);
+  return o;
+}
+
+std::shared_ptr<Model> build(Mesh mesh, const BuildOptions& options, std::string name) {
+  py::gil_scoped_release release;  // O(n log n): let other Python threads run
+  return std::make_shared<Model>(std::move(mesh), options, std::move(name));
+}
+
+Mesh load(const py::handle path_in) {
+  const std::filesystem::path path = to_path(path_in);
+  require_readable_file(path, "mesh file");
+  py::gil_scoped_release release;
+  return load_mesh(path);
+}
+
+}  // namespace
+
+void bind_model(py::module_& m) {
+  m.def(
+      "load_mesh",
+      [](const py::object& path) {
+        const Mesh mesh = load(path);
+        auto vertices = make_rows<double>(mesh.vertices.size(), 3, [&](std::size_t i, double* out) {
+          for (int k = 0; k < 3; ++k) out[k] = mesh.vertices[i][k];
+        });
+        auto faces =
+            make_rows<std::int64_t>(mesh.triangles.size(), 3, [&](std::size_t i, std::int64_t* out) {
+              for (std::size_t k = 0; k < 3; ++k) out[k] = mesh.triangles[i][k];
+            });
+        return py::make_tuple(vertices, faces);
+      },
+      py::arg("path"),
+      "Loads every triangle of a mesh file (OBJ, STL, PLY, OFF, glTF/GLB and the other formats "
+      "assimp reads), with the file's node transforms applied, polygons triangulated and identical "
+      "vertices joined.\n\n"
+      "Returns (vertices float64[n, 3], faces int64[m, 3]).\n"
+      "Raises FileNotFoundError / IsADirectoryError / PermissionError (OSError) when the file "
+      "cannot be opened, ValueError when it is not a readable triangle mesh.");
+
+  py::class_<Model, std::shared_ptr<Model>>(
+      m, "Model",
+      "A triangle mesh and its Sphere-OBB hierarchy, built once; immutable afterwards.\n\n"
+      "Queries only read a Model, so one Model may be used by any number of threads at once and "
+      "by any number of objects in a CollisionManager. Its arrays are stored once (never copied "
+      "per query); `vertices` and `faces` are read-only views of them.")
+      .def(py::init([](const py::object& vertices, const py::object& faces,
+                       const py::object& leaf_size, const std::string& covariance,
+                       std::string name) {
+             const BuildOptions options = build_options(leaf_size, covariance);
+             return build(to_mesh(vertices, faces), options, std::move(name));
+           }),
+           py::arg("vertices"), py::arg("faces"), py::kw_only(), py::arg("leaf_size") = 4,
+           py::arg("covariance") = "area", py::arg("name") = "mesh",
+           "Builds the hierarchy over a mesh.\n\n"
+           "vertices: (n, 3) real numbers, finite. faces: (m, 3) integers in [0, n), m >= 1.\n"
+           "leaf_size: most triangles in a leaf (>= 1). covariance: how OBB axes are fitted, "
+           "'area' (area-weighted centroid, the paper's Eq. 3) or 'vertex' (Eqs. 1-2).\n"
+           "name: how errors and repr name the model.\n"
+           "Zero-area triangles are kept in `faces` but left out of every query.\n"
+           "Raises ValueError naming the problem (shape, dtype, non-finite value, index out of "
+           "range, no triangle of non-zero area).")
+      .def_static(
+          "load",
+          [](const py::object& path, const py::object& leaf_size, const std::string& covariance) {
+            const BuildOptions options = build_options(leaf_size, covariance);
+            return build(load(path), options, to_path(path).string());
+          },
+          py::arg("path"), py::kw_only(), py::arg("leaf_size") = 4, py::arg("covariance") = "area",
+          "Loads a mesh file (see load_mesh) and builds its Model, named after the path.")
+      .def_property_readonly(
+          "vertices",
+          [](const py::object& self) {
+            const Mesh& mesh = self.cast<const Model&>().mesh();
+            return readonly_view<double>(mesh.vertices.front().data(), mesh.vertices.size(), 3,
+                                         self);
+          },
+          "float64[n, 3], model frame (read-only view, no copy).")
+      .def_property_readonly(
+          "faces",
+          [](const py::object& self) {
+            const Mesh& mesh = self.cast<const Model&>().mesh();
+            return readonly_view<std::uint32_t>(mesh.triangles.front().data(),
+                                                mesh.triangles.size(), 3, self);
+          },
+          "uint32[m, 3] vertex indices (read-only view, no copy).")
+      .def_property_readonly("name", &Model::source, "The name given at construction (a path for Model.load).")
+      .def_property_readonly("leaf_size", [](const Model& model) { return model.options().leaf_size; })
+      .def_property_readonly("covariance", [](const Model& model) {
+        return std::string(covariance_name(model.options().covariance));
+      })
+      .def_property_readonly("triangle_count", [](const Model& model) { return model.mesh().triangles.size(); })
+      .def_property_readonly("vertex_count", [](const Model& model) { return model.mesh().vertices.size(); })
+      .def_property_readonly(
+          "degenerate_triangles",
+          [](const Model& model) { return model.stats().degenerate_triangles; },
+          "Zero-area triangles, left out of the hierarchy and of every query.")
+      .def_property_readonly(
+          "bounds",
+          [](const Model& model) {
+            const Aabb box = model.mesh().bounds();
+            return make_rows<double>(2, 3, [&](std::size_t row, double* out) {
+              for (int k = 0; k < 3; ++k) out[k] = row == 0 ? box.min[k] : box.max[k];
+            });
+          },
+          "float64[2, 3]: the axis-aligned box [min, max] of the vertices, model frame.")
+      .def_property_readonly(
+          "stats",
+          [](const Model& model) {
+            const BvhStats& s = model.stats();
+            py::dict d;
+            d["triangles"] = s.triangles;
+            d["degenerate_triangles"] = s.degenerate_triangles;
+            d["nodes"] = s.nodes;
+            d["leaves"] = s.leaves;
+            d["depth"] = s.depth;
+            d["max_leaf_size"] = s.max_leaf_size;
+            d["obb_volume_sum"] = s.obb_volume_sum;
+            d["build_ms"] = s.build_ms;
+            d["memory_bytes"] = s.memory_bytes;
+            return d;
+          },
+          "Hierarchy statistics: triangles, nodes, leaves, depth, build time (ms), memory (bytes)...")
+      .def("__repr__", [](const Model& model) {
+        return "<antcd.Model '" + model.source() + "': " + std::to_string(model.mesh().vertices.size()) +
+               " vertices, " + std::to_string(model.mesh().triangles.size()) + " triangles>";
+      });
+}
+
+}  // namespace antcd::python

@@ -1,0 +1,14 @@
+// python/src/bindings.hpp — the module's parts, each registered by one function (module.cpp).
+#pragma once
+
+#include <pybind11/pybind11.h>
+
+namespace antcd::python {
+
+void bind_model(pybind11::module_& m);
+void bind_collide(pybind11::module_& m);
+void bind_random(pybind11::module_& m);
+void bind_scene(pybind11::module_& m);
+void bind_manager(pybind11::module_& m);
+
+}  // namespace antcd::python

@@ -1,0 +1,36 @@
+// python/src/module.cpp — the extension module antcd._antcd (re-exported by the antcd package).
+#include <antcd/mesh.hpp>
+
+#include <pybind11/pybind11.h>
+
+#include "bindings.hpp"
+
+namespace py = pybind11;
+
+PYBIND11_MODULE(_antcd, m) {
+  m.doc() =
+      "antcd: exact and random (ant colony) mesh-vs-mesh collision detection.\n\n"
+      "Frames: a Model's vertices are in its own frame; a pose maps them to the world "
+      "(p_world = R p + t), as a 4x4 homogeneous matrix or a (R, t) pair. Contact points are in "
+      "world coordinates. Queries release the GIL; a Model is immutable and may be shared by any "
+      "number of threads.";
+
+  m.attr("__version__") = ANTCD_VERSION;
+
+  // Library errors are bad inputs (a mesh, a scene file, an argument): ValueError, with the
+  // library's one-line message naming the input. File-system problems are checked before the
+  // library is called and raise OSError subclasses.
+  py::register_exception_translator([](std::exception_ptr p) {
+    try {
+      if (p) std::rethrow_exception(p);
+    } catch (const antcd::Error& e) {
+      PyErr_SetString(PyExc_ValueError, e.what());
+    }
+  });
+
+  antcd::python::bind_model(m);
+  antcd::python::bind_collide(m);
+  antcd::python::bind_random(m);
+  antcd::python::bind_scene(m);
+  antcd::python::bind_manager(m);
+}
