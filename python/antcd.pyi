@@ -8,18 +8,18 @@ import numpy.typing as npt
 
 __version__: str
 
-ArrayLike = npt.ArrayLike
-Pose = Union[None, npt.ArrayLike, Tuple[npt.ArrayLike, npt.ArrayLike]]
-Covariance = Literal["area", "vertex"]
+_ArrayLike = npt.ArrayLike
+_Pose = Union[None, npt.ArrayLike, Tuple[npt.ArrayLike, npt.ArrayLike]]
+_Covariance = Literal["area", "vertex"]
 
 def load_mesh(path: Union[str, os.PathLike[str]]) -> Tuple[npt.NDArray[np.float64], npt.NDArray[np.int64]]: ...
 
 class Model:
-    def __init__(self, vertices: ArrayLike, faces: ArrayLike, *, leaf_size: int = 4,
-                 covariance: Covariance = "area", name: str = "mesh") -> None: ...
+    def __init__(self, vertices: _ArrayLike, faces: _ArrayLike, *, leaf_size: int = 4,
+                 covariance: _Covariance = "area", name: str = "mesh") -> None: ...
     @staticmethod
     def load(path: Union[str, os.PathLike[str]], *, leaf_size: int = 4,
-             covariance: Covariance = "area") -> Model: ...
+             covariance: _Covariance = "area") -> Model: ...
     @property
     def vertices(self) -> npt.NDArray[np.float64]: ...
     @property
@@ -57,7 +57,7 @@ class CollisionResult:
     @property
     def stats(self) -> dict[str, int]: ...
 
-def collide(a: Model, pose_a: Pose, b: Model, pose_b: Pose, *, delta: float = 0.0,
+def collide(a: Model, pose_a: _Pose, b: Model, pose_b: _Pose, *, delta: float = 0.0,
             all_contacts: bool = False, max_contacts: int = 0) -> CollisionResult: ...
 
 class RandomResult:
@@ -87,13 +87,13 @@ class RandomResult:
     @property
     def stop(self) -> str: ...
 
-def random_collide(a: Model, pose_a: Pose, b: Model, pose_b: Pose, *,
+def random_collide(a: Model, pose_a: _Pose, b: Model, pose_b: _Pose, *,
                    method: Literal["maco", "aco", "pso", "ga", "exhaustive"] = "maco",
                    seed: int = 0, delta: Optional[float] = None, samples_per_side: int = 1000,
                    iterations: int = 100, agents: int = 60, first_hit: bool = False,
                    max_evaluations: int = 0, restarts: int = 0) -> RandomResult: ...
 
-SceneMethod = Literal["exact", "sphere-obb", "aco", "maco", "pso", "ga"]
+_SceneMethod = Literal["exact", "sphere-obb", "aco", "maco", "pso", "ga"]
 
 class SceneRun:
     @property
@@ -115,7 +115,7 @@ class SceneRun:
 
 class Scene:
     def __init__(self, path: Union[str, os.PathLike[str]], *, leaf_size: int = 4,
-                 covariance: Covariance = "area") -> None: ...
+                 covariance: _Covariance = "area") -> None: ...
     @property
     def path(self) -> str: ...
     @property
@@ -130,18 +130,18 @@ class Scene:
     def object_names(self) -> list[str]: ...
     def model(self, object: int) -> Model: ...
     def pose(self, object: int, frame: int) -> npt.NDArray[np.float64]: ...
-    def run(self, *, method: SceneMethod = "exact", frames: Union[None, int, Iterable[int]] = None,
+    def run(self, *, method: _SceneMethod = "exact", frames: Union[None, int, Iterable[int]] = None,
             delta: float = 0.0, feature_delta: float = 0.0, samples_per_side: int = 1000,
             seed: int = 1, iterations: int = 100, agents: int = 60, search_all: bool = False,
             threads: int = 1) -> SceneRun: ...
 
-def run_scene(path: Union[str, os.PathLike[str]], *, method: SceneMethod = "exact",
+def run_scene(path: Union[str, os.PathLike[str]], *, method: _SceneMethod = "exact",
               frames: Union[None, int, Iterable[int]] = None, delta: float = 0.0,
               feature_delta: float = 0.0, samples_per_side: int = 1000, seed: int = 1,
               iterations: int = 100, agents: int = 60, search_all: bool = False,
               threads: int = 1) -> SceneRun: ...
 
-MeshLike = Union[Model, Tuple[ArrayLike, ArrayLike], Any]
+_MeshLike = Union[Model, Tuple[_ArrayLike, _ArrayLike], Any]
 
 class ContactData:
     names: set[str]
@@ -159,10 +159,10 @@ class ContactData:
 
 class CollisionManager:
     def __init__(self) -> None: ...
-    def add_object(self, name: str, mesh: MeshLike, transform: Pose = None) -> Model: ...
+    def add_object(self, name: str, mesh: _MeshLike, transform: _Pose = None) -> Model: ...
     def remove_object(self, name: str) -> None: ...
-    def set_transform(self, name: str, transform: Pose) -> None: ...
-    def in_collision_single(self, mesh: MeshLike, transform: Pose = None, return_names: bool = False,
+    def set_transform(self, name: str, transform: _Pose) -> None: ...
+    def in_collision_single(self, mesh: _MeshLike, transform: _Pose = None, return_names: bool = False,
                             return_data: bool = False) -> Any: ...
     def in_collision_internal(self, return_names: bool = False, return_data: bool = False) -> Any: ...
     def in_collision_other(self, other_manager: CollisionManager, return_names: bool = False,

@@ -11,6 +11,7 @@ packages=(
   libfcl-dev libbullet-dev
   libkainjow-mustache-dev
   assimp-testmodels gnuplot-nox
+  python3-dev python3-pybind11 pybind11-dev python3-numpy python3-pytest python3-matplotlib
   "$@"
 )
 
