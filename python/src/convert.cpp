@@ -184,6 +184,13 @@ std::uint64_t to_count(py::handle value, std::string_view name, std::uint64_t lo
   }
   const auto big = py::reinterpret_steal<py::int_>(PyNumber_Index(value.ptr()));
   if (!big) throw py::error_already_set();
+  // Fast path (the common small non-negative int): compared in C, no Python objects made.
+  int overflow = 0;
+  const long long small = PyLong_AsLongLongAndOverflow(big.ptr(), &overflow);
+  if (overflow == 0 && small >= 0 && static_cast<std::uint64_t>(small) >= lo &&
+      static_cast<std::uint64_t>(small) <= hi) {
+    return static_cast<std::uint64_t>(small);
+  }
   if (big < py::int_(lo) || big > py::int_(hi)) {
     throw py::value_error(str(name) + " must be in [" + std::to_string(lo) + ", " +
                           std::to_string(hi) + "], got " + py::repr(big).cast<std::string>());
