@@ -60,6 +60,14 @@ def main():
           f"{args.rounds} rounds x {args.calls} calls; load average {os.getloadavg()[0]:.1f} on "
           f"{os.cpu_count()} CPUs")
     print(f"{'query (boolean collide)':<44} {'verdict':>7} {'C++ us':>9} {'Py us':>9} {'extra us':>9} [min, max]")
+    reference = []
+    for _ in range(args.rounds):
+        start = time.perf_counter()
+        for _ in range(args.calls):
+            wuson.triangle_count  # the cheapest call into the module: a C++ property read
+        reference.append((time.perf_counter() - start) / args.calls)
+    print(f"{'reference: Model.triangle_count (one trivial pybind11 call)':<60} "
+          f"{statistics.median(reference) * 1e6:9.3f} us")
     worst = 0.0
     worst = max(worst, measure("4x4 float64 poses", wuson, np.eye(4), wuson, apart, args.rounds, args.calls))
     worst = max(worst, measure("4x4 float64 poses", wuson, np.eye(4), wuson, touching, args.rounds, args.calls))

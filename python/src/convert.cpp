@@ -26,8 +26,10 @@ std::string dtype_of(const py::array& a) { return py::str(a.dtype()).cast<std::s
 /// Converts to a numpy array without copying when possible; ValueError if it is not array-like.
 py::array as_array(py::handle value, std::string_view name) {
   if (value.is_none()) throw py::value_error(str(name) + " must be an array, got None");
+  // numpy.asarray, looked up once (intentionally leaked: no destructor runs after Python's exit).
+  static const py::object* const asarray = new py::object(py::module_::import("numpy").attr("asarray"));
   try {
-    return py::module_::import("numpy").attr("asarray")(value);
+    return (*asarray)(value);
   } catch (py::error_already_set& e) {
     throw py::value_error(str(name) + " is not array-like: " + e.what());
   }
