@@ -93,7 +93,7 @@ def random_collide(a: Model, pose_a: _Pose, b: Model, pose_b: _Pose, *,
                    iterations: int = 100, agents: int = 60, first_hit: bool = False,
                    max_evaluations: int = 0, restarts: int = 0) -> RandomResult: ...
 
-_SceneMethod = Literal["exact", "sphere-obb", "aco", "maco", "pso", "ga"]
+_SceneMethod = Literal["exact", "sphere-obb", "aco", "maco", "pso", "ga", "exhaustive"]
 
 class SceneRun:
     @property

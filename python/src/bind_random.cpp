@@ -1,4 +1,5 @@
 // python/src/bind_random.cpp — antcd.random_collide: the paper's random (feature-pair) detection.
+#include <antcd/method.hpp>
 #include <antcd/random.hpp>
 
 #include <pybind11/numpy.h>
@@ -14,20 +15,13 @@ namespace antcd::python {
 
 namespace {
 
-SearchMethod parse_search_method(std::string_view name) {
-  for (const auto& [text, method] : {std::pair{"maco", SearchMethod::Maco}, std::pair{"aco", SearchMethod::Aco},
-                                     std::pair{"pso", SearchMethod::Pso}, std::pair{"ga", SearchMethod::Ga},
-                                     std::pair{"exhaustive", SearchMethod::Exhaustive}}) {
-    if (name == text) return method;
+Method parse_search_method(std::string_view name) {
+  const Method method = parse_method(name);  // ArgumentError (ValueError) for an unknown name
+  if (!is_search_method(method)) {
+    throw py::value_error("random_collide needs a search method (maco, aco, pso, ga or exhaustive), got '" +
+                          std::string(name) + "': use collide() for exact detection");
   }
-  throw py::value_error("unknown method '" + std::string(name) +
-                        "' (expected maco, aco, pso, ga or exhaustive)");
-}
-
-std::string lower(std::string_view s) {
-  std::string out(s);
-  for (char& c : out) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return out;
+  return method;
 }
 
 const char* stop_name(StopReason reason) {
@@ -51,7 +45,7 @@ const char* stop_name(StopReason reason) {
 /// SearchResult plus the method that produced it.
 struct RandomResult {
   SearchResult search;
-  SearchMethod method = SearchMethod::Maco;
+  Method method = Method::Maco;
 };
 
 }  // namespace
@@ -65,7 +59,7 @@ void bind_random(py::module_& m) {
       "exact. bool(result) is result.found.")
       .def_property_readonly("found", [](const RandomResult& r) { return r.search.found; })
       .def("__bool__", [](const RandomResult& r) { return r.search.found; })
-      .def_property_readonly("method", [](const RandomResult& r) { return lower(to_string(r.method)); })
+      .def_property_readonly("method", [](const RandomResult& r) { return std::string(method_name(r.method)); })
       .def_property_readonly(
           "triangles_a",
           [](const RandomResult& r) {
@@ -108,7 +102,7 @@ void bind_random(py::module_& m) {
                              "Why the search stopped: empty-space, first-hit, target, iterations, "
                              "evaluations or time.")
       .def("__repr__", [](const RandomResult& r) {
-        return "<antcd.RandomResult method=" + lower(to_string(r.method)) +
+        return "<antcd.RandomResult method=" + std::string(method_name(r.method)) +
                " found=" + (r.search.found ? "True" : "False") +
                " hits=" + std::to_string(r.search.hits.size()) +
                " evaluations=" + std::to_string(r.search.evaluations) + ">";

@@ -183,7 +183,7 @@ void bind_scene(py::module_& m) {
            py::arg("seed") = 1, py::arg("iterations") = 100, py::arg("agents") = 60,
            py::arg("search_all") = false, py::arg("threads") = 1,
            "Runs frames (None: all; an int; or an iterable of ints) with a method: 'exact' "
-           "(default, ground truth), 'sphere-obb', 'aco', 'maco', 'pso' or 'ga'.\n"
+           "(default, ground truth), 'sphere-obb', 'aco', 'maco', 'pso', 'ga' or 'exhaustive'.\n"
            "delta: exact/sphere-obb threshold; feature_delta: random methods' centroid threshold "
            "(0: derived from triangle sizes); samples_per_side, seed, iterations, agents: random "
            "methods; search_all: random methods search every pair for N iterations instead of "

@@ -1,5 +1,6 @@
 // python/src/module.cpp — the extension module antcd._antcd (re-exported by the antcd package).
-#include <antcd/mesh.hpp>
+#include <antcd/error.hpp>
+#include <antcd/version.hpp>
 
 #include <pybind11/pybind11.h>
 
@@ -15,7 +16,7 @@ PYBIND11_MODULE(_antcd, m) {
       "world coordinates. Queries release the GIL; a Model is immutable and may be shared by any "
       "number of threads.";
 
-  m.attr("__version__") = ANTCD_VERSION;
+  m.attr("__version__") = antcd::kVersion;
 
   // Library errors are bad inputs (a mesh, a scene file, an argument): ValueError, with the
   // library's one-line message naming the input. File-system problems are checked before the

@@ -47,7 +47,7 @@ def test_first_hit_and_separated_models(spheres):
 
 
 @pytest.mark.parametrize("kwargs, message", [
-    ({"method": "ant"}, "unknown method 'ant'"), ({"seed": -1}, "seed"), ({"seed": 1.5}, "seed"),
+    ({"method": "ant"}, "ant"), ({"method": "exact"}, "needs a search method"), ({"seed": -1}, "seed"), ({"seed": 1.5}, "seed"),
     ({"delta": -0.1}, "delta"), ({"delta": float("nan")}, "delta"), ({"samples_per_side": 0}, "samples_per_side"),
     ({"iterations": 0}, "iterations"), ({"agents": 1}, "agents"), ({"max_evaluations": -5}, "max_evaluations"),
 ])
