@@ -1,7 +1,10 @@
 // python/src/convert.cpp — see convert.hpp.
 #include "convert.hpp"
 
+#include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstring>
 #include <limits>
 
 namespace antcd::python {
@@ -71,6 +74,31 @@ Transform rigid(const double* r, std::ptrdiff_t r_row, const double* t, std::str
   return out;
 }
 
+/// The common case on the per-query path: a float64 numpy array of shape (rows, cols) (or (rows,)
+/// when cols is 1), any strides, read straight from its buffer: no conversion, no temporary array,
+/// no Python call. False when `h` is anything else (the caller then converts and checks it).
+bool read_in_place(py::handle h, py::ssize_t rows, py::ssize_t cols, double* out) {
+  const auto& api = py::detail::npy_api::get();
+  if (!api.PyArray_Check_(h.ptr())) return false;
+  const auto* a = py::detail::array_proxy(h.ptr());
+  const auto* descr = py::detail::array_descriptor_proxy(a->descr);
+  constexpr char kNativeOrder = std::endian::native == std::endian::little ? '<' : '>';
+  if (descr->type_num != py::detail::npy_api::NPY_DOUBLE_ ||
+      (descr->byteorder != '=' && descr->byteorder != kNativeOrder)) {
+    return false;
+  }
+  const bool matrix = a->nd == 2 && a->dimensions[0] == rows && a->dimensions[1] == cols;
+  const bool vector = cols == 1 && a->nd == 1 && a->dimensions[0] == rows;
+  if (!matrix && !vector) return false;
+  const py::ssize_t col_stride = matrix ? a->strides[1] : 0;
+  for (py::ssize_t i = 0; i < rows; ++i) {
+    for (py::ssize_t j = 0; j < cols; ++j) {
+      std::memcpy(&out[i * cols + j], a->data + i * a->strides[0] + j * col_stride, sizeof(double));
+    }
+  }
+  return true;
+}
+
 }  // namespace
 
 Transform to_transform(py::handle pose, std::string_view name) {
@@ -78,6 +106,13 @@ Transform to_transform(py::handle pose, std::string_view name) {
   // (rotation, translation) pair. A 4x4 given as nested lists has 4 rows, never 2.
   if ((py::isinstance<py::tuple>(pose) || py::isinstance<py::list>(pose)) && py::len(pose) == 2) {
     const py::sequence pair = py::reinterpret_borrow<py::sequence>(pose);
+    double r_fast[9];
+    double t_fast[3];
+    if (read_in_place(pair[0], 3, 3, r_fast) && read_in_place(pair[1], 3, 1, t_fast)) {
+      require_finite(r_fast, 9, str(name) + " rotation");
+      require_finite(t_fast, 3, str(name) + " translation");
+      return rigid(r_fast, 3, t_fast, name);
+    }
     const std::string rname = str(name) + " rotation";
     const std::string tname = str(name) + " translation";
     const auto r = as_float64(as_array(pair[0], rname), rname);
@@ -92,19 +127,16 @@ Transform to_transform(py::handle pose, std::string_view name) {
     require_finite(t.data(), 3, tname);
     return rigid(r.data(), 3, t.data(), name);
   }
-  // Fast path: a float64 C-contiguous array is read in place.
-  py::array_t<double, py::array::c_style> m;
-  if (py::isinstance<py::array_t<double, py::array::c_style>>(pose)) {
-    m = py::reinterpret_borrow<py::array_t<double, py::array::c_style>>(pose);
-  } else {
-    m = as_float64(as_array(pose, name), name);
+  double d[16];
+  if (!read_in_place(pose, 4, 4, d)) {
+    const auto m = as_float64(as_array(pose, name), name);
+    if (m.ndim() != 2 || m.shape(0) != 4 || m.shape(1) != 4) {
+      throw py::value_error(str(name) +
+                            " must be a 4x4 homogeneous matrix or a (rotation 3x3, translation 3) "
+                            "pair, got shape " + shape_of(m));
+    }
+    std::copy_n(m.data(), 16, d);
   }
-  if (m.ndim() != 2 || m.shape(0) != 4 || m.shape(1) != 4) {
-    throw py::value_error(str(name) +
-                          " must be a 4x4 homogeneous matrix or a (rotation 3x3, translation 3) "
-                          "pair, got shape " + shape_of(m));
-  }
-  const double* d = m.data();
   require_finite(d, 16, name);
   if (std::abs(d[12]) > kRigidTolerance || std::abs(d[13]) > kRigidTolerance ||
       std::abs(d[14]) > kRigidTolerance || std::abs(d[15] - 1) > kRigidTolerance) {
