@@ -4,8 +4,9 @@
 The scene comes from `antcd scene generate` (the CLI, installed with the library: see the README),
 or pass --scene for an existing antcd-scene/1 file. The exact method is the ground truth; for each
 other method, recall = colliding object pairs it reports that the truth has / pairs the truth has,
-summed over frames; time = mean wall time per frame (broad + narrow phase). Prints a table and
-writes a bar chart (matplotlib, Debian python3-matplotlib) to --plot.
+and precision = those / pairs it reports, summed over frames; time = mean wall time per frame
+(broad + narrow phase). Prints a table and writes a bar chart (matplotlib, Debian
+python3-matplotlib) to --plot.
 
 Usage: examples/python/paper_scene.py [--objects 90 --vertices 750 --frames 300] [--scene FILE]
        [--methods sphere-obb,aco,maco,pso,ga] [--seed 1] [--plot paper_scene.png] [--antcd PATH]
@@ -78,12 +79,18 @@ def main():
     import matplotlib.pyplot as plt
 
     names = [r[0] for r in rows]
-    fig, (left, right) = plt.subplots(1, 2, figsize=(10, 4))
-    left.bar(names, [r[1] for r in rows], color="tab:blue")
-    left.set_ylabel("recall of colliding pairs")
+    x = np.arange(len(rows))
+    fig, (left, right) = plt.subplots(1, 2, figsize=(11, 4))
+    left.bar(x - 0.2, [r[1] for r in rows], width=0.4, label="recall", color="tab:blue")
+    left.bar(x + 0.2, [r[2] for r in rows], width=0.4, label="precision", color="tab:green")
+    left.set_xticks(x, names)
+    left.set_ylabel("share of colliding object pairs")
     left.set_ylim(0, 1.05)
-    right.bar(names, [r[3] for r in rows], color="tab:orange")
-    right.set_ylabel("time per frame (ms)")
+    left.legend(loc="lower left")
+    right.bar(x, [r[3] for r in rows], color="tab:orange")
+    right.set_xticks(x, names)
+    right.set_yscale("log")
+    right.set_ylabel("time per frame (ms, log scale)")
     for ax in (left, right):
         ax.tick_params(axis="x", rotation=30)
     fig.suptitle(f"{scene.object_count} objects, {scene.frames} frames (shared machine: times are indicative)")
