@@ -38,5 +38,6 @@ void add_info_command(CLI::App& app, int& code);
 void add_demo_command(CLI::App& app, int& code);
 void add_scene_commands(CLI::App& app, int& code);
 void add_bench_commands(CLI::App& app, int& code);
+void add_view_command(CLI::App& app, int& code);
 
 }  // namespace antcd::cli

@@ -1,0 +1,74 @@
+// antcd view: a scene and its run results in the browser viewer (viewer/), as one self-contained
+// HTML file or served on 127.0.0.1.
+#include <antcd/io.hpp>
+
+#include <cstdio>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "cli_util.hpp"
+#include "view_page.hpp"
+#include "view_serve.hpp"
+
+namespace antcd::cli {
+
+namespace {
+
+struct ViewOptions {
+  std::string scene;
+  std::vector<std::string> results;
+  std::string out;
+  bool serve = false;
+  std::uint16_t port = 8765;
+};
+
+int run_view(const ViewOptions& o) {
+  if (o.out.empty() == !o.serve) {
+    throw UsageError(o.serve ? "--out and --serve: choose one"
+                             : "--out VIEW.html or --serve is required");
+  }
+  if (!o.out.empty() && std::filesystem::is_directory(o.out)) {
+    throw UsageError("--out " + o.out + ": is a folder, expected an HTML file name");
+  }
+  ViewInputs inputs;
+  inputs.scene = o.scene;
+  for (const auto& r : o.results) inputs.results.emplace_back(r);
+  // Inputs first, so that every input error is reported even where the viewer is not built.
+  const ViewPayload payload = build_view_payload(inputs);
+  const std::string bundle = read_file(locate_viewer_bundle());
+  if (!o.serve) {
+    write_file_atomic(o.out, render_page(payload, bundle, PageMode::SelfContained));
+    std::printf("wrote %s: %zu objects, %zu frames, %zu result%s; open it in a browser\n",
+                o.out.c_str(), payload.objects, payload.frames, inputs.results.size(),
+                inputs.results.size() == 1 ? "" : "s");
+    return 0;
+  }
+  const std::string page = render_page(payload, bundle, PageMode::Served);
+  const ServedFile files[] = {{"/", "text/html; charset=utf-8", &page},
+                              {"/antcd-view.bin", "application/octet-stream", &payload.blob}};
+  return serve_files(files, std::size(files), o.port);
+}
+
+}  // namespace
+
+void add_view_command(CLI::App& app, int& code) {
+  auto opts = std::make_shared<ViewOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "view",
+      "Look at a scene and its run results in the browser (three.js viewer with a WebXR mode): "
+      "write one self-contained HTML file, or serve it on 127.0.0.1");
+  cmd->add_option("scene", opts->scene, "Scene file (antcd-scene/1)")->required();
+  cmd->add_option("--result", opts->results,
+                  "A run result of this scene (antcd run --out); give two (e.g. exact, then "
+                  "maco) to see where the second differs from the first")
+      ->allow_extra_args(false);
+  cmd->add_option("--out", opts->out, "Write the HTML page here (atomically)");
+  cmd->add_flag("--serve", opts->serve,
+                "Serve the page on 127.0.0.1 instead (for large scenes); Ctrl-C stops");
+  cmd->add_option("--port", opts->port, "Port for --serve (0: any free port)")
+      ->capture_default_str();
+  cmd->callback([opts, &code] { code = run_view(*opts); });
+}
+
+}  // namespace antcd::cli

@@ -1,0 +1,329 @@
+#include "view_page.hpp"
+
+#include <antcd/io.hpp>
+#include <antcd/mesh.hpp>
+#include <antcd/scene.hpp>
+
+#include <nlohmann/json.hpp>
+
+#include <unistd.h>
+
+#include <array>
+#include <cstdint>
+#include <cstdlib>
+#include <cstring>
+#include <map>
+#include <set>
+#include <unordered_map>
+
+#include "cli_util.hpp"
+#include "run_result.hpp"
+
+namespace antcd::cli {
+
+namespace {
+
+using json = nlohmann::json;
+
+// Appends little-endian 4-byte values to the blob and returns [byte offset, count] for the JSON.
+class BlobWriter {
+ public:
+  explicit BlobWriter(std::string& blob) : blob_(blob) {}
+
+  json floats(const std::vector<float>& values) { return append(values.data(), values.size()); }
+  json uints(const std::vector<std::uint32_t>& values) {
+    return append(values.data(), values.size());
+  }
+
+ private:
+  template <typename T>
+  json append(const T* data, std::size_t count) {
+    static_assert(sizeof(T) == 4);
+    const std::size_t offset = blob_.size();  // always a multiple of 4
+    blob_.resize(offset + count * 4);
+    for (std::size_t i = 0; i < count; ++i) {
+      std::uint32_t bits = 0;
+      std::memcpy(&bits, data + i, 4);
+      for (int b = 0; b < 4; ++b) {
+        blob_[offset + i * 4 + static_cast<std::size_t>(b)] =
+            static_cast<char>((bits >> (8 * b)) & 0xFFU);
+      }
+    }
+    return json::array({offset, count});
+  }
+
+  std::string& blob_;
+};
+
+void append_pose(std::vector<float>& out, const Transform& t) {
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 3; ++c) out.push_back(static_cast<float>(t.rotation(r, c)));
+  }
+  for (int k = 0; k < 3; ++k) out.push_back(static_cast<float>(t.translation[k]));
+}
+
+// True unless the result names a scene file that exists and is not `scene` (relative names are
+// tried against the working folder and against the result's folder, since `antcd run` records
+// the path as it was given).
+bool recorded_scene_matches(const std::string& recorded, const std::filesystem::path& scene,
+                            const std::filesystem::path& result_path) {
+  if (recorded.empty()) return true;
+  std::vector<std::filesystem::path> candidates{recorded};
+  const std::filesystem::path p(recorded);
+  if (p.is_relative()) candidates.push_back(result_path.parent_path() / p);
+  bool any_exists = false;
+  for (const auto& c : candidates) {
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(c, ec)) continue;
+    any_exists = true;
+    if (std::filesystem::equivalent(c, scene, ec)) return true;
+  }
+  return !any_exists;
+}
+
+json pack_result(const experiments::RunResult& r, const std::filesystem::path& path,
+                 const SceneDescription& scene, const std::filesystem::path& scene_path,
+                 const std::unordered_map<std::string, std::uint32_t>& index_of) {
+  const std::string src = path.string();
+  if (!recorded_scene_matches(r.scene, scene_path, path)) {
+    throw UsageError(src + ": a result for another scene ('" + r.scene + "', not '" +
+                     scene_path.string() + "')");
+  }
+  json frames = json::array();
+  json pairs = json::array();
+  json times = json::array();
+  json candidates = json::array();
+  std::set<std::size_t> seen;
+  for (const experiments::FrameRecord& f : r.frames) {
+    if (f.frame >= scene.frames) {
+      throw UsageError(src + ": frame " + std::to_string(f.frame) + " out of range (" +
+                       scene_path.string() + " has " + std::to_string(scene.frames) +
+                       " frames)");
+    }
+    if (!seen.insert(f.frame).second) {
+      throw UsageError(src + ": frame " + std::to_string(f.frame) + " listed twice");
+    }
+    json fp = json::array();
+    for (const auto& [a, b] : f.pairs) {
+      const auto ia = index_of.find(a);
+      const auto ib = index_of.find(b);
+      if (ia == index_of.end() || ib == index_of.end()) {
+        throw UsageError(src + ": frame " + std::to_string(f.frame) + ": pair (" + a + ", " + b +
+                         "): no object '" + (ia == index_of.end() ? a : b) + "' in " +
+                         scene_path.string());
+      }
+      if (ia->second == ib->second) {
+        throw UsageError(src + ": frame " + std::to_string(f.frame) + ": pair (" + a + ", " + b +
+                         ") names one object twice");
+      }
+      fp.push_back(json::array({std::min(ia->second, ib->second), std::max(ia->second, ib->second)}));
+    }
+    frames.push_back(f.frame);
+    pairs.push_back(std::move(fp));
+    times.push_back(f.time_ms);
+    candidates.push_back(f.candidates.size());
+  }
+  return json{{"label", path.filename().string()}, {"method", r.method},     {"frames", frames},
+              {"pairs", pairs},                    {"time_ms", times},       {"candidates", candidates},
+              {"delta", r.delta},                  {"seed", r.seed}};
+}
+
+}  // namespace
+
+ViewPayload build_view_payload(const ViewInputs& inputs) {
+  if (inputs.results.size() > 2) {
+    throw UsageError("--result given " + std::to_string(inputs.results.size()) +
+                     " times: the viewer shows one result or compares two");
+  }
+  const SceneDescription scene = load_scene(inputs.scene);
+  ViewPayload out;
+  out.title = inputs.scene.filename().string();
+  out.objects = scene.objects.size();
+  out.frames = scene.frames;
+  BlobWriter blob(out.blob);
+
+  // One mesh entry per distinct (file, scale), like the scene engine's models; colours follow the
+  // file, so the same part at two scales has one colour.
+  json meshes = json::array();
+  json objects = json::array();
+  std::map<std::pair<std::string, double>, std::size_t> mesh_index;
+  std::map<std::string, std::size_t> colour_index;
+  std::unordered_map<std::string, std::uint32_t> index_of;
+  for (std::size_t i = 0; i < scene.objects.size(); ++i) {
+    const SceneObject& o = scene.objects[i];
+    index_of.emplace(o.name, static_cast<std::uint32_t>(i));
+    const auto key = std::make_pair(o.mesh.string(), static_cast<double>(o.scale));
+    auto it = mesh_index.find(key);
+    if (it == mesh_index.end()) {
+      Mesh mesh;
+      try {
+        mesh = load_mesh(o.mesh);
+      } catch (const Error& e) {
+        throw UsageError(inputs.scene.string() + ": object '" + o.name + "': " + e.what());
+      }
+      if (mesh.triangles.empty()) {
+        throw UsageError(inputs.scene.string() + ": object '" + o.name + "': mesh " +
+                         o.mesh.string() + " has no triangles");
+      }
+      std::vector<float> positions;
+      positions.reserve(mesh.vertices.size() * 3);
+      for (const Vec3& v : mesh.vertices) {
+        for (int k = 0; k < 3; ++k) positions.push_back(static_cast<float>(v[k] * o.scale));
+      }
+      std::vector<std::uint32_t> indices;
+      indices.reserve(mesh.triangles.size() * 3);
+      for (const auto& t : mesh.triangles) {
+        for (int k = 0; k < 3; ++k) indices.push_back(static_cast<std::uint32_t>(t[k]));
+      }
+      const auto colour = colour_index.emplace(o.mesh.string(), colour_index.size()).first->second;
+      meshes.push_back(json{{"file", o.mesh_text},
+                            {"scale", o.scale},
+                            {"colour", colour},
+                            {"vertices", mesh.vertices.size()},
+                            {"triangles", mesh.triangles.size()},
+                            {"positions", blob.floats(positions)},
+                            {"indices", blob.uints(indices)}});
+      it = mesh_index.emplace(key, meshes.size() - 1).first;
+    }
+    std::vector<float> poses;
+    poses.reserve(o.poses.size() * 12);
+    for (const Transform& t : o.poses) append_pose(poses, t);
+    objects.push_back(json{{"name", o.name}, {"mesh", it->second}, {"poses", blob.floats(poses)}});
+  }
+
+  json results = json::array();
+  for (const auto& path : inputs.results) {
+    const experiments::RunResult r =
+        experiments::parse_run_result(read_file(path), path.string());
+    results.push_back(pack_result(r, path, scene, inputs.scene, index_of));
+  }
+
+  const json root{{"format", "antcd-view/1"},
+                  {"scene", out.title},
+                  {"frames", scene.frames},
+                  {"colours", colour_index.size()},
+                  {"blob_bytes", out.blob.size()},
+                  {"meshes", meshes},
+                  {"objects", objects},
+                  {"results", results}};
+  out.json = root.dump(-1, ' ', false, json::error_handler_t::replace);
+  return out;
+}
+
+std::filesystem::path locate_viewer_bundle() {
+  std::vector<std::filesystem::path> tried;
+  std::error_code ec;
+  if (const char* env = std::getenv("ANTCD_VIEWER_JS"); env != nullptr && *env != '\0') {
+    if (!std::filesystem::is_regular_file(env, ec)) {
+      throw UsageError(std::string("ANTCD_VIEWER_JS=") + env + ": no such file (the viewer bundle)");
+    }
+    return env;
+  }
+  const auto exe = std::filesystem::read_symlink("/proc/self/exe", ec);
+  if (!ec) {
+    const auto dir = exe.parent_path();
+    tried.push_back(dir.parent_path() / "share" / "antcd" / "antcd-viewer.js");  // installed
+    tried.push_back(dir.parent_path().parent_path() / "viewer" / "antcd-viewer.js");  // build tree
+  }
+  for (const auto& p : tried) {
+    if (std::filesystem::is_regular_file(p, ec)) return p;
+  }
+  std::string where;
+  for (const auto& p : tried) where += (where.empty() ? "" : ", ") + p.string();
+  throw UsageError(
+      "the browser viewer is not built (looked for " + where +
+      "): it is bundled at build time from viewer/ with npm; install node and npm "
+      "(scripts/install-deps.sh does) and re-run cmake and the build");
+}
+
+std::string base64_encode(const std::string& bytes) {
+  static constexpr char alphabet[] =
+      "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string out;
+  out.reserve((bytes.size() + 2) / 3 * 4);
+  std::size_t i = 0;
+  const auto byte = [&](std::size_t k) { return static_cast<std::uint32_t>(static_cast<unsigned char>(bytes[k])); };
+  for (; i + 3 <= bytes.size(); i += 3) {
+    const std::uint32_t v = (byte(i) << 16) | (byte(i + 1) << 8) | byte(i + 2);
+    out += alphabet[(v >> 18) & 63];
+    out += alphabet[(v >> 12) & 63];
+    out += alphabet[(v >> 6) & 63];
+    out += alphabet[v & 63];
+  }
+  const std::size_t rest = bytes.size() - i;
+  if (rest > 0) {
+    const std::uint32_t v = (byte(i) << 16) | (rest == 2 ? byte(i + 1) << 8 : 0);
+    out += alphabet[(v >> 18) & 63];
+    out += alphabet[(v >> 12) & 63];
+    out += rest == 2 ? alphabet[(v >> 6) & 63] : '=';
+    out += '=';
+  }
+  return out;
+}
+
+namespace {
+
+// Inside a <script> element only "</script" and "<!--" can end or confuse the element; in JSON
+// text '<' only occurs inside strings, where \u003c means the same character.
+std::string json_for_script(const std::string& text) {
+  std::string out;
+  out.reserve(text.size());
+  for (char c : text) {
+    if (c == '<') {
+      out += "\\u003c";
+    } else {
+      out += c;
+    }
+  }
+  return out;
+}
+
+std::string html_escape(const std::string& text) {
+  std::string out;
+  for (char c : text) {
+    switch (c) {
+      case '&': out += "&amp;"; break;
+      case '<': out += "&lt;"; break;
+      case '>': out += "&gt;"; break;
+      case '"': out += "&quot;"; break;
+      default: out += c;
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+std::string render_page(const ViewPayload& payload, const std::string& bundle_js, PageMode mode) {
+  // The bundle must not close its own element early (viewer/build.mjs checks this too).
+  std::string lowered = bundle_js;
+  for (char& c : lowered) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  if (lowered.find("</script") != std::string::npos) {
+    throw UsageError("the viewer bundle contains '</script' and cannot be inlined");
+  }
+  const bool served = mode == PageMode::Served;
+  std::string page;
+  page.reserve(bundle_js.size() + payload.json.size() + payload.blob.size() * 4 / 3 + 4096);
+  page +=
+      "<!doctype html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
+      "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n"
+      "<meta http-equiv=\"Content-Security-Policy\" content=\"default-src 'none'; "
+      "script-src 'unsafe-inline'; style-src 'unsafe-inline'; img-src data: blob:; connect-src ";
+  page += served ? "'self'" : "'none'";
+  page += "\">\n<title>antcd view: " + html_escape(payload.title) + "</title>\n</head>\n<body>\n";
+  page += "<div id=\"antcd-viewer\"></div>\n";
+  page += "<script type=\"application/json\" id=\"antcd-view-data\">" +
+          json_for_script(payload.json) + "</script>\n";
+  if (served) {
+    page += "<script type=\"application/octet-stream\" id=\"antcd-view-blob\" "
+            "data-src=\"antcd-view.bin\"></script>\n";
+  } else {
+    page += "<script type=\"application/octet-stream\" id=\"antcd-view-blob\">";
+    page += base64_encode(payload.blob);
+    page += "</script>\n";
+  }
+  page += "<script>\n" + bundle_js + "\n</script>\n</body>\n</html>\n";
+  return page;
+}
+
+}  // namespace antcd::cli

@@ -1,0 +1,53 @@
+// The page `antcd view` writes or serves: a scene, its meshes and poses, and up to two run
+// results, checked against each other and packed for the browser viewer (viewer/).
+//
+// Packing: a JSON description ("antcd-view/1") plus one binary blob of little-endian float32
+// vertex positions (scale applied), uint32 triangle indices and float32 poses (12 numbers each:
+// the rotation matrix row by row, then the translation). The JSON refers to the blob by
+// [byte offset, element count]; every array starts on a 4-byte boundary. The blob goes into the
+// HTML as base64 (self-contained file) or is served as-is (--serve).
+#pragma once
+
+#include <cstddef>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace antcd::cli {
+
+struct ViewInputs {
+  std::filesystem::path scene;
+  std::vector<std::filesystem::path> results;  ///< at most two: the first is the reference
+};
+
+struct ViewPayload {
+  std::string json;  ///< the "antcd-view/1" description
+  std::string blob;  ///< the binary arrays it refers to
+  std::string title;
+  std::size_t objects = 0;
+  std::size_t frames = 0;
+};
+
+/// Loads and checks everything. Throws antcd::Error or UsageError naming the file (and the
+/// object, frame or pair) for: an unreadable or malformed scene or result, a missing or
+/// unreadable mesh, a result recorded for another scene file, a result frame out of the scene's
+/// range or listed twice, a pair naming an object the scene does not have, more than two results.
+ViewPayload build_view_payload(const ViewInputs& inputs);
+
+/// The viewer's bundled JavaScript: $ANTCD_VIEWER_JS when set (an error if it does not exist),
+/// else the first of the install location
+/// <prefix>/share/antcd/antcd-viewer.js and the build tree's viewer/antcd-viewer.js, both relative
+/// to the running executable. Throws UsageError saying how to build it when none exists.
+std::filesystem::path locate_viewer_bundle();
+
+enum class PageMode { SelfContained, Served };
+
+/// The HTML page: the bundle inline, the description inline, the blob inline as base64
+/// (SelfContained) or fetched from ./antcd-view.bin (Served). A Content-Security-Policy forbids
+/// every network access (Served: same origin only).
+std::string render_page(const ViewPayload& payload, const std::string& bundle_js, PageMode mode);
+
+/// Standard base64 (RFC 4648, with padding).
+std::string base64_encode(const std::string& bytes);
+
+}  // namespace antcd::cli

@@ -1,0 +1,177 @@
+// The viewer in a real browser: Debian's Chromium, headless, driven by playwright-core (no
+// browser download). Generates a small scene, runs exact and maco on it, writes the view with
+// `antcd view`, and checks the page against the result files: the data-* contract on several
+// frames (opened through #frame=K), stepping, no console errors, a screenshot that is not blank
+// and shows the highlight colours; then the same page through `antcd view --serve`.
+//
+// Usage: node browser_test.mjs --antcd BIN --node-modules DIR --chromium EXE --workdir DIR
+import { spawn, spawnSync } from 'node:child_process';
+import { mkdirSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
+import { join, resolve } from 'node:path';
+import { pathToFileURL } from 'node:url';
+import assert from 'node:assert/strict';
+
+const args = Object.fromEntries(
+  process.argv.slice(2).reduce((acc, v, i, a) => (i % 2 === 0 ? [...acc, [v.replace(/^--/, ''), a[i + 1]]] : acc), []));
+for (const key of ['antcd', 'node-modules', 'chromium', 'workdir']) {
+  if (!args[key]) throw new Error(`missing --${key}`);
+  args[key] = key === 'chromium' ? args[key] : resolve(args[key]);
+}
+const { chromium } = await import(pathToFileURL(join(args['node-modules'], 'playwright-core', 'index.mjs')).href);
+
+const work = args.workdir;
+rmSync(work, { recursive: true, force: true });
+mkdirSync(work, { recursive: true });
+
+function antcd(...argv) {
+  const r = spawnSync(args.antcd, argv, { cwd: work, encoding: 'utf8' });
+  if (r.status !== 0) throw new Error(`antcd ${argv.join(' ')} exited ${r.status}: ${r.stderr}`);
+  return r.stdout;
+}
+
+antcd('scene', 'generate', '--out', 'scene', '--objects', '10', '--frames', '24', '--seed', '7');
+antcd('run', 'scene/scene.json', '--method', 'exact', '--out', 'exact.json');
+antcd('run', 'scene/scene.json', '--method', 'maco', '--seed', '3', '--out', 'maco.json');
+antcd('view', 'scene/scene.json', '--result', 'exact.json', '--result', 'maco.json', '--out', 'view.html');
+
+const scene = JSON.parse(readFileSync(join(work, 'scene', 'scene.json'), 'utf8'));
+const exact = JSON.parse(readFileSync(join(work, 'exact.json'), 'utf8'));
+const maco = JSON.parse(readFileSync(join(work, 'maco.json'), 'utf8'));
+const frameOf = (result, k) => result.frames.find((f) => f.frame === k);
+const order = new Map(scene.objects.map((o, i) => [o.name, i]));
+const sortPairs = (pairs) =>
+  pairs.map(([a, b]) => (order.get(a) < order.get(b) ? [a, b] : [b, a]))
+    .sort((p, q) => order.get(p[0]) - order.get(q[0]) || order.get(p[1]) - order.get(q[1]));
+const key = ([a, b]) => `${a}\u0000${b}`;
+function expected(k) {
+  const e = sortPairs(frameOf(exact, k).pairs);
+  const m = sortPairs(frameOf(maco, k).pairs);
+  const inE = new Set(e.map(key));
+  const inM = new Set(m.map(key));
+  return {
+    colliding: sortPairs([...e, ...m.filter((p) => !inE.has(key(p)))]),
+    falseAlarms: m.filter((p) => !inE.has(key(p))),
+    misses: e.filter((p) => !inM.has(key(p))),
+  };
+}
+
+const executablePath = args.chromium;
+const browser = await chromium.launch({
+  executablePath,
+  headless: true,
+  // WebGL comes from SwiftShader (no GPU); Chromium refuses to run as root (CI containers)
+  // without --no-sandbox.
+  args: ['--use-angle=swiftshader', '--enable-unsafe-swiftshader', '--ignore-gpu-blocklist',
+         ...(process.getuid?.() === 0 ? ['--no-sandbox'] : [])],
+});
+const problems = [];
+try {
+  const page = await browser.newPage({ viewport: { width: 1000, height: 700 } });
+  page.on('console', (m) => { if (m.type() === 'error') problems.push(`console: ${m.text()}`); });
+  page.on('pageerror', (e) => problems.push(`page error: ${e.message}`));
+  page.on('request', (r) => { if (!/^(file|data|blob):/.test(r.url())) problems.push(`network request: ${r.url()}`); });
+  const url = pathToFileURL(join(work, 'view.html')).href;
+  const root = page.locator('#antcd-viewer');
+  const attrs = () => root.evaluate((e) => ({ ...e.dataset }));
+
+  // Frames with and without collisions, first and last.
+  const busiest = exact.frames.reduce((a, f) => (f.pairs.length > a.pairs.length ? f : a)).frame;
+  const frames = [...new Set([0, busiest, 11, scene.frames - 1])];
+  for (const k of frames) {
+    await page.goto(`${url}#frame=${k}`);
+    await page.waitForSelector('#antcd-viewer[data-ready="true"], #antcd-viewer[data-error]', { timeout: 20000 });
+    const d = await attrs();
+    assert.equal(d.error, undefined, `page error: ${d.error}`);
+    assert.equal(Number(d.objects), scene.objects.length, 'data-objects');
+    assert.equal(Number(d.frames), scene.frames, 'data-frames');
+    assert.equal(Number(d.frame), k, `data-frame after #frame=${k}`);
+    const want = expected(k);
+    assert.deepEqual(JSON.parse(d.colliding), want.colliding, `data-colliding, frame ${k}`);
+    assert.deepEqual(JSON.parse(d.falseAlarms), want.falseAlarms, `data-false-alarms, frame ${k}`);
+    assert.deepEqual(JSON.parse(d.misses), want.misses, `data-misses, frame ${k}`);
+  }
+  assert.ok(expected(busiest).colliding.length > 0, 'the test scene has a colliding frame');
+
+  // Stepping: the buttons, the keyboard and the scrubber move the frame, and the pairs follow.
+  await page.goto(`${url}#frame=${busiest}`);
+  await page.waitForSelector('#antcd-viewer[data-ready="true"]');
+  const start = busiest === scene.frames - 1 ? busiest - 1 : busiest;
+  await page.goto(`${url}#frame=${start}`);
+  await page.waitForFunction((k) => document.getElementById('antcd-viewer').dataset.frame === String(k), start);
+  await page.click('#antcd-viewer button.step');
+  assert.equal(Number((await attrs()).frame), start + 1, 'the step button advances one frame');
+  assert.deepEqual(JSON.parse((await attrs()).colliding), expected(start + 1).colliding, 'pairs after stepping');
+  await page.keyboard.press('ArrowLeft');
+  assert.equal(Number((await attrs()).frame), start, 'ArrowLeft steps back');
+  await page.click('#antcd-viewer button.step-back');
+  assert.equal(Number((await attrs()).frame), Math.max(0, start - 1), 'the step-back button');
+  await page.locator('#antcd-viewer input.scrub').fill(String(scene.frames - 1));
+  assert.equal(Number((await attrs()).frame), scene.frames - 1, 'scrubbing to the last frame');
+  assert.match(page.url(), new RegExp(`#frame=${scene.frames - 1}$`), 'the fragment follows the frame');
+  assert.ok(await page.locator('#antcd-viewer button', { hasText: /VR/ }).count() === 1, 'an Enter VR / VR button');
+
+  // Screenshot of the busiest frame: not blank, and the highlight colour is on screen.
+  await page.goto(`${url}#frame=${busiest}`);
+  await page.waitForSelector('#antcd-viewer[data-ready="true"]');
+  await page.waitForTimeout(300);
+  const png = await page.screenshot({ path: join(work, 'viewer-test.png') });
+  const stats = await page.evaluate(async (b64) => {
+    const img = new Image();
+    img.src = `data:image/png;base64,${b64}`;
+    await img.decode();
+    const c = document.createElement('canvas');
+    c.width = img.width;
+    c.height = img.height;
+    const ctx = c.getContext('2d');
+    ctx.drawImage(img, 0, 0);
+    const px = ctx.getImageData(0, 0, c.width, c.height).data;
+    let sum = 0;
+    let sum2 = 0;
+    let highlighted = 0;
+    const n = px.length / 4;
+    for (let i = 0; i < px.length; i += 4) {
+      const [r, g, bl] = [px[i], px[i + 1], px[i + 2]];
+      const y = 0.299 * r + 0.587 * g + 0.114 * bl;
+      sum += y;
+      sum2 += y * y;
+      // Reds, oranges or blues of the highlight palette (shaded), not the pastel mesh colours.
+      if ((r > 150 && g < 110 && bl < 90) || (r > 200 && g > 110 && g < 190 && bl < 70) || (bl > 180 && r < 90 && g < 150)) ++highlighted;
+    }
+    const mean = sum / n;
+    return { variance: sum2 / n - mean * mean, highlighted, pixels: n };
+  }, png.toString('base64'));
+  console.log(`screenshot ${join(work, 'viewer-test.png')}: luminance variance ${stats.variance.toFixed(1)}, ` +
+              `${stats.highlighted} highlight-coloured pixels of ${stats.pixels}`);
+  assert.ok(stats.variance > 100, `screenshot looks blank (luminance variance ${stats.variance})`);
+  assert.ok(stats.highlighted > 50, 'the colliding objects are highlighted on screen');
+
+  // The same page served on 127.0.0.1 (blob fetched), then stopped with SIGINT.
+  const server = spawn(args.antcd, ['view', 'scene/scene.json', '--result', 'exact.json', '--serve', '--port', '0'],
+                       { cwd: work, stdio: ['ignore', 'pipe', 'pipe'] });
+  const served = await new Promise((resolve, reject) => {
+    let out = '';
+    server.stdout.on('data', (chunk) => {
+      out += chunk;
+      const m = /http:\/\/127\.0\.0\.1:\d+\//.exec(out);
+      if (m) resolve(m[0]);
+    });
+    server.on('exit', (code) => reject(new Error(`antcd view --serve exited ${code}`)));
+    setTimeout(() => reject(new Error('antcd view --serve did not start')), 15000);
+  });
+  const page2 = await browser.newPage();
+  page2.on('console', (m) => { if (m.type() === 'error') problems.push(`console (served): ${m.text()}`); });
+  page2.on('pageerror', (e) => problems.push(`page error (served): ${e.message}`));
+  await page2.goto(`${served}#frame=${busiest}`);
+  await page2.waitForSelector('#antcd-viewer[data-ready="true"]', { timeout: 20000 });
+  const d2 = await page2.locator('#antcd-viewer').evaluate((e) => ({ ...e.dataset }));
+  assert.equal(Number(d2.objects), scene.objects.length, 'served: data-objects');
+  assert.deepEqual(JSON.parse(d2.colliding), sortPairs(frameOf(exact, busiest).pairs), 'served: data-colliding');
+  const exited = new Promise((resolve) => server.on('exit', (code, signal) => resolve({ code, signal })));
+  server.kill('SIGINT');
+  assert.deepEqual(await exited, { code: 0, signal: null }, '--serve stops cleanly on SIGINT');
+} finally {
+  await browser.close();
+}
+assert.deepEqual(problems, [], 'no console errors, page errors or network requests');
+writeFileSync(join(work, 'PASSED'), 'ok\n');
+console.log('viewer browser test passed');

@@ -1,0 +1,127 @@
+// Reads the page's "antcd-view/1" description and its binary blob (see apps/antcd/view_page.hpp)
+// and answers per-frame questions about the results: which pairs collide, where two results differ.
+
+function decodeBase64(text) {
+  const binary = atob(text.replace(/\s+/g, ''));
+  const bytes = new Uint8Array(binary.length);
+  for (let i = 0; i < binary.length; ++i) bytes[i] = binary.charCodeAt(i);
+  return bytes.buffer;
+}
+
+async function readBlob(element) {
+  if (element.dataset.src) {
+    const response = await fetch(element.dataset.src);
+    if (!response.ok) throw new Error(`${element.dataset.src}: HTTP ${response.status}`);
+    return response.arrayBuffer();
+  }
+  return decodeBase64(element.textContent);
+}
+
+export async function loadView(doc) {
+  const data = JSON.parse(doc.getElementById('antcd-view-data').textContent);
+  if (data.format !== 'antcd-view/1') throw new Error(`unknown view format ${data.format}`);
+  if (new Uint8Array(new Uint32Array([1]).buffer)[0] !== 1) {
+    throw new Error('big-endian platform: the view blob is little-endian');
+  }
+  const buffer = await readBlob(doc.getElementById('antcd-view-blob'));
+  if (buffer.byteLength !== data.blob_bytes) {
+    throw new Error(`view blob has ${buffer.byteLength} bytes, expected ${data.blob_bytes}`);
+  }
+  const f32 = ([offset, count]) => new Float32Array(buffer, offset, count);
+  const u32 = ([offset, count]) => new Uint32Array(buffer, offset, count);
+  const meshes = data.meshes.map((m) => ({ ...m, positions: f32(m.positions), indices: u32(m.indices) }));
+  const objects = data.objects.map((o, index) => ({ ...o, index, poses: f32(o.poses) }));
+  const results = data.results.map((r) => new Result(r));
+  return new ViewModel(data, meshes, objects, results);
+}
+
+const pairKey = (i, j) => i * 0x100000 + j;
+
+class Result {
+  constructor(r) {
+    Object.assign(this, r);
+    this.row = new Map(r.frames.map((frame, k) => [frame, k]));
+    this.keys = r.pairs.map((pairs) => new Set(pairs.map(([i, j]) => pairKey(i, j))));
+  }
+  covers(frame) { return this.row.has(frame); }
+  pairsAt(frame) { const k = this.row.get(frame); return k === undefined ? null : this.pairs[k]; }
+  timeAt(frame) { const k = this.row.get(frame); return k === undefined ? null : this.time_ms[k]; }
+  candidatesAt(frame) { const k = this.row.get(frame); return k === undefined ? null : this.candidates[k]; }
+  has(frame, i, j) { const k = this.row.get(frame); return k !== undefined && this.keys[k].has(pairKey(i, j)); }
+}
+
+// Pair classes of a frame: 'collide' (reported, and with two results reported by both), 'false'
+// (reported by the second result only: a false alarm against the first), 'miss' (first only).
+export class ViewModel {
+  constructor(data, meshes, objects, results) {
+    this.frames = data.frames;
+    this.scene = data.scene;
+    this.colours = data.colours;
+    this.meshes = meshes;
+    this.objects = objects;
+    this.results = results;
+    this.totals = this.#countDifferences();
+  }
+
+  pose(object, frame) {
+    const n = object.poses.length / 12;
+    const k = n === 1 ? 0 : frame;
+    return object.poses.subarray(k * 12, k * 12 + 12);
+  }
+
+  compared(frame) {
+    return this.results.length === 2 && this.results[0].covers(frame) && this.results[1].covers(frame);
+  }
+
+  classify(frame) {
+    const out = [];
+    if (this.compared(frame)) {
+      const [ref, other] = this.results;
+      for (const [i, j] of ref.pairsAt(frame)) out.push({ i, j, kind: other.has(frame, i, j) ? 'collide' : 'miss' });
+      for (const [i, j] of other.pairsAt(frame)) if (!ref.has(frame, i, j)) out.push({ i, j, kind: 'false' });
+    } else {
+      const seen = new Set();
+      for (const r of this.results) {
+        for (const [i, j] of r.pairsAt(frame) ?? []) {
+          if (seen.has(pairKey(i, j))) continue;
+          seen.add(pairKey(i, j));
+          out.push({ i, j, kind: 'collide' });
+        }
+      }
+    }
+    out.sort((a, b) => a.i - b.i || a.j - b.j);
+    return out;
+  }
+
+  #countDifferences() {
+    const totals = { compared: 0, falseAlarms: 0, misses: 0 };
+    if (this.results.length !== 2) return totals;
+    for (const frame of this.results[0].frames) {
+      if (!this.compared(frame)) continue;
+      totals.compared += 1;
+      for (const p of this.classify(frame)) {
+        if (p.kind === 'false') totals.falseAlarms += 1;
+        if (p.kind === 'miss') totals.misses += 1;
+      }
+    }
+    return totals;
+  }
+
+  // Frames in which `index` is in a reported pair, per result.
+  collidingFrames(index) {
+    return this.results.map((r) =>
+      r.frames.filter((frame, k) => r.pairs[k].some(([i, j]) => i === index || j === index)));
+  }
+}
+
+// "3-7, 12, 20-21" from sorted frame numbers.
+export function frameRanges(frames) {
+  const parts = [];
+  for (let k = 0; k < frames.length; ) {
+    let e = k;
+    while (e + 1 < frames.length && frames[e + 1] === frames[e] + 1) ++e;
+    parts.push(e === k ? `${frames[k]}` : `${frames[k]}-${frames[e]}`);
+    k = e + 1;
+  }
+  return parts.join(', ');
+}

@@ -1,0 +1,184 @@
+// The three.js side: one mesh per scene object, posed per frame, coloured by its mesh file, with
+// the pairs of the current frame highlighted; orbit camera; WebXR (VR) session support.
+import * as THREE from 'three';
+import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
+import { VRButton } from 'three/examples/jsm/webxr/VRButton.js';
+
+export const KIND_COLOURS = {
+  collide: 0xe0201b, // reported (by both results when there are two)
+  false: 0xff9800, // false alarm: the second result only
+  miss: 0x1e6bff, // miss: the first result only
+};
+const KIND_PRIORITY = { miss: 3, false: 2, collide: 1 };
+
+function meshColour(index, count) {
+  const colour = new THREE.Color();
+  // Spread hues evenly, skipping the highlight hues' neighbourhoods is not needed: highlighted
+  // objects also get an emissive glow and a pair line.
+  colour.setHSL((index / Math.max(1, count)) * 0.85 + 0.4, 0.25, 0.62);
+  return colour;
+}
+
+export class Stage {
+  constructor(container, model) {
+    this.model = model;
+    this.renderer = new THREE.WebGLRenderer({ antialias: true, preserveDrawingBuffer: true });
+    this.renderer.setPixelRatio(window.devicePixelRatio);
+    this.renderer.xr.enabled = true;
+    container.appendChild(this.renderer.domElement);
+
+    this.scene = new THREE.Scene();
+    this.scene.background = new THREE.Color(0xf4f5f7);
+    this.world = new THREE.Group(); // moved and scaled as a whole in VR
+    this.scene.add(this.world);
+    this.scene.add(new THREE.HemisphereLight(0xffffff, 0x8090a0, 1.6));
+    const sun = new THREE.DirectionalLight(0xffffff, 1.8);
+    sun.position.set(1, 2, 1.5);
+    this.scene.add(sun);
+
+    const geometries = model.meshes.map((m) => {
+      const g = new THREE.BufferGeometry();
+      g.setAttribute('position', new THREE.BufferAttribute(m.positions, 3));
+      g.setIndex(new THREE.BufferAttribute(m.indices, 1));
+      g.computeVertexNormals();
+      g.computeBoundingBox();
+      return g;
+    });
+    this.objects = model.objects.map((o) => {
+      const base = meshColour(model.meshes[o.mesh].colour, model.colours);
+      const material = new THREE.MeshStandardMaterial({ color: base, roughness: 0.7, metalness: 0.05, flatShading: true });
+      const mesh = new THREE.Mesh(geometries[o.mesh], material);
+      mesh.matrixAutoUpdate = false;
+      mesh.userData = { index: o.index, base };
+      this.world.add(mesh);
+      return mesh;
+    });
+
+    this.pairLines = new THREE.LineSegments(
+      new THREE.BufferGeometry(),
+      new THREE.LineBasicMaterial({ vertexColors: true, depthTest: false, transparent: true }));
+    this.pairLines.renderOrder = 10;
+    this.world.add(this.pairLines);
+    this.contacts = new THREE.Points(
+      new THREE.BufferGeometry(),
+      new THREE.PointsMaterial({ color: 0x111111, size: 6, sizeAttenuation: false, depthTest: false }));
+    this.contacts.renderOrder = 11;
+    this.world.add(this.contacts);
+
+    this.camera = new THREE.PerspectiveCamera(45, 1, 0.01, 1000);
+    this.controls = new OrbitControls(this.camera, this.renderer.domElement);
+    this.controls.enableDamping = true;
+    this.raycaster = new THREE.Raycaster();
+    this.selected = -1;
+  }
+
+  // Frames the camera on the objects as posed in `frame`.
+  fit(frame) {
+    this.setPoses(frame);
+    const box = new THREE.Box3();
+    for (const m of this.objects) box.expandByObject(m);
+    const sphere = box.getBoundingSphere(new THREE.Sphere());
+    const r = Math.max(sphere.radius, 1e-6);
+    this.bounds = { box, sphere };
+    this.camera.near = r / 1000;
+    this.camera.far = r * 100;
+    this.camera.position.copy(sphere.center).add(new THREE.Vector3(0.9, 0.75, 1.3).multiplyScalar(r * 1.5));
+    this.camera.updateProjectionMatrix();
+    this.controls.target.copy(sphere.center);
+    this.controls.update();
+    const grid = new THREE.GridHelper(r * 3, 30, 0xb0b4ba, 0xd6d9dd);
+    grid.position.set(sphere.center.x, box.min.y, sphere.center.z);
+    this.world.add(grid);
+  }
+
+  setPoses(frame) {
+    for (const m of this.objects) {
+      const p = this.model.pose(this.model.objects[m.userData.index], frame);
+      m.matrix.set(p[0], p[1], p[2], p[9], p[3], p[4], p[5], p[10], p[6], p[7], p[8], p[11], 0, 0, 0, 1);
+      m.matrixWorldNeedsUpdate = true;
+    }
+    this.world.updateMatrixWorld(true);
+  }
+
+  // Poses the objects and highlights `pairs` ({i, j, kind}); `contacts` is a flat xyz list.
+  show(frame, pairs, contacts) {
+    this.setPoses(frame);
+    const kindOf = new Map();
+    for (const p of pairs) {
+      for (const k of [p.i, p.j]) {
+        if ((KIND_PRIORITY[kindOf.get(k)] ?? 0) < KIND_PRIORITY[p.kind]) kindOf.set(k, p.kind);
+      }
+    }
+    for (const m of this.objects) {
+      const kind = kindOf.get(m.userData.index);
+      const mat = m.material;
+      if (kind) {
+        mat.color.set(KIND_COLOURS[kind]);
+        mat.emissive.set(KIND_COLOURS[kind]).multiplyScalar(0.35);
+      } else {
+        mat.color.copy(m.userData.base);
+        mat.emissive.set(0x000000);
+      }
+      if (m.userData.index === this.selected) mat.emissive.set(0x444444);
+    }
+    const centre = (k) => {
+      const m = this.objects[k];
+      return m.geometry.boundingBox.getCenter(new THREE.Vector3()).applyMatrix4(m.matrix);
+    };
+    const points = [];
+    const colours = [];
+    for (const p of pairs) {
+      const c = new THREE.Color(KIND_COLOURS[p.kind]);
+      for (const v of [centre(p.i), centre(p.j)]) {
+        points.push(v.x, v.y, v.z);
+        colours.push(c.r, c.g, c.b);
+      }
+    }
+    const lines = this.pairLines.geometry;
+    lines.setAttribute('position', new THREE.Float32BufferAttribute(points, 3));
+    lines.setAttribute('color', new THREE.Float32BufferAttribute(colours, 3));
+    lines.computeBoundingSphere();
+    this.contacts.geometry.setAttribute('position', new THREE.Float32BufferAttribute(contacts ?? [], 3));
+    this.contacts.geometry.computeBoundingSphere();
+  }
+
+  // The object under a canvas pixel, or -1.
+  pick(clientX, clientY) {
+    const rect = this.renderer.domElement.getBoundingClientRect();
+    const ndc = new THREE.Vector2(((clientX - rect.left) / rect.width) * 2 - 1, -((clientY - rect.top) / rect.height) * 2 + 1);
+    this.raycaster.setFromCamera(ndc, this.camera);
+    const hit = this.raycaster.intersectObjects(this.objects, false)[0];
+    return hit ? hit.object.userData.index : -1;
+  }
+
+  resize(width, height) {
+    this.renderer.setSize(width, height, false);
+    this.camera.aspect = width / Math.max(1, height);
+    this.camera.updateProjectionMatrix();
+  }
+
+  // The "Enter VR" button (WebXR). In a headset the scene is scaled to about 4 m across and put
+  // in front of the viewer, feet on the floor; leaving VR restores the desktop view.
+  vrButton() {
+    const button = VRButton.createButton(this.renderer);
+    this.renderer.xr.addEventListener('sessionstart', () => {
+      const { sphere, box } = this.bounds;
+      const s = 2 / Math.max(sphere.radius, 1e-6);
+      this.world.scale.setScalar(s);
+      this.world.position.set(-sphere.center.x * s, -box.min.y * s, -sphere.center.z * s - 2.5);
+    });
+    this.renderer.xr.addEventListener('sessionend', () => {
+      this.world.scale.setScalar(1);
+      this.world.position.set(0, 0, 0);
+    });
+    return button;
+  }
+
+  start(onFrame) {
+    this.renderer.setAnimationLoop((time) => {
+      onFrame(time);
+      this.controls.update();
+      this.renderer.render(this.scene, this.camera);
+    });
+  }
+}
