@@ -6,5 +6,10 @@ cd "$(dirname "$0")/.."
 ./scripts/install-deps.sh
 build_dir="${ANTCD_BUILD_DIR:-build}"
 cmake -S . -B "$build_dir" -DCMAKE_BUILD_TYPE=Release >/dev/null
-cmake --build "$build_dir" -j "$(nproc)" --target antcd_cli
+targets=(antcd_cli)
+# The browser page the demo writes next to its table (demo-view.html) needs the viewer's bundle.
+if command -v node >/dev/null 2>&1 && command -v npm >/dev/null 2>&1; then
+  targets+=(antcd_viewer)
+fi
+cmake --build "$build_dir" -j "$(nproc)" --target "${targets[@]}"
 "$build_dir/apps/antcd/antcd" demo "$@"

@@ -12,8 +12,15 @@ packages=(
   libkainjow-mustache-dev
   assimp-testmodels gnuplot-nox
   python3-dev python3-pybind11 pybind11-dev python3-numpy python3-pytest python3-matplotlib
+  chromium
   "$@"
 )
+# The browser viewer is bundled with npm (viewer/package-lock.json) and needs node >= 18. Debian's
+# nodejs and npm only when the commands are missing: a node from elsewhere (e.g. nodesource, whose
+# nodejs package conflicts with Debian's npm) is kept.
+if ! command -v node >/dev/null 2>&1 || ! command -v npm >/dev/null 2>&1; then
+  packages+=(nodejs npm)
+fi
 
 missing=()
 for p in "${packages[@]}"; do

@@ -16,6 +16,7 @@
 #include "cli_util.hpp"
 #include "shared/production_line.hpp"
 #include "shared/run_result.hpp"
+#include "view_page.hpp"
 
 namespace antcd::cli {
 
@@ -29,6 +30,8 @@ struct DemoOptions {
   std::size_t maco_step = 10;
   std::size_t ab_frames = 3;
   bool keep = false;
+  std::string view = "demo-view.html";
+  bool no_view = false;
 };
 
 // Removes the temporary folder on every exit path unless asked to keep it.
@@ -64,6 +67,24 @@ shared::RunResult run(const Scene& scene, const SceneQuery& query, const std::st
     progress = [label](std::size_t done, std::size_t total) { print_progress(label, done, total); };
   }
   return shared::run_scene(scene, query, name, progress, frame_step);
+}
+
+// The scene with exact and maco in the browser viewer, next to the table. Where the viewer is not
+// built the table still stands: say why there is no page instead of failing the demo.
+void write_demo_view(const DemoOptions& o, const std::filesystem::path& scene_path,
+                     const shared::RunResult& truth, const shared::RunResult& maco) {
+  ViewInputs inputs;
+  inputs.scene = scene_path;
+  inputs.results = {{"exact", truth}, {"maco", maco}};
+  try {
+    write_view_file(inputs, o.view);
+    std::printf(
+        "\nview: wrote %s (the scene with exact's pairs, maco's false alarms and misses, frame "
+        "by frame;\nopen it in a browser, e.g. chromium %s#frame=140)\n",
+        o.view.c_str(), o.view.c_str());
+  } catch (const std::exception& e) {  // viewer not built, or the page could not be written
+    std::printf("\nview: no %s: %s\n", o.view.c_str(), e.what());
+  }
 }
 
 int run_demo(const DemoOptions& o) {
@@ -158,6 +179,7 @@ int run_demo(const DemoOptions& o) {
         truth_features > 0 ? static_cast<double>(hits) / static_cast<double>(truth_features) : 1.0,
         static_cast<unsigned long long>(hits), static_cast<unsigned long long>(truth_features));
   }
+  if (!o.no_view) write_demo_view(o, scene_path, truth, result);
   return 0;
 }
 
@@ -183,6 +205,10 @@ void add_demo_command(CLI::App& app, int& code) {
                   "Frames on which maco's A/B (feature-pair recall) is measured; 0 skips it")
       ->check(CLI::Range(0, 1000000))
       ->capture_default_str();
+  cmd->add_option("--view", opts->view,
+                  "Write the scene with the exact and maco results as a browser page here")
+      ->capture_default_str();
+  cmd->add_flag("--no-view", opts->no_view, "Do not write the browser page");
   cmd->add_flag("--keep", opts->keep, "Keep the generated scene folder and print its path");
   cmd->callback([opts, &code] { code = run_demo(*opts); });
 }

@@ -28,22 +28,22 @@ int run_view(const ViewOptions& o) {
     throw UsageError(o.serve ? "--out and --serve: choose one"
                              : "--out VIEW.html or --serve is required");
   }
-  if (!o.out.empty() && std::filesystem::is_directory(o.out)) {
-    throw UsageError("--out " + o.out + ": is a folder, expected an HTML file name");
-  }
   ViewInputs inputs;
   inputs.scene = o.scene;
-  for (const auto& r : o.results) inputs.results.emplace_back(r);
-  // Inputs first, so that every input error is reported even where the viewer is not built.
-  const ViewPayload payload = build_view_payload(inputs);
-  const std::string bundle = read_file(locate_viewer_bundle());
+  if (o.results.size() > 2) {
+    throw UsageError("--result given " + std::to_string(o.results.size()) +
+                     " times: the viewer shows one result or compares two");
+  }
+  for (const auto& r : o.results) inputs.results.push_back(load_view_result(r));
   if (!o.serve) {
-    write_file_atomic(o.out, render_page(payload, bundle, PageMode::SelfContained));
+    const ViewPayload written = write_view_file(inputs, o.out);
     std::printf("wrote %s: %zu objects, %zu frames, %zu result%s; open it in a browser\n",
-                o.out.c_str(), payload.objects, payload.frames, inputs.results.size(),
+                o.out.c_str(), written.objects, written.frames, inputs.results.size(),
                 inputs.results.size() == 1 ? "" : "s");
     return 0;
   }
+  const ViewPayload payload = build_view_payload(inputs);
+  const std::string bundle = read_file(locate_viewer_bundle());
   const std::string page = render_page(payload, bundle, PageMode::Served);
   const ServedFile files[] = {{"/", "text/html; charset=utf-8", &page},
                               {"/antcd-view.bin", "application/octet-stream", &payload.blob}};

@@ -17,7 +17,6 @@
 #include <unordered_map>
 
 #include "cli_util.hpp"
-#include "run_result.hpp"
 
 namespace antcd::cli {
 
@@ -130,6 +129,10 @@ json pack_result(const experiments::RunResult& r, const std::filesystem::path& p
 
 }  // namespace
 
+ViewResult load_view_result(const std::filesystem::path& path) {
+  return {path, experiments::parse_run_result(read_file(path), path.string())};
+}
+
 ViewPayload build_view_payload(const ViewInputs& inputs) {
   if (inputs.results.size() > 2) {
     throw UsageError("--result given " + std::to_string(inputs.results.size()) +
@@ -192,10 +195,8 @@ ViewPayload build_view_payload(const ViewInputs& inputs) {
   }
 
   json results = json::array();
-  for (const auto& path : inputs.results) {
-    const experiments::RunResult r =
-        experiments::parse_run_result(read_file(path), path.string());
-    results.push_back(pack_result(r, path, scene, inputs.scene, index_of));
+  for (const ViewResult& r : inputs.results) {
+    results.push_back(pack_result(r.run, r.source, scene, inputs.scene, index_of));
   }
 
   const json root{{"format", "antcd-view/1"},
@@ -234,6 +235,19 @@ std::filesystem::path locate_viewer_bundle() {
       "the browser viewer is not built (looked for " + where +
       "): it is bundled at build time from viewer/ with npm; install node and npm "
       "(scripts/install-deps.sh does) and re-run cmake and the build");
+}
+
+ViewPayload write_view_file(const ViewInputs& inputs, const std::filesystem::path& out) {
+  if (std::filesystem::is_directory(out)) {
+    throw UsageError(out.string() + ": is a folder, expected an HTML file name");
+  }
+  // Inputs first, so that every input error is reported even where the viewer is not built.
+  ViewPayload payload = build_view_payload(inputs);
+  const std::string bundle = read_file(locate_viewer_bundle());
+  write_file_atomic(out, render_page(payload, bundle, PageMode::SelfContained));
+  payload.blob.clear();
+  payload.json.clear();
+  return payload;
 }
 
 std::string base64_encode(const std::string& bytes) {

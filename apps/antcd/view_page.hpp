@@ -13,11 +13,21 @@
 #include <string>
 #include <vector>
 
+#include "run_result.hpp"
+
 namespace antcd::cli {
+
+struct ViewResult {
+  std::filesystem::path source;  ///< the result file (its name labels the result in the page)
+  experiments::RunResult run;
+};
+
+/// Reads and parses a run result file. Throws antcd::Error naming the file.
+ViewResult load_view_result(const std::filesystem::path& path);
 
 struct ViewInputs {
   std::filesystem::path scene;
-  std::vector<std::filesystem::path> results;  ///< at most two: the first is the reference
+  std::vector<ViewResult> results;  ///< at most two: the first is the reference
 };
 
 struct ViewPayload {
@@ -46,6 +56,10 @@ enum class PageMode { SelfContained, Served };
 /// (SelfContained) or fetched from ./antcd-view.bin (Served). A Content-Security-Policy forbids
 /// every network access (Served: same origin only).
 std::string render_page(const ViewPayload& payload, const std::string& bundle_js, PageMode mode);
+
+/// build_view_payload, locate_viewer_bundle and render_page (SelfContained), then writes the page
+/// to `out` atomically. Returns the payload's summary (objects, frames).
+ViewPayload write_view_file(const ViewInputs& inputs, const std::filesystem::path& out);
 
 /// Standard base64 (RFC 4648, with padding).
 std::string base64_encode(const std::string& bytes);

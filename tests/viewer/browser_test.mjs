@@ -10,14 +10,10 @@ import { mkdirSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
 import { join, resolve } from 'node:path';
 import { pathToFileURL } from 'node:url';
 import assert from 'node:assert/strict';
+import { launchChromium, parseArgs } from './chromium.mjs';
 
-const args = Object.fromEntries(
-  process.argv.slice(2).reduce((acc, v, i, a) => (i % 2 === 0 ? [...acc, [v.replace(/^--/, ''), a[i + 1]]] : acc), []));
-for (const key of ['antcd', 'node-modules', 'chromium', 'workdir']) {
-  if (!args[key]) throw new Error(`missing --${key}`);
-  args[key] = key === 'chromium' ? args[key] : resolve(args[key]);
-}
-const { chromium } = await import(pathToFileURL(join(args['node-modules'], 'playwright-core', 'index.mjs')).href);
+const args = parseArgs(process.argv.slice(2), ['antcd', 'node-modules', 'chromium', 'workdir']);
+for (const key of ['antcd', 'node-modules', 'workdir']) args[key] = resolve(args[key]);
 
 const work = args.workdir;
 rmSync(work, { recursive: true, force: true });
@@ -55,15 +51,7 @@ function expected(k) {
   };
 }
 
-const executablePath = args.chromium;
-const browser = await chromium.launch({
-  executablePath,
-  headless: true,
-  // WebGL comes from SwiftShader (no GPU); Chromium refuses to run as root (CI containers)
-  // without --no-sandbox.
-  args: ['--use-angle=swiftshader', '--enable-unsafe-swiftshader', '--ignore-gpu-blocklist',
-         ...(process.getuid?.() === 0 ? ['--no-sandbox'] : [])],
-});
+const browser = await launchChromium(args['node-modules'], args.chromium);
 const problems = [];
 try {
   const page = await browser.newPage({ viewport: { width: 1000, height: 700 } });

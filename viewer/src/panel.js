@@ -41,7 +41,7 @@ export class Panel {
     this.slider = el('input', { type: 'range', min: '0', max: String(model.frames - 1), step: '1', value: '0', class: 'scrub' });
     this.slider.addEventListener('input', () => actions.setFrame(Number(this.slider.value)));
     this.counts = el('div', { class: 'counts' });
-    const methods = model.results.map((r, k) => `${k === 0 && model.results.length === 2 ? 'reference ' : ''}${r.method} (${r.label})`);
+    const methods = model.results.map((r, k) => `${k === 0 && model.results.length === 2 ? 'reference ' : ''}${r.method}${r.label !== r.method ? ` (${r.label})` : ''}`);
     this.player = el('div', { class: 'panel player' },
       el('h1', {}, `antcd view: ${model.scene}`),
       el('div', {}, `${model.objects.length} objects, ${model.frames} frames; ${methods.length ? methods.join(' vs ') : 'no result loaded'}`),

@@ -9,7 +9,8 @@ export const KIND_COLOURS = {
   false: 0xff9800, // false alarm: the second result only
   miss: 0x1e6bff, // miss: the first result only
 };
-const KIND_PRIORITY = { miss: 3, false: 2, collide: 1 };
+// An object in several pairs shows the most telling class: a miss, else a true collision.
+const KIND_PRIORITY = { miss: 3, collide: 2, false: 1 };
 
 function meshColour(index, count) {
   const colour = new THREE.Color();
@@ -82,7 +83,15 @@ export class Stage {
     this.bounds = { box, sphere };
     this.camera.near = r / 1000;
     this.camera.far = r * 100;
-    this.camera.position.copy(sphere.center).add(new THREE.Vector3(0.9, 0.75, 1.3).multiplyScalar(r * 1.5));
+    // Look across the longer horizontal side of the scene, from a little above, far enough for
+    // the whole box to fit the view (production lines are long and narrow).
+    const half = box.getSize(new THREE.Vector3()).multiplyScalar(0.5);
+    const alongX = half.x >= half.z;
+    const [wide, deep] = alongX ? [half.x, half.z] : [half.z, half.x];
+    const tan = Math.tan(THREE.MathUtils.degToRad(this.camera.fov / 2));
+    const distance = Math.max(wide / (tan * this.camera.aspect), Math.max(half.y, deep) / tan) * 1.1 + deep;
+    const dir = alongX ? new THREE.Vector3(0.15, 0.55, 1) : new THREE.Vector3(1, 0.55, 0.15);
+    this.camera.position.copy(sphere.center).add(dir.normalize().multiplyScalar(Math.max(distance, r * 0.1)));
     this.camera.updateProjectionMatrix();
     this.controls.target.copy(sphere.center);
     this.controls.update();
