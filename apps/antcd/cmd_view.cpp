@@ -19,6 +19,7 @@ struct ViewOptions {
   std::string scene;
   std::vector<std::string> results;
   std::string out;
+  std::size_t contacts = 16;
   bool serve = false;
   std::uint16_t port = 8765;
 };
@@ -30,6 +31,7 @@ int run_view(const ViewOptions& o) {
   }
   ViewInputs inputs;
   inputs.scene = o.scene;
+  inputs.contacts_per_pair = o.contacts;
   if (o.results.size() > 2) {
     throw UsageError("--result given " + std::to_string(o.results.size()) +
                      " times: the viewer shows one result or compares two");
@@ -63,6 +65,10 @@ void add_view_command(CLI::App& app, int& code) {
                   "A run result of this scene (antcd run --out); give two (e.g. exact, then "
                   "maco) to see where the second differs from the first")
       ->allow_extra_args(false);
+  cmd->add_option("--contacts", opts->contacts,
+                  "Exact contact points drawn per reported pair and frame, at most (0: none)")
+      ->check(CLI::Range(0, 100000))
+      ->capture_default_str();
   cmd->add_option("--out", opts->out, "Write the HTML page here (atomically)");
   cmd->add_flag("--serve", opts->serve,
                 "Serve the page on 127.0.0.1 instead (for large scenes); Ctrl-C stops");

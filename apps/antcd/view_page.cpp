@@ -1,5 +1,6 @@
 #include "view_page.hpp"
 
+#include <antcd/collide.hpp>
 #include <antcd/io.hpp>
 #include <antcd/mesh.hpp>
 #include <antcd/scene.hpp>
@@ -9,10 +10,12 @@
 #include <unistd.h>
 
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
 #include <map>
+#include <memory>
 #include <set>
 #include <unordered_map>
 
@@ -88,6 +91,9 @@ json pack_result(const experiments::RunResult& r, const std::filesystem::path& p
     throw UsageError(src + ": a result for another scene ('" + r.scene + "', not '" +
                      scene_path.string() + "')");
   }
+  if (!std::isfinite(r.delta) || r.delta < 0) {
+    throw UsageError(src + ": delta " + std::to_string(r.delta) + " is not a finite number >= 0");
+  }
   json frames = json::array();
   json pairs = json::array();
   json times = json::array();
@@ -127,6 +133,42 @@ json pack_result(const experiments::RunResult& r, const std::filesystem::path& p
               {"delta", r.delta},                  {"seed", r.seed}};
 }
 
+// Exact contact points (world frame) of every pair some result reports, on every frame a result
+// covers: where the surfaces of the pair really touch (none for a false alarm). At most
+// `per_pair` per pair; δ as in the reference result.
+json pack_contacts(const Scene& scene, const json& results, double delta, std::size_t per_pair,
+                   BlobWriter& blob) {
+  std::map<std::size_t, std::set<std::pair<std::uint32_t, std::uint32_t>>> pairs_at;
+  for (const json& r : results) {
+    for (std::size_t k = 0; k < r["frames"].size(); ++k) {
+      auto& set = pairs_at[r["frames"][k].get<std::size_t>()];
+      for (const json& p : r["pairs"][k]) set.emplace(p[0].get<std::uint32_t>(), p[1].get<std::uint32_t>());
+    }
+  }
+  const auto& objects = scene.description().objects;
+  CollisionRequest request;
+  request.delta = delta;
+  request.all_contacts = true;
+  request.max_contacts = per_pair;
+  CollisionResult hit;
+  json frames = json::array();
+  json points = json::array();
+  for (const auto& [frame, pairs] : pairs_at) {
+    std::vector<float> xyz;
+    for (const auto& [i, j] : pairs) {
+      collide(scene.model_of(i), objects[i].pose(frame), scene.model_of(j), objects[j].pose(frame),
+              request, hit);
+      for (const Contact& c : hit.contacts) {
+        for (int k = 0; k < 3; ++k) xyz.push_back(static_cast<float>(c.point[k]));
+      }
+    }
+    if (xyz.empty()) continue;
+    frames.push_back(frame);
+    points.push_back(blob.floats(xyz));
+  }
+  return json{{"frames", frames}, {"points", points}, {"per_pair", per_pair}, {"delta", delta}};
+}
+
 }  // namespace
 
 ViewResult load_view_result(const std::filesystem::path& path) {
@@ -138,47 +180,48 @@ ViewPayload build_view_payload(const ViewInputs& inputs) {
     throw UsageError("--result given " + std::to_string(inputs.results.size()) +
                      " times: the viewer shows one result or compares two");
   }
-  const SceneDescription scene = load_scene(inputs.scene);
+  // Loads every mesh once per (file, scale) and builds the models the contacts are computed on.
+  std::unique_ptr<Scene> engine;
+  try {
+    engine = std::make_unique<Scene>(load_scene(inputs.scene));
+  } catch (const Error& e) {
+    // Parse errors name the scene file already; mesh errors name the object and the mesh.
+    const std::string what = e.what();
+    if (what.starts_with(inputs.scene.string() + ":")) throw;
+    throw UsageError(inputs.scene.string() + ": " + what);
+  }
+  const SceneDescription& scene = engine->description();
   ViewPayload out;
   out.title = inputs.scene.filename().string();
   out.objects = scene.objects.size();
   out.frames = scene.frames;
   BlobWriter blob(out.blob);
 
-  // One mesh entry per distinct (file, scale), like the scene engine's models; colours follow the
-  // file, so the same part at two scales has one colour.
+  // One mesh entry per model (distinct file and scale, scale applied); colours follow the file,
+  // so the same part at two scales has one colour.
   json meshes = json::array();
   json objects = json::array();
-  std::map<std::pair<std::string, double>, std::size_t> mesh_index;
+  std::map<const Model*, std::size_t> mesh_index;
   std::map<std::string, std::size_t> colour_index;
   std::unordered_map<std::string, std::uint32_t> index_of;
   for (std::size_t i = 0; i < scene.objects.size(); ++i) {
     const SceneObject& o = scene.objects[i];
     index_of.emplace(o.name, static_cast<std::uint32_t>(i));
-    const auto key = std::make_pair(o.mesh.string(), static_cast<double>(o.scale));
-    auto it = mesh_index.find(key);
+    const Model& model = engine->model_of(i);
+    auto it = mesh_index.find(&model);
     if (it == mesh_index.end()) {
-      Mesh mesh;
-      try {
-        mesh = load_mesh(o.mesh);
-      } catch (const Error& e) {
-        throw UsageError(inputs.scene.string() + ": object '" + o.name + "': " + e.what());
-      }
-      if (mesh.triangles.empty()) {
-        throw UsageError(inputs.scene.string() + ": object '" + o.name + "': mesh " +
-                         o.mesh.string() + " has no triangles");
-      }
+      const Mesh& mesh = model.mesh();
       std::vector<float> positions;
       positions.reserve(mesh.vertices.size() * 3);
       for (const Vec3& v : mesh.vertices) {
-        for (int k = 0; k < 3; ++k) positions.push_back(static_cast<float>(v[k] * o.scale));
+        for (int k = 0; k < 3; ++k) positions.push_back(static_cast<float>(v[k]));
       }
       std::vector<std::uint32_t> indices;
       indices.reserve(mesh.triangles.size() * 3);
-      for (const auto& t : mesh.triangles) {
-        for (int k = 0; k < 3; ++k) indices.push_back(static_cast<std::uint32_t>(t[k]));
-      }
-      const auto colour = colour_index.emplace(o.mesh.string(), colour_index.size()).first->second;
+      for (const auto& t : mesh.triangles) indices.insert(indices.end(), t.begin(), t.end());
+      const auto colour =
+          colour_index.emplace(o.mesh.lexically_normal().string(), colour_index.size())
+              .first->second;
       meshes.push_back(json{{"file", o.mesh_text},
                             {"scale", o.scale},
                             {"colour", colour},
@@ -186,7 +229,7 @@ ViewPayload build_view_payload(const ViewInputs& inputs) {
                             {"triangles", mesh.triangles.size()},
                             {"positions", blob.floats(positions)},
                             {"indices", blob.uints(indices)}});
-      it = mesh_index.emplace(key, meshes.size() - 1).first;
+      it = mesh_index.emplace(&model, meshes.size() - 1).first;
     }
     std::vector<float> poses;
     poses.reserve(o.poses.size() * 12);
@@ -199,14 +242,18 @@ ViewPayload build_view_payload(const ViewInputs& inputs) {
     results.push_back(pack_result(r.run, r.source, scene, inputs.scene, index_of));
   }
 
-  const json root{{"format", "antcd-view/1"},
-                  {"scene", out.title},
-                  {"frames", scene.frames},
-                  {"colours", colour_index.size()},
-                  {"blob_bytes", out.blob.size()},
-                  {"meshes", meshes},
-                  {"objects", objects},
-                  {"results", results}};
+  json root{{"format", "antcd-view/1"},
+            {"scene", out.title},
+            {"frames", scene.frames},
+            {"colours", colour_index.size()},
+            {"meshes", meshes},
+            {"objects", objects},
+            {"results", results}};
+  if (inputs.contacts_per_pair > 0 && !inputs.results.empty()) {
+    root["contacts"] = pack_contacts(*engine, results, inputs.results.front().run.delta,
+                                     inputs.contacts_per_pair, blob);
+  }
+  root["blob_bytes"] = out.blob.size();
   out.json = root.dump(-1, ' ', false, json::error_handler_t::replace);
   return out;
 }

@@ -28,6 +28,8 @@ ViewResult load_view_result(const std::filesystem::path& path);
 struct ViewInputs {
   std::filesystem::path scene;
   std::vector<ViewResult> results;  ///< at most two: the first is the reference
+  /// Exact contact points drawn per reported pair and frame, at most this many (0: none).
+  std::size_t contacts_per_pair = 16;
 };
 
 struct ViewPayload {

@@ -6,11 +6,17 @@
 #include <sys/socket.h>
 #include <unistd.h>
 
+#include <atomic>
 #include <cerrno>
 #include <csignal>
 #include <cstdio>
 #include <cstring>
+#include <memory>
+#include <mutex>
+#include <set>
 #include <string_view>
+#include <thread>
+#include <vector>
 
 #include "cli_util.hpp"
 
@@ -34,6 +40,7 @@ struct Fd {
 };
 
 constexpr std::size_t kMaxRequest = 16 * 1024;
+constexpr std::size_t kMaxClients = 16;
 
 bool send_all(int fd, std::string_view data) {
   while (!data.empty()) {
@@ -130,14 +137,52 @@ int serve_files(const ServedFile* files, std::size_t count, std::uint16_t port) 
   std::printf("serving on http://127.0.0.1:%u/ (Ctrl-C stops)\n",
               static_cast<unsigned>(ntohs(addr.sin_port)));
   std::fflush(stdout);
+  // One thread per connection, at most kMaxClients at once (browsers open spare connections
+  // that may never send a request). On stop, open connections are shut down and joined.
+  std::mutex mutex;
+  std::set<int> open;
+  struct Worker {
+    std::thread thread;
+    std::shared_ptr<std::atomic<bool>> done;
+  };
+  std::vector<Worker> workers;
   while (g_stop == 0) {
+    std::erase_if(workers, [](Worker& w) {
+      if (!w.done->load()) return false;
+      w.thread.join();
+      return true;
+    });
     pollfd p{server.fd, POLLIN, 0};
     const int ready = ::poll(&p, 1, 500);
     if (ready <= 0) continue;  // timeout or EINTR: re-check the stop flag
-    Fd client(::accept4(server.fd, nullptr, nullptr, SOCK_CLOEXEC));
-    if (client.fd < 0) continue;
-    handle(client.fd, files, count);
+    const int fd = ::accept4(server.fd, nullptr, nullptr, SOCK_CLOEXEC);
+    if (fd < 0) continue;
+    std::unique_lock lock(mutex);
+    if (open.size() >= kMaxClients) {
+      lock.unlock();
+      respond(fd, 503, "Service Unavailable", "text/plain", "too many connections\n", false);
+      ::close(fd);
+      continue;
+    }
+    open.insert(fd);
+    lock.unlock();
+    auto done = std::make_shared<std::atomic<bool>>(false);
+    workers.push_back({std::thread([fd, files, count, done, &mutex, &open] {
+                         handle(fd, files, count);
+                         {
+                           const std::lock_guard guard(mutex);
+                           open.erase(fd);
+                           ::close(fd);
+                         }
+                         done->store(true);
+                       }),
+                       done});
   }
+  {
+    const std::lock_guard guard(mutex);
+    for (int fd : open) ::shutdown(fd, SHUT_RDWR);
+  }
+  for (auto& w : workers) w.thread.join();
   ::sigaction(SIGINT, &old_int, nullptr);
   ::sigaction(SIGTERM, &old_term, nullptr);
   std::fprintf(stderr, "stopped\n");

@@ -40,6 +40,7 @@ result range.json scene/scene.json '[ { "frame": 3, "pairs": [], "time_ms": 0.1 
 result twice.json scene/scene.json '[ { "frame": 1, "pairs": [], "time_ms": 0.1 }, { "frame": 1, "pairs": [], "time_ms": 0.1 } ]'
 result unknown.json scene/scene.json '[ { "frame": 0, "pairs": [["a", "crane_07"]], "time_ms": 0.1 } ]'
 printf '{ "method": "exact", "frames": [ { "frame": 0, "pairs": [["a"' >truncated.json
+sed 's/"build_ms": 1,/"delta": -1, "build_ms": 1,/' good.json >negative_delta.json
 mkdir nomesh
 sed 's#meshes/tet.obj#meshes/gone.obj#' scene/scene.json >nomesh/scene.json
 printf '%s\n' '{ "format": "antcd-scene/1", "frames": 2, "objects": [ { "name": "a" } ] }' >bad_scene.json
@@ -70,6 +71,7 @@ expect_refusal 'other/scene.json.*another scene|another scene' scene/scene.json 
 expect_refusal 'range.json: frame 3 out of range' scene/scene.json --result range.json --out view.html
 expect_refusal 'twice.json: frame 1 listed twice' scene/scene.json --result twice.json --out view.html
 expect_refusal "unknown.json: frame 0: .*no object 'crane_07'" scene/scene.json --result unknown.json --out view.html
+expect_refusal 'negative_delta.json: delta' scene/scene.json --result negative_delta.json --out view.html
 expect_refusal 'truncated.json' scene/scene.json --result truncated.json --out view.html
 expect_refusal 'missing.json' scene/scene.json --result missing.json --out view.html
 expect_refusal "object 'a'.*gone.obj" nomesh/scene.json --out view.html

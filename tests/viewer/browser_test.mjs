@@ -62,12 +62,19 @@ try {
   const root = page.locator('#antcd-viewer');
   const attrs = () => root.evaluate((e) => ({ ...e.dataset }));
 
-  // Frames with and without collisions, first and last.
+  // Frames with and without collisions, first and last: the first opened by loading the page
+  // with #frame=K, the others by changing the fragment (each page load costs seconds under
+  // SwiftShader on a busy machine).
   const busiest = exact.frames.reduce((a, f) => (f.pairs.length > a.pairs.length ? f : a)).frame;
-  const frames = [...new Set([0, busiest, 11, scene.frames - 1])];
-  for (const k of frames) {
-    await page.goto(`${url}#frame=${k}`);
-    await page.waitForSelector('#antcd-viewer[data-ready="true"], #antcd-viewer[data-error]', { timeout: 20000 });
+  const frames = [...new Set([busiest, 0, 11, scene.frames - 1])];
+  for (const [n, k] of frames.entries()) {
+    if (n === 0) {
+      await page.goto(`${url}#frame=${k}`);
+      await page.waitForSelector('#antcd-viewer[data-ready="true"], #antcd-viewer[data-error]', { timeout: 30000 });
+    } else {
+      await page.evaluate((hash) => { window.location.hash = hash; }, `#frame=${k}`);
+      await page.waitForFunction((f) => document.getElementById('antcd-viewer').dataset.frame === String(f), k);
+    }
     const d = await attrs();
     assert.equal(d.error, undefined, `page error: ${d.error}`);
     assert.equal(Number(d.objects), scene.objects.length, 'data-objects');
@@ -77,14 +84,16 @@ try {
     assert.deepEqual(JSON.parse(d.colliding), want.colliding, `data-colliding, frame ${k}`);
     assert.deepEqual(JSON.parse(d.falseAlarms), want.falseAlarms, `data-false-alarms, frame ${k}`);
     assert.deepEqual(JSON.parse(d.misses), want.misses, `data-misses, frame ${k}`);
+    // Exact contacts: at least one per truly colliding pair, at most 16 (the default) per pair.
+    const truePairs = frameOf(exact, k).pairs.length;
+    assert.ok(Number(d.contacts) >= truePairs && Number(d.contacts) <= 16 * want.colliding.length,
+              `data-contacts ${d.contacts} for ${truePairs} colliding pairs, frame ${k}`);
   }
   assert.ok(expected(busiest).colliding.length > 0, 'the test scene has a colliding frame');
 
   // Stepping: the buttons, the keyboard and the scrubber move the frame, and the pairs follow.
-  await page.goto(`${url}#frame=${busiest}`);
-  await page.waitForSelector('#antcd-viewer[data-ready="true"]');
   const start = busiest === scene.frames - 1 ? busiest - 1 : busiest;
-  await page.goto(`${url}#frame=${start}`);
+  await page.evaluate((hash) => { window.location.hash = hash; }, `#frame=${start}`);
   await page.waitForFunction((k) => document.getElementById('antcd-viewer').dataset.frame === String(k), start);
   await page.click('#antcd-viewer button.step');
   assert.equal(Number((await attrs()).frame), start + 1, 'the step button advances one frame');
@@ -99,8 +108,8 @@ try {
   assert.ok(await page.locator('#antcd-viewer button', { hasText: /VR/ }).count() === 1, 'an Enter VR / VR button');
 
   // Screenshot of the busiest frame: not blank, and the highlight colour is on screen.
-  await page.goto(`${url}#frame=${busiest}`);
-  await page.waitForSelector('#antcd-viewer[data-ready="true"]');
+  await page.evaluate((hash) => { window.location.hash = hash; }, `#frame=${busiest}`);
+  await page.waitForFunction((k) => document.getElementById('antcd-viewer').dataset.frame === String(k), busiest);
   await page.waitForTimeout(300);
   const png = await page.screenshot({ path: join(work, 'viewer-test.png') });
   const stats = await page.evaluate(async (b64) => {
@@ -150,7 +159,7 @@ try {
   page2.on('console', (m) => { if (m.type() === 'error') problems.push(`console (served): ${m.text()}`); });
   page2.on('pageerror', (e) => problems.push(`page error (served): ${e.message}`));
   await page2.goto(`${served}#frame=${busiest}`);
-  await page2.waitForSelector('#antcd-viewer[data-ready="true"]', { timeout: 20000 });
+  await page2.waitForSelector('#antcd-viewer[data-ready="true"]', { timeout: 30000 });
   const d2 = await page2.locator('#antcd-viewer').evaluate((e) => ({ ...e.dataset }));
   assert.equal(Number(d2.objects), scene.objects.length, 'served: data-objects');
   assert.deepEqual(JSON.parse(d2.colliding), sortPairs(frameOf(exact, busiest).pairs), 'served: data-colliding');

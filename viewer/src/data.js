@@ -32,7 +32,8 @@ export async function loadView(doc) {
   const meshes = data.meshes.map((m) => ({ ...m, positions: f32(m.positions), indices: u32(m.indices) }));
   const objects = data.objects.map((o, index) => ({ ...o, index, poses: f32(o.poses) }));
   const results = data.results.map((r) => new Result(r));
-  return new ViewModel(data, meshes, objects, results);
+  const contacts = new Map((data.contacts?.frames ?? []).map((frame, k) => [frame, f32(data.contacts.points[k])]));
+  return new ViewModel(data, meshes, objects, results, contacts);
 }
 
 const pairKey = (i, j) => i * 0x100000 + j;
@@ -53,8 +54,9 @@ class Result {
 // Pair classes of a frame: 'collide' (reported, and with two results reported by both), 'false'
 // (reported by the second result only: a false alarm against the first), 'miss' (first only).
 export class ViewModel {
-  constructor(data, meshes, objects, results) {
+  constructor(data, meshes, objects, results, contacts) {
     this.frames = data.frames;
+    this.contacts = contacts; // frame -> flat xyz of exact contact points (world frame)
     this.scene = data.scene;
     this.colours = data.colours;
     this.meshes = meshes;
@@ -67,6 +69,10 @@ export class ViewModel {
     const n = object.poses.length / 12;
     const k = n === 1 ? 0 : frame;
     return object.poses.subarray(k * 12, k * 12 + 12);
+  }
+
+  contactsAt(frame) {
+    return this.contacts.get(frame) ?? new Float32Array(0);
   }
 
   compared(frame) {

@@ -5,7 +5,8 @@
 //   in the current frame, [[nameA, nameB], ...], names in scene order, pairs sorted (every pair any
 //   loaded result reports there); data-false-alarms / data-misses the same for the pairs only the
 //   second / only the first of two results reports; data-selected the clicked object's name;
-//   data-ready "true" once the first frame is drawn, or data-error with the message.
+//   data-contacts the number of exact contact points drawn; data-ready "true" once the first
+//   frame is drawn, or data-error with the message.
 // The URL fragment #frame=K opens frame K and follows the current frame.
 import { loadView } from './data.js';
 import { Stage } from './stage.js';
@@ -45,14 +46,14 @@ async function main() {
     if (next === frame) return;
     frame = next;
     pairs = model.classify(frame);
-    const contacts = model.results.flatMap((r) => r.contacts?.[r.row.get(frame)] ?? []);
-    stage.show(frame, pairs, contacts);
+    stage.show(frame, pairs, model.contactsAt(frame));
     panel.showFrame(frame, pairs, playing);
     panel.showObject(stage.selected, frame, pairs);
     root.dataset.frame = String(frame);
     root.dataset.colliding = names(pairs);
     root.dataset.falseAlarms = names(pairs.filter((p) => p.kind === 'false'));
     root.dataset.misses = names(pairs.filter((p) => p.kind === 'miss'));
+    root.dataset.contacts = String(model.contactsAt(frame).length / 3);
     const hash = `#frame=${frame}`;
     if (window.location.hash !== hash) {
       try {
@@ -92,7 +93,7 @@ async function main() {
     stage.selected = stage.pick(e.clientX, e.clientY);
     if (stage.selected >= 0) root.dataset.selected = model.objects[stage.selected].name;
     else delete root.dataset.selected;
-    stage.show(frame, pairs, model.results.flatMap((r) => r.contacts?.[r.row.get(frame)] ?? []));
+    stage.show(frame, pairs, model.contactsAt(frame));
     panel.showObject(stage.selected, frame, pairs);
   });
 

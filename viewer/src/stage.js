@@ -62,7 +62,7 @@ export class Stage {
     this.world.add(this.pairLines);
     this.contacts = new THREE.Points(
       new THREE.BufferGeometry(),
-      new THREE.PointsMaterial({ color: 0x111111, size: 6, sizeAttenuation: false, depthTest: false }));
+      new THREE.PointsMaterial({ color: 0x111111, size: 5, sizeAttenuation: false, depthTest: false }));
     this.contacts.renderOrder = 11;
     this.world.add(this.contacts);
 
@@ -109,7 +109,7 @@ export class Stage {
     this.world.updateMatrixWorld(true);
   }
 
-  // Poses the objects and highlights `pairs` ({i, j, kind}); `contacts` is a flat xyz list.
+  // Poses the objects, highlights `pairs` ({i, j, kind}) and draws `contacts` (flat xyz).
   show(frame, pairs, contacts) {
     this.setPoses(frame);
     const kindOf = new Map();
@@ -147,7 +147,7 @@ export class Stage {
     lines.setAttribute('position', new THREE.Float32BufferAttribute(points, 3));
     lines.setAttribute('color', new THREE.Float32BufferAttribute(colours, 3));
     lines.computeBoundingSphere();
-    this.contacts.geometry.setAttribute('position', new THREE.Float32BufferAttribute(contacts ?? [], 3));
+    this.contacts.geometry.setAttribute('position', new THREE.BufferAttribute(contacts, 3));
     this.contacts.geometry.computeBoundingSphere();
   }
 
