@@ -83,7 +83,7 @@ bool recorded_scene_matches(const std::string& recorded, const std::filesystem::
   return !any_exists;
 }
 
-json pack_result(const experiments::RunResult& r, const std::filesystem::path& path,
+json pack_result(const shared::RunResult& r, const std::filesystem::path& path,
                  const SceneDescription& scene, const std::filesystem::path& scene_path,
                  const std::unordered_map<std::string, std::uint32_t>& index_of) {
   const std::string src = path.string();
@@ -99,7 +99,7 @@ json pack_result(const experiments::RunResult& r, const std::filesystem::path& p
   json times = json::array();
   json candidates = json::array();
   std::set<std::size_t> seen;
-  for (const experiments::FrameRecord& f : r.frames) {
+  for (const shared::FrameRecord& f : r.frames) {
     if (f.frame >= scene.frames) {
       throw UsageError(src + ": frame " + std::to_string(f.frame) + " out of range (" +
                        scene_path.string() + " has " + std::to_string(scene.frames) +
@@ -172,7 +172,7 @@ json pack_contacts(const Scene& scene, const json& results, double delta, std::s
 }  // namespace
 
 ViewResult load_view_result(const std::filesystem::path& path) {
-  return {path, experiments::parse_run_result(read_file(path), path.string())};
+  return {path, shared::parse_run_result(read_file(path), path.string())};
 }
 
 ViewPayload build_view_payload(const ViewInputs& inputs) {
@@ -285,7 +285,8 @@ std::filesystem::path locate_viewer_bundle() {
 }
 
 ViewPayload write_view_file(const ViewInputs& inputs, const std::filesystem::path& out) {
-  if (std::filesystem::is_directory(out)) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(out, ec)) {
     throw UsageError(out.string() + ": is a folder, expected an HTML file name");
   }
   // Inputs first, so that every input error is reported even where the viewer is not built.

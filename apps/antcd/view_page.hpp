@@ -13,13 +13,13 @@
 #include <string>
 #include <vector>
 
-#include "run_result.hpp"
+#include "shared/run_result.hpp"
 
 namespace antcd::cli {
 
 struct ViewResult {
   std::filesystem::path source;  ///< the result file (its name labels the result in the page)
-  experiments::RunResult run;
+  shared::RunResult run;
 };
 
 /// Reads and parses a run result file. Throws antcd::Error naming the file.
