@@ -107,6 +107,18 @@ try {
   assert.match(page.url(), new RegExp(`#frame=${scene.frames - 1}$`), 'the fragment follows the frame');
   assert.ok(await page.locator('#antcd-viewer button', { hasText: /VR/ }).count() === 1, 'an Enter VR / VR button');
 
+  // A click on an object (the first hit on a grid over the view) shows its name and pairs.
+  let selected;
+  for (let y = 0.3; y <= 0.8 && !selected; y += 0.1) {
+    for (let x = 0.2; x <= 0.8 && !selected; x += 0.1) {
+      await page.mouse.click(1000 * x, 700 * y);
+      selected = (await attrs()).selected;
+    }
+  }
+  assert.ok(selected && order.has(selected), `a click selects a scene object (got ${selected})`);
+  const info = await page.locator('#antcd-viewer .info').innerText();
+  assert.ok(info.includes(selected) && info.includes('colliding in frames'), `the info panel shows ${selected}`);
+
   // Screenshot of the busiest frame: not blank, and the highlight colour is on screen.
   await page.evaluate((hash) => { window.location.hash = hash; }, `#frame=${busiest}`);
   await page.waitForFunction((k) => document.getElementById('antcd-viewer').dataset.frame === String(k), busiest);
