@@ -7,9 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include <unistd.h>
-
-#include <array>
+#include <cctype>
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
