@@ -72,8 +72,8 @@ int run_train(const TrainCommand& o) {
       "accuracy %.4f; data %.1f s, training %.1f s\n",
       o.out.c_str(), std::string(learned::kind_name(kind)).c_str(), model.feature_version(),
       model.window(), static_cast<unsigned long long>(record.samples),
-      static_cast<unsigned long long>(record.positives), record.train_accuracy,
-      record.data_seconds, record.train_seconds);
+      static_cast<unsigned long long>(record.positives), record.train_accuracy, record.data_seconds,
+      record.train_seconds);
   return 0;
 }
 #endif
@@ -92,13 +92,12 @@ shared::RunResult run_learned(const Scene& scene, const std::string& scene_name,
   if (model_path.empty()) throw UsageError("--method " + method + " needs --model MODEL.pt");
   const learned::Classifier model = learned::Classifier::load(model_path);
   if (learned::kind_name(model.kind()) != method) {
-    throw UsageError(model_path + ": the model is " + std::string(learned::kind_name(model.kind())) +
-                     ", not " + method);
+    throw UsageError(model_path + ": the model is " +
+                     std::string(learned::kind_name(model.kind())) + ", not " + method);
   }
   if (model.delta() != delta) {
     throw UsageError(model_path + ": the model was trained for delta " +
-                     std::to_string(model.delta()) + ", the run asks for " +
-                     std::to_string(delta));
+                     std::to_string(model.delta()) + ", the run asks for " + std::to_string(delta));
   }
   learned::Detector detector(scene, model);
   shared::RunResult out;
@@ -156,8 +155,10 @@ void add_learn_commands(CLI::App& app, int& code) {
   train->add_option("--epochs", o->epochs, "Passes over the training samples")
       ->check(CLI::Range(1, 10000))
       ->capture_default_str();
-  train->add_option("--seed", o->seed, "Seed of the training scenes, the initial weights and the "
-                                       "shuffling")
+  train
+      ->add_option("--seed", o->seed,
+                   "Seed of the training scenes, the initial weights and the "
+                   "shuffling")
       ->capture_default_str();
   train->callback([o, &code] {
 #ifdef ANTCD_HAVE_LEARNED

@@ -1,6 +1,7 @@
 // BOX-DNN and BOX-LSTM networks, their training and their model files (see classifier.hpp). The
 // only translation unit of antcd that includes libtorch's headers.
 #include <antcd/io.hpp>
+#include <antcd/rng.hpp>
 #include <antcd_learned/classifier.hpp>
 
 #include <torch/torch.h>
@@ -49,13 +50,6 @@ struct LstmNetImpl : torch::nn::Module {
   torch::nn::Linear out;
 };
 TORCH_MODULE(LstmNet);
-
-std::uint64_t mix(std::uint64_t x) {
-  x += 0x9E3779B97F4A7C15ULL;
-  x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ULL;
-  x = (x ^ (x >> 27)) * 0x94D049BB133111EBULL;
-  return x ^ (x >> 31);
-}
 
 /// libtorch's messages span several lines (and may carry a backtrace): keep the first line.
 std::string first_line(const char* text) {
@@ -194,24 +188,24 @@ Classifier Classifier::train(const Dataset& data, const TrainOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   std::vector<std::int64_t> order(static_cast<std::size_t>(n));
   for (std::int64_t i = 0; i < n; ++i) order[static_cast<std::size_t>(i)] = i;
-  std::uint64_t state = mix(options.seed ^ 0x5348554646ULL);
+  std::uint64_t state = mix_seed(options.seed ^ 0x5348554646ULL);
   double last_loss = 0;
   for (std::size_t epoch = 0; epoch < options.epochs; ++epoch) {
     for (std::size_t i = order.size(); i > 1; --i) {  // Fisher-Yates with our own generator
-      state = mix(state);
+      state = mix_seed(state);
       std::swap(order[i - 1], order[state % i]);
     }
     const torch::Tensor perm = torch::from_blob(order.data(), {n}, torch::kInt64);
     double sum = 0;
     std::int64_t batches = 0;
     for (std::int64_t b = 0; b < n; b += static_cast<std::int64_t>(options.batch)) {
-      const std::int64_t e = std::min<std::int64_t>(n, b + static_cast<std::int64_t>(options.batch));
+      const std::int64_t e =
+          std::min<std::int64_t>(n, b + static_cast<std::int64_t>(options.batch));
       const torch::Tensor idx = perm.slice(0, b, e);
       const torch::Tensor xb = x.index_select(0, idx);
       const torch::Tensor yb = y.index_select(0, idx);
       optim.zero_grad();
-      const torch::Tensor loss =
-          torch::binary_cross_entropy_with_logits(impl->logits(xb), yb);
+      const torch::Tensor loss = torch::binary_cross_entropy_with_logits(impl->logits(xb), yb);
       loss.backward();
       optim.step();
       sum += loss.item<double>();
@@ -292,8 +286,8 @@ void Classifier::save(const std::filesystem::path& path) const {
     a.write("checksum", c10::IValue(checksum(impl_->contents())));
     a.save_to(bytes);
   } catch (const c10::Error& e) {
-    throw Error(path.string() + ": cannot serialise the model: " +
-                first_line(e.what_without_backtrace()));
+    throw Error(path.string() +
+                ": cannot serialise the model: " + first_line(e.what_without_backtrace()));
   }
   write_file_atomic(path, bytes.str());
 }

@@ -1,4 +1,5 @@
 // Labelled samples of generated scenes for the learned baselines (see dataset.hpp).
+#include <antcd/rng.hpp>
 #include <antcd_learned/dataset.hpp>
 
 #include <stdlib.h>  // mkdtemp
@@ -19,17 +20,10 @@ namespace {
 namespace fs = std::filesystem;
 namespace gen = antcd::experiments;
 
-std::uint64_t mix(std::uint64_t x) {
-  x += 0x9E3779B97F4A7C15ULL;
-  x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ULL;
-  x = (x ^ (x >> 27)) * 0x94D049BB133111EBULL;
-  return x ^ (x >> 31);
-}
-
 /// Seed of training scene k. The top bit is set, so a training scene never has the small seeds
 /// scenes are evaluated with (antcd scene generate and bench paper default to 1).
 std::uint64_t scene_seed(std::uint64_t seed, std::size_t k) {
-  return mix(mix(seed) ^ (0x6C6561726E6564ULL + k)) | (std::uint64_t{1} << 63);
+  return mix_seed(mix_seed(seed) ^ (0x6C6561726E6564ULL + k)) | (std::uint64_t{1} << 63);
 }
 
 /// A temporary folder, removed with everything in it when the object goes.
@@ -67,7 +61,7 @@ SceneSpec scene_spec(const TrainingSetOptions& o, std::size_t k) {
   SceneSpec s;
   s.seed = scene_seed(o.seed, k);
   s.layout = k % 3 == 2 ? Layout::ShapePairs : Layout::ProductionLine;
-  const std::uint64_t r = mix(s.seed);
+  const std::uint64_t r = mix_seed(s.seed);
   const std::size_t span = o.max_objects - o.min_objects + 1;
   s.objects = s.layout == Layout::ShapePairs ? 16 + 2 * (r % 8)
                                              : o.min_objects + static_cast<std::size_t>(r % span);
@@ -80,25 +74,26 @@ SceneSpec scene_spec(const TrainingSetOptions& o, std::size_t k) {
 std::vector<fs::path> write_shapes(const fs::path& dir, std::uint64_t seed) {
   std::uint64_t state = seed;
   const auto uniform = [&](double lo, double hi) {
-    state = mix(state);
+    state = mix_seed(state);
     return lo + (hi - lo) * static_cast<double>(state >> 11) * 0x1.0p-53;
   };
   const auto segments = [&](int lo, int hi) { return static_cast<int>(uniform(lo, hi + 1)); };
   std::vector<Mesh> meshes;
-  meshes.push_back(make_torus(uniform(0.5, 1.0), uniform(0.08, 0.3), segments(16, 48),
-                              segments(8, 20)));
+  meshes.push_back(
+      make_torus(uniform(0.5, 1.0), uniform(0.08, 0.3), segments(16, 48), segments(8, 20)));
   meshes.push_back(make_sphere(uniform(0.3, 1.0), segments(10, 32), segments(6, 16)));
-  meshes.push_back(make_box(Vec3(uniform(0.1, 1.0), uniform(0.1, 1.0), uniform(0.05, 0.6)),
-                            segments(1, 4)));
-  meshes.push_back(make_cylinder(uniform(0.1, 0.5), uniform(0.5, 2.0), segments(8, 32),
-                                 segments(1, 4)));
-  meshes.push_back(merge({make_box(Vec3(0.8, 0.1, 0.1), 2),
-                          transformed(make_cylinder(0.15, 0.9, 16),
-                                      Transform::from_axis_angle(Vec3::UnitX(), 1.5707963, Vec3::Zero()))}));
-  meshes.push_back(merge({make_torus(0.6, 0.1, 32, 10),
-                          transformed(make_sphere(0.25, 16, 8),
-                                      Transform::from_axis_angle(Vec3::UnitZ(), 0.0,
-                                                                 Vec3(0.6, 0.0, 0.0)))}));
+  meshes.push_back(
+      make_box(Vec3(uniform(0.1, 1.0), uniform(0.1, 1.0), uniform(0.05, 0.6)), segments(1, 4)));
+  meshes.push_back(
+      make_cylinder(uniform(0.1, 0.5), uniform(0.5, 2.0), segments(8, 32), segments(1, 4)));
+  meshes.push_back(
+      merge({make_box(Vec3(0.8, 0.1, 0.1), 2),
+             transformed(make_cylinder(0.15, 0.9, 16),
+                         Transform::from_axis_angle(Vec3::UnitX(), 1.5707963, Vec3::Zero()))}));
+  meshes.push_back(
+      merge({make_torus(0.6, 0.1, 32, 10),
+             transformed(make_sphere(0.25, 16, 8),
+                         Transform::from_axis_angle(Vec3::UnitZ(), 0.0, Vec3(0.6, 0.0, 0.0)))}));
   // A different order per scene, so that different shapes meet.
   for (std::size_t i = meshes.size(); i > 1; --i) {
     std::swap(meshes[i - 1], meshes[static_cast<std::size_t>(uniform(0, static_cast<double>(i)))]);
@@ -131,8 +126,8 @@ void Dataset::append(const Dataset& other) {
 }
 
 std::size_t PairHistory::KeyHash::operator()(const Key& k) const {
-  return static_cast<std::size_t>(
-      mix((static_cast<std::uint64_t>(k.i) << 32 | k.j) ^ mix(static_cast<std::uint64_t>(k.frame))));
+  return static_cast<std::size_t>(mix_seed((static_cast<std::uint64_t>(k.i) << 32 | k.j) ^
+                                           mix_seed(static_cast<std::uint64_t>(k.frame))));
 }
 
 PairHistory::PairHistory(const Scene& scene, std::size_t window, Scalar delta)
@@ -140,8 +135,7 @@ PairHistory::PairHistory(const Scene& scene, std::size_t window, Scalar delta)
   if (window < 1) throw std::invalid_argument("the feature window must be at least 1 frame");
 }
 
-void PairHistory::window_features(std::uint32_t i, std::uint32_t j, std::size_t frame,
-                                  float* out) {
+void PairHistory::window_features(std::uint32_t i, std::uint32_t j, std::size_t frame, float* out) {
   const auto& objects = scene_->description().objects;
   for (std::size_t w = 0; w < window_; ++w) {
     const std::size_t back = window_ - 1 - w;
@@ -163,8 +157,8 @@ void PairHistory::forget_before(std::size_t frame) {
   std::erase_if(cache_, [&](const auto& entry) { return entry.first.frame < keep; });
 }
 
-Dataset scene_samples(const Scene& scene, std::size_t first, std::size_t last,
-                      std::size_t window, Scalar delta) {
+Dataset scene_samples(const Scene& scene, std::size_t first, std::size_t last, std::size_t window,
+                      Scalar delta) {
   if (last > scene.description().frames) {
     throw std::out_of_range("frames up to " + std::to_string(last) + " asked, the scene has " +
                             std::to_string(scene.description().frames));
@@ -182,9 +176,8 @@ Dataset scene_samples(const Scene& scene, std::size_t first, std::size_t last,
     for (const auto& [i, j] : r.candidates) {
       history.window_features(i, j, f, buf.data());
       out.features.insert(out.features.end(), buf.begin(), buf.end());
-      out.labels.push_back(std::binary_search(r.pairs.begin(), r.pairs.end(), std::make_pair(i, j))
-                               ? 1
-                               : 0);
+      out.labels.push_back(
+          std::binary_search(r.pairs.begin(), r.pairs.end(), std::make_pair(i, j)) ? 1 : 0);
     }
     history.forget_before(f + 1);
   }

@@ -1,4 +1,5 @@
 // The bounding-volume features of an object pair (see features.hpp for the contract).
+#include <antcd/geometry.hpp>
 #include <antcd_learned/features.hpp>
 
 #include <algorithm>
@@ -15,9 +16,9 @@ constexpr std::size_t kMaxLevelPairs = std::size_t{1} << (2 * kFeatureDepth);
 /// Normalised separating margins are clipped to [-1, kMarginCap].
 constexpr Scalar kMarginCap = 3;
 
-struct NodePair {
-  std::uint32_t a = 0;
-  std::uint32_t b = 0;
+struct NodePair {  // trivial, so that the level buffers below are not zero-filled per call
+  std::uint32_t a;
+  std::uint32_t b;
 };
 
 /// The separating-axis margin of boxes `a` and `b` (same frame) along `axis` (need not be unit):
@@ -116,9 +117,9 @@ FeatureVector pair_features(const Model& a, const Transform& pose_a, const Model
   // Root spheres.
   const Scalar d = (sb.center - sa.center).norm();
   put(d / s);
-  put(std::clamp((sa.radius + sb.radius + delta - d) /
-                     std::max(std::min(sa.radius, sb.radius), 1e-12 * s),
-                 -4.0, 4.0));
+  put(std::clamp(
+      (sa.radius + sb.radius + delta - d) / std::max(std::min(sa.radius, sb.radius), 1e-12 * s),
+      -4.0, 4.0));
   put(sa.radius / s);
 
   // The 15 separating-axis margins of the root OBBs, the largest, the smallest face margin.
@@ -157,8 +158,8 @@ FeatureVector pair_features(const Model& a, const Transform& pose_a, const Model
   // largest-SAT-margin among the examined pairs.
   const auto size_a = level_sizes(na);
   const auto size_b = level_sizes(nb);
-  std::array<NodePair, kMaxLevelPairs> buf0{};
-  std::array<NodePair, kMaxLevelPairs> buf1{};
+  std::array<NodePair, kMaxLevelPairs> buf0;  // NOLINT: filled before read
+  std::array<NodePair, kMaxLevelPairs> buf1;
   NodePair* cur = buf0.data();
   NodePair* next = buf1.data();
   std::size_t cur_n = worst <= 0 && d <= sa.radius + sb.radius + delta ? 1 : 0;
@@ -180,13 +181,21 @@ FeatureVector pair_features(const Model& a, const Transform& pose_a, const Model
           const Sphere s1 = na[ca[x]].sphere;
           const Sphere s2 = moved(nb[cb[y]].sphere, b_to_a);
           const Scalar rr = s1.radius + s2.radius;
-          const Scalar g = ((s2.center - s1.center).norm() - rr - delta) /
-                           std::max(rr, 1e-12 * s);
+          if (level > 3) {
+            // Deeper levels only count overlaps: the library's tests, no margins.
+            if (!geometry::sphere_overlap(s1, s2, delta)) continue;
+            if (!geometry::obb_overlap(na[ca[x]].obb, moved(nb[cb[y]].obb, b_to_a), delta)) {
+              continue;
+            }
+            next[next_n++] = {ca[x], cb[y]};
+            continue;
+          }
+          const Scalar g = ((s2.center - s1.center).norm() - rr - delta) / std::max(rr, 1e-12 * s);
           gap = std::min(gap, g);
           if (g > 0) continue;
-          std::array<Scalar, 15> mm{};
-          const Scalar w = sat_margins(na[ca[x]].obb, moved(nb[cb[y]].obb, b_to_a), delta,
-                                       mm.data());
+          std::array<Scalar, 15> mm;
+          const Scalar w =
+              sat_margins(na[ca[x]].obb, moved(nb[cb[y]].obb, b_to_a), delta, mm.data());
           sat = std::min(sat, w);
           if (w > 0) continue;
           next[next_n++] = {ca[x], cb[y]};
@@ -216,6 +225,7 @@ FeatureVector pair_features(const Model& a, const Transform& pose_a, const Model
 }
 
 const std::array<std::string_view, kFeatureCount>& feature_names() {
+  // clang-format off
   static const std::array<std::string_view, kFeatureCount> names = {
       "sphere_distance", "sphere_penetration", "radius_share",
       "sat_a0", "sat_a1", "sat_a2", "sat_b0", "sat_b1", "sat_b2",
@@ -228,6 +238,7 @@ const std::array<std::string_view, kFeatureCount>& feature_names() {
       "share_l1", "log_count_l1", "share_l2", "log_count_l2", "share_l3", "log_count_l3",
       "share_l4", "log_count_l4", "share_l5", "log_count_l5",
       "gap_l1", "sat_l1", "gap_l2", "sat_l2", "gap_l3", "sat_l3"};
+  // clang-format on
   return names;
 }
 

@@ -48,10 +48,9 @@ TEST(LearnedFeatures, InvariantToACommonRigidMotionOfBothObjects) {
         }
       }
       // A relative motion does change them (the features see the pair's placement).
-      const FeatureVector moved =
-          pair_features(a, pa, *second, pb * Transform::from_axis_angle(Vec3(0, 0, 1), 0.3,
-                                                                        Vec3(0.2, 0.1, 0)),
-                        0.0);
+      const FeatureVector moved = pair_features(
+          a, pa, *second, pb * Transform::from_axis_angle(Vec3(0, 0, 1), 0.3, Vec3(0.2, 0.1, 0)),
+          0.0);
       float diff = 0;
       for (std::size_t k = 0; k < kFeatureCount; ++k) diff += std::abs(moved[k] - f[k]);
       EXPECT_GT(diff, 1e-3F);
@@ -103,8 +102,8 @@ TEST_P(LearnedTraining, BeatsAConstantPredictorOnHeldOutScenesAndIsDeterministic
   o.epochs = kind == Kind::Dnn ? 30 : 8;
   const Classifier model = Classifier::train(train, o);
   const double acc = accuracy(model.predict(held_out.features, held_out.size()), held_out.labels);
-  const double share = static_cast<double>(held_out.positives()) /
-                       static_cast<double>(held_out.size());
+  const double share =
+      static_cast<double>(held_out.positives()) / static_cast<double>(held_out.size());
   const double constant = std::max(share, 1 - share);
   EXPECT_GT(acc, constant + 0.01) << "held-out samples " << held_out.size() << ", colliding "
                                   << held_out.positives();
@@ -121,8 +120,8 @@ TEST_P(LearnedTraining, BeatsAConstantPredictorOnHeldOutScenesAndIsDeterministic
             other.probabilities(held_out.features, held_out.size()));
 
   // Save → load: identical predictions and metadata.
-  const fs::path dir = test::fresh_temp_dir(std::string("learned_roundtrip_") +
-                                            std::string(kind_name(kind)));
+  const fs::path dir =
+      test::fresh_temp_dir(std::string("learned_roundtrip_") + std::string(kind_name(kind)));
   const fs::path file = dir / "model.pt";
   model.save(file);
   const Classifier loaded = Classifier::load(file);
@@ -222,7 +221,8 @@ struct CliRun {
 
 CliRun cli(const std::string& args, const fs::path& dir) {
   const std::string err = (dir / "stderr.txt").string();
-  const std::string cmd = std::string("'") + ANTCD_CLI + "' " + args + " > /dev/null 2> '" + err + "'";
+  const std::string cmd =
+      std::string("'") + ANTCD_CLI + "' " + args + " > /dev/null 2> '" + err + "'";
   const int status = std::system(cmd.c_str());
   CliRun r;
   r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
@@ -235,8 +235,8 @@ TEST(LearnedCli, BadModelsExitTwoWithOneErrorLine) {
   const fs::path dir = test::fresh_temp_dir("learned_cli");
   const std::string good = one_model_bytes(dir);
   const CliRun gen = cli("scene generate --out '" + (dir / "scene").string() +
-                          "' --objects 6 --frames 3 --vertices 100",
-                      dir);
+                             "' --objects 6 --frames 3 --vertices 100",
+                         dir);
   ASSERT_EQ(gen.code, 0) << gen.err;
   const std::string scene = "'" + (dir / "scene" / "scene.json").string() + "'";
   const auto expect_error = [&](const std::string& args, const std::string& needle) {
@@ -257,9 +257,10 @@ TEST(LearnedCli, BadModelsExitTwoWithOneErrorLine) {
   expect_error("run " + scene + " --method exact --model '" + (dir / "good.pt").string() + "'",
                "--model");
   // The good model runs (its verdicts are not checked here: it was trained on noise).
-  const CliRun ok = cli("run " + scene + " --method box-dnn --model '" + (dir / "good.pt").string() +
-                         "' --out '" + (dir / "run.json").string() + "'",
-                     dir);
+  const CliRun ok =
+      cli("run " + scene + " --method box-dnn --model '" + (dir / "good.pt").string() +
+              "' --out '" + (dir / "run.json").string() + "'",
+          dir);
   EXPECT_EQ(ok.code, 0) << ok.err;
   EXPECT_TRUE(fs::exists(dir / "run.json"));
 }

@@ -69,8 +69,8 @@ class PairHistory {
 
 /// Samples of frames [first, last) of `scene`: every broad-phase candidate pair of each frame,
 /// labelled by the exact method with threshold `delta`. Throws std::out_of_range for last > frames.
-Dataset scene_samples(const Scene& scene, std::size_t first, std::size_t last,
-                      std::size_t window, Scalar delta);
+Dataset scene_samples(const Scene& scene, std::size_t first, std::size_t last, std::size_t window,
+                      Scalar delta);
 
 struct TrainingSetOptions {
   std::size_t scenes = 6;    ///< generated scenes (>= 1)
