@@ -12,13 +12,13 @@
 #include <system_error>
 #include <vector>
 
-#include "production_line.hpp"
+#include "shared/production_line.hpp"
 
 namespace antcd::learned {
 namespace {
 
 namespace fs = std::filesystem;
-namespace gen = antcd::experiments;
+namespace gen = antcd::shared;
 
 /// Seed of training scene k. The top bit is set, so a training scene never has the small seeds
 /// scenes are evaluated with (antcd scene generate and bench paper default to 1).
@@ -123,6 +123,22 @@ void Dataset::append(const Dataset& other) {
   }
   features.insert(features.end(), other.features.begin(), other.features.end());
   labels.insert(labels.end(), other.labels.begin(), other.labels.end());
+}
+
+Dataset Dataset::last_frame() const {
+  Dataset out;
+  out.window = 1;
+  out.delta = delta;
+  out.labels = labels;
+  out.features.reserve(size() * kFeatureCount);
+  const std::size_t stride = sample_floats();
+  for (std::size_t i = 0; i < size(); ++i) {
+    const auto first =
+        features.begin() + static_cast<std::ptrdiff_t>((i + 1) * stride - kFeatureCount);
+    out.features.insert(out.features.end(), first,
+                        first + static_cast<std::ptrdiff_t>(kFeatureCount));
+  }
+  return out;
 }
 
 std::size_t PairHistory::KeyHash::operator()(const Key& k) const {

@@ -37,6 +37,8 @@ struct Dataset {
   [[nodiscard]] std::size_t positives() const;
   /// Appends `other`'s samples; throws Error when window or delta differ.
   void append(const Dataset& other);
+  /// The same samples with only their last (current) frame: window-1 data for BOX-DNN.
+  [[nodiscard]] Dataset last_frame() const;
 };
 
 /// Feature vectors of a scene's object pairs over recent frames, kept so that a run over
