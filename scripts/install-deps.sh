@@ -10,6 +10,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev libcgal-dev
   libfcl-dev libbullet-dev
   libkainjow-mustache-dev
+  libtorch-dev
   assimp-testmodels gnuplot-nox
   python3-dev python3-pybind11 pybind11-dev python3-numpy python3-pytest python3-matplotlib
   chromium

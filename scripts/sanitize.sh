@@ -7,6 +7,7 @@
 #         silences reports inside TBB's own code only (see there).
 # Usage: scripts/sanitize.sh [asan|tsan|all]      (default: all; run as root on a fresh Debian 12,
 #        like scripts/test.sh: missing packages are installed with apt-get)
+# The learned baselines (libtorch, not instrumented) are left out of both builds: ANTCD_BUILD_LEARNED=OFF.
 # Prints the wall time of each part. Exits non-zero on any build error, test failure or sanitizer
 # report (UBSan is fatal: -fno-sanitize-recover=undefined).
 set -euo pipefail
@@ -39,6 +40,7 @@ run_asan() {
   # The browser viewer's page test runs in test.sh; here `antcd view`'s input checks run under
   # ASan without the npm bundle (ANTCD_BUILD_VIEWER=OFF: no second npm ci, no Chromium).
   cmake -S . -B "$dir" -DCMAKE_BUILD_TYPE=Debug -DANTCD_BUILD_BENCHMARKS=OFF -DANTCD_BUILD_VIEWER=OFF \
+    -DANTCD_BUILD_LEARNED=OFF \
     -DCMAKE_CXX_FLAGS="-O1 -g -fno-omit-frame-pointer $san" \
     -DCMAKE_EXE_LINKER_FLAGS="$san" -DCMAKE_SHARED_LINKER_FLAGS="$san"
   cmake --build "$dir" -j "$jobs"
@@ -61,7 +63,7 @@ run_asan() {
 run_tsan() {
   local dir="${ANTCD_TSAN_BUILD_DIR:-build-tsan}"
   local start=$SECONDS
-  cmake -S . -B "$dir" -DCMAKE_BUILD_TYPE=Debug -DANTCD_BUILD_BENCHMARKS=OFF \
+  cmake -S . -B "$dir" -DCMAKE_BUILD_TYPE=Debug -DANTCD_BUILD_BENCHMARKS=OFF -DANTCD_BUILD_LEARNED=OFF \
     -DANTCD_BUILD_APPS=OFF \
     -DCMAKE_CXX_FLAGS="-O1 -g -fno-omit-frame-pointer -fsanitize=thread" \
     -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=thread" -DCMAKE_SHARED_LINKER_FLAGS="-fsanitize=thread"

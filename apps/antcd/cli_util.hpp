@@ -7,8 +7,16 @@
 #include <CLI/CLI.hpp>
 
 #include <filesystem>
+#include <functional>
 #include <stdexcept>
 #include <string>
+
+namespace antcd {
+class Scene;
+namespace shared {
+struct RunResult;
+}
+}  // namespace antcd
 
 namespace antcd::cli {
 
@@ -39,5 +47,16 @@ void add_demo_command(CLI::App& app, int& code);
 void add_scene_commands(CLI::App& app, int& code);
 void add_bench_commands(CLI::App& app, int& code);
 void add_view_command(CLI::App& app, int& code);
+void add_learn_commands(CLI::App& app, int& code);
+
+/// "box-dnn" or "box-lstm": the learned baselines (cmd_learn.cpp), run through run_learned.
+bool is_learned_method(const std::string& method);
+/// Runs every frame of `scene` with the learned model in `model_path` (its kind must be `method`,
+/// its training delta `delta`). Throws UsageError / antcd::Error (model file problems, or antcd
+/// built without libtorch).
+shared::RunResult run_learned(const Scene& scene, const std::string& scene_name,
+                                   const std::string& method, const std::string& model_path,
+                                   double delta,
+                                   const std::function<void(std::size_t, std::size_t)>& progress);
 
 }  // namespace antcd::cli

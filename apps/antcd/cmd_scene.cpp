@@ -31,6 +31,7 @@ struct RunOptions {
   bool feature_truth = false;
   bool search_all = false;
   std::string out;
+  std::string model;
 };
 
 void print_progress(std::size_t done, std::size_t total) {
@@ -43,8 +44,16 @@ void print_progress(std::size_t done, std::size_t total) {
 }
 
 int run_run(const RunOptions& o) {
+  const bool tty = isatty(STDERR_FILENO) != 0;
+  const std::function<void(std::size_t, std::size_t)> progress =
+      tty ? std::function<void(std::size_t, std::size_t)>(print_progress)
+          : std::function<void(std::size_t, std::size_t)>();
+  const bool learned = is_learned_method(o.method);
+  if (!learned && !o.model.empty()) {
+    throw UsageError("--model is for --method box-dnn or box-lstm, not " + o.method);
+  }
   SceneQuery query;
-  query.method = parse_method(o.method);
+  if (!learned) query.method = parse_method(o.method);
   query.delta = o.delta;
   query.feature_delta = o.feature_delta;
   query.seed = o.seed;
@@ -55,11 +64,9 @@ int run_run(const RunOptions& o) {
   query.count_feature_truth = o.feature_truth;
   query.search_all = o.search_all;
   const Scene scene(load_scene(o.scene));
-  const bool tty = isatty(STDERR_FILENO) != 0;
   const shared::RunResult result =
-      shared::run_scene(scene, query, o.scene,
-                             tty ? std::function<void(std::size_t, std::size_t)>(print_progress)
-                                 : std::function<void(std::size_t, std::size_t)>());
+      learned ? run_learned(scene, o.scene, o.method, o.model, o.delta, progress)
+              : shared::run_scene(scene, query, o.scene, progress);
   if (!o.out.empty()) {
     write_file_atomic(o.out, shared::to_json(result));
     return 0;
@@ -151,8 +158,11 @@ void add_scene_commands(CLI::App& app, int& code) {
   auto run = std::make_shared<RunOptions>();
   CLI::App* cmd = app.add_subcommand("run", "Run a scene's frames with a collision method");
   cmd->add_option("SCENE", run->scene, "Scene file (antcd-scene/1 JSON)")->required();
-  cmd->add_option("--method", run->method, "exact | sphere-obb | aco | maco | pso | ga")
-      ->check(CLI::IsMember({"exact", "sphere-obb", "aco", "maco", "pso", "ga"}));
+  cmd->add_option("--method", run->method,
+                  "exact | sphere-obb | aco | maco | pso | ga | box-dnn | box-lstm (the last two "
+                  "need --model)")
+      ->check(CLI::IsMember({"exact", "sphere-obb", "aco", "maco", "pso", "ga", "box-dnn",
+                             "box-lstm"}));
   cmd->add_option("--delta", run->delta, "Collision threshold δ in mesh units")
       ->check(non_negative_finite());
   cmd->add_option("--feature-delta", run->feature_delta,
@@ -171,6 +181,9 @@ void add_scene_commands(CLI::App& app, int& code) {
   cmd->add_flag("--search-all", run->search_all,
                 "Random methods: run every search for its N iterations instead of stopping at "
                 "the first colliding feature pair (same verdicts; feature_hits counts them all)");
+  cmd->add_option("--model", run->model,
+                  "box-dnn / box-lstm: the model file written by antcd learn train")
+      ->type_name("MODEL.pt");
   cmd->add_option("--out", run->out, "Write the result JSON here (atomically)");
   cmd->callback([run, &code] { code = run_run(*run); });
 

@@ -8,7 +8,9 @@
 //   test) over the object pair's actual colliding triangle pairs;
 // - Figure 3: share of colliding feature pairs found against the ant colony's size;
 // - Figure 4: detection rate against time for sphere-obb, aco and maco;
-// - Figure 5: detection rate against time for maco, pso, ga and exact.
+// - Figure 5: detection rate against time for maco, pso, ga and exact, plus box-dnn and box-lstm
+//   (our learned baselines, trained here on generated scenes, never this one) when antcd was built
+//   with libtorch (experiments/paper/learned.hpp).
 // It writes, into `out`: table1.md/.csv/.png, table2.md/.csv/.png, fig3.csv/.png, fig4.csv/.png,
 // fig5.csv/.png, report.md (our figures beside the paper's, with the differences explained), the
 // gnuplot scripts (*.gp) and the generated scene (scene/). Every file is written atomically.

@@ -33,6 +33,9 @@ Plan make_plan(bool quick) {
     p.scene_frames = 3;
     p.budgets = {1600, 25600, 409600};
     p.delta_scales = {0.5};
+    p.learned_scenes = 2;
+    p.learned_frames = 60;
+    p.learned_epochs = 15;
   } else {
     p.features = {1000, 2000, 3000, 4000, 5000};
     p.pair_frames = 4;

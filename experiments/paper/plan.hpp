@@ -53,6 +53,10 @@ struct Plan {
   std::size_t fine_vertices = 3000;    ///< tessellation of the measured pair
   std::uint32_t scene_samples = 5000;  ///< features per side in Figures 4-5 (paper: 5000)
   std::vector<double> delta_scales;    ///< centroid-threshold sensitivity (Figure 4 note)
+  // Figure 5's learned baselines (box-dnn, box-lstm): their generated training scenes.
+  std::size_t learned_scenes = 6;
+  std::size_t learned_frames = 150;
+  std::size_t learned_epochs = 40;
 };
 
 Plan make_plan(bool quick);

@@ -118,7 +118,8 @@ std::string scene_plot(const Results& r, const std::string& title,
     s << "set ylabel '" << (panel == 0 ? "recall" : "accuracy") << "'\n";
     s << "plot ";
     for (std::size_t k = 0; k < methods.size(); ++k) {
-      const bool single = methods[k] == "exact" || methods[k] == "sphere-obb";
+      const bool single = methods[k] == "exact" || methods[k] == "sphere-obb" ||
+                          r.learned.count(methods[k]) != 0;
       s << (k ? ", \\\n     " : "") << "$m" << k << " using 1:" << (panel == 0 ? 2 : 3) << " with "
         << (single ? "points pt 7 ps 2" : "linespoints lw 2 pt 7") << " lc rgb '"
         << color[methods[k]] << "' title '" << methods[k] << "'";

@@ -62,6 +62,8 @@ std::vector<SceneSeries> scene_series(const Results& r, const std::vector<std::s
       out.push_back({m, 0, r.exact});
     } else if (m == "sphere-obb") {
       out.push_back({m, 0, r.sphere_obb});
+    } else if (r.learned.count(m) != 0) {
+      out.push_back({m, 0, r.learned.at(m)});
     } else {
       for (const std::uint64_t b : r.plan.budgets) out.push_back({m, b, r.random.at({m, b})});
     }

@@ -87,6 +87,13 @@ struct SceneSeries {
   Tally tally;
 };
 
+/// How a learned baseline was trained (reported apart from its detection time).
+struct LearnedTraining {
+  std::size_t scenes = 0, frames = 0, samples = 0, positives = 0;
+  double data_seconds = 0;   ///< generating and labelling the training scenes
+  double train_seconds = 0;  ///< the optimisation
+};
+
 // ---- Everything measured ----
 
 struct Results {
@@ -111,6 +118,9 @@ struct Results {
   Tally exact, sphere_obb;
   std::map<std::pair<std::string, std::uint64_t>, Tally> random;  ///< (method, budget)
   std::map<double, Tally> sensitivity;  ///< delta scale → maco, top budget
+  /// Figure 5's learned baselines ("box-dnn", "box-lstm"); empty without libtorch.
+  std::map<std::string, Tally> learned;
+  std::map<std::string, LearnedTraining> learned_training;
   double seconds = 0;
 };
 

@@ -118,6 +118,13 @@ class ANTCD_API Scene {
   }
   [[nodiscard]] double build_ms() const { return build_ms_; }
 
+  /// The broad phase of one frame alone: the object pairs (i < j, sorted) whose root bounding
+  /// volumes (sphere, then OBB) are within `delta` — the pairs run_frame hands to the narrow phase.
+  /// For narrow phases built outside the library. Throws ArgumentError for a frame >= frames or a
+  /// negative or non-finite delta. Thread-safe.
+  [[nodiscard]] std::vector<std::pair<std::uint32_t, std::uint32_t>> broad_phase(
+      std::size_t frame, Scalar delta) const;
+
   /// Runs one frame. Throws ArgumentError for a frame >= frames or a bad query.
   [[nodiscard]] FrameResult run_frame(std::size_t frame, const SceneQuery& query) const;
 

@@ -46,6 +46,60 @@ Scene::Scene(SceneDescription description, const BuildOptions& options)
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
+std::vector<std::pair<std::uint32_t, std::uint32_t>> Scene::broad_phase(std::size_t frame,
+                                                                      Scalar delta) const {
+  if (frame >= description_.frames) {
+    throw ArgumentError("frame " + std::to_string(frame) + " out of range (scene has " +
+                        std::to_string(description_.frames) + " frames)");
+  }
+  if (!(delta >= 0) || !std::isfinite(delta)) throw ArgumentError("delta must be finite and >= 0");
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> candidates;
+  const std::size_t n = description_.objects.size();
+
+  // Poses and world bounding spheres of the roots.
+  std::vector<Transform> poses(n);
+  std::vector<Vec3> centers(n);
+  std::vector<Scalar> radii(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    poses[i] = description_.objects[i].pose(frame);
+    const Sphere& s = model_of(i).root().sphere;
+    centers[i] = poses[i].apply(s.center);
+    radii[i] = s.radius;
+  }
+
+  // Sweep and prune along x on the spheres' boxes, then y/z box overlap, the sphere test and the
+  // root OBB test, all widened by delta.
+  std::vector<std::uint32_t> order(n);
+  for (std::uint32_t i = 0; i < n; ++i) order[i] = i;
+  std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
+    const Scalar la = centers[a].x() - radii[a];
+    const Scalar lb = centers[b].x() - radii[b];
+    return la < lb || (la == lb && a < b);
+  });
+  std::vector<std::uint32_t> active;
+  for (const std::uint32_t i : order) {
+    const Scalar lo = centers[i].x() - radii[i];
+    std::erase_if(active, [&](std::uint32_t j) { return centers[j].x() + radii[j] + delta < lo; });
+    for (const std::uint32_t j : active) {
+      const Vec3 d = (centers[i] - centers[j]).cwiseAbs();
+      const Scalar reach = radii[i] + radii[j] + delta;
+      if (d.y() > reach || d.z() > reach) continue;
+      if (d.squaredNorm() > reach * reach) continue;
+      Obb oi = model_of(i).root().obb;
+      oi.axes = poses[i].rotation * oi.axes;
+      oi.center = poses[i].apply(oi.center);
+      Obb oj = model_of(j).root().obb;
+      oj.axes = poses[j].rotation * oj.axes;
+      oj.center = poses[j].apply(oj.center);
+      if (!geometry::obb_overlap(oi, oj, delta + 1e-9 * (reach + centers[i].norm()))) continue;
+      candidates.emplace_back(std::min(i, j), std::max(i, j));
+    }
+    active.push_back(i);
+  }
+  std::sort(candidates.begin(), candidates.end());
+  return candidates;
+}
+
 FrameResult Scene::run_frame(std::size_t frame, const SceneQuery& query) const {
   if (frame >= description_.frames) {
     throw ArgumentError("frame " + std::to_string(frame) + " out of range (scene has " +
@@ -73,48 +127,10 @@ FrameResult Scene::run_frame(std::size_t frame, const SceneQuery& query) const {
   result.frame = frame;
   const std::size_t n = description_.objects.size();
 
-  // Poses and world bounding spheres of the roots.
+  // Poses and the broad phase's candidate pairs.
   std::vector<Transform> poses(n);
-  std::vector<Vec3> centers(n);
-  std::vector<Scalar> radii(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    poses[i] = description_.objects[i].pose(frame);
-    const Sphere& s = model_of(i).root().sphere;
-    centers[i] = poses[i].apply(s.center);
-    radii[i] = s.radius;
-  }
-
-  // Sweep and prune along x on the spheres' boxes, then y/z box overlap, the sphere test and the
-  // root OBB test, all widened by delta.
-  const Scalar delta = query.delta;
-  std::vector<std::uint32_t> order(n);
-  for (std::uint32_t i = 0; i < n; ++i) order[i] = i;
-  std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
-    const Scalar la = centers[a].x() - radii[a];
-    const Scalar lb = centers[b].x() - radii[b];
-    return la < lb || (la == lb && a < b);
-  });
-  std::vector<std::uint32_t> active;
-  for (const std::uint32_t i : order) {
-    const Scalar lo = centers[i].x() - radii[i];
-    std::erase_if(active, [&](std::uint32_t j) { return centers[j].x() + radii[j] + delta < lo; });
-    for (const std::uint32_t j : active) {
-      const Vec3 d = (centers[i] - centers[j]).cwiseAbs();
-      const Scalar reach = radii[i] + radii[j] + delta;
-      if (d.y() > reach || d.z() > reach) continue;
-      if (d.squaredNorm() > reach * reach) continue;
-      Obb oi = model_of(i).root().obb;
-      oi.axes = poses[i].rotation * oi.axes;
-      oi.center = poses[i].apply(oi.center);
-      Obb oj = model_of(j).root().obb;
-      oj.axes = poses[j].rotation * oj.axes;
-      oj.center = poses[j].apply(oj.center);
-      if (!geometry::obb_overlap(oi, oj, delta + 1e-9 * (reach + centers[i].norm()))) continue;
-      result.candidates.emplace_back(std::min(i, j), std::max(i, j));
-    }
-    active.push_back(i);
-  }
-  std::sort(result.candidates.begin(), result.candidates.end());
+  for (std::size_t i = 0; i < n; ++i) poses[i] = description_.objects[i].pose(frame);
+  result.candidates = broad_phase(frame, query.delta);
 
   // Narrow phase, one independent task per candidate pair.
   const std::size_t m = result.candidates.size();

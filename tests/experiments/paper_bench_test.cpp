@@ -1,4 +1,5 @@
 // `antcd bench paper --quick`: every promised file is written, well formed and in range.
+#include "paper/learned.hpp"
 #include "paper/paper_bench.hpp"
 
 #include <gtest/gtest.h>
@@ -197,7 +198,11 @@ void check_scene_csv(const fs::path& path, std::size_t rows,
 
 void check_fig4_fig5(const fs::path& out) {
   check_scene_csv(out / "fig4.csv", 7, {"sphere-obb", "aco", "maco"});    // 1 + 2 x 3 budgets
-  check_scene_csv(out / "fig5.csv", 10, {"maco", "pso", "ga", "exact"});  // 3 x 3 budgets + 1
+  if (paper::learned_available()) {  // + box-dnn and box-lstm, one row each
+    check_scene_csv(out / "fig5.csv", 12, {"maco", "pso", "ga", "box-dnn", "box-lstm", "exact"});
+  } else {
+    check_scene_csv(out / "fig5.csv", 10, {"maco", "pso", "ga", "exact"});  // 3 x 3 budgets + 1
+  }
 }
 
 void check_report(const fs::path& out) {
@@ -207,6 +212,8 @@ void check_report(const fs::path& out) {
         "fig3.png", "fig4.png", "fig5.png", "paper", "LSTM", "quick"}) {
     EXPECT_NE(report.find(text), std::string::npos) << text;
   }
+  // The learned baselines' training is reported apart from their detection.
+  EXPECT_EQ(report.find("| box-dnn | 2 × 60 |") != std::string::npos, paper::learned_available());
   const std::string table1 = read_file(out / "table1.md");
   EXPECT_NE(table1.find("1000²"), std::string::npos);
   EXPECT_NE(table1.find("2000²"), std::string::npos);
