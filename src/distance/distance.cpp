@@ -50,7 +50,7 @@ class Search {
   bool prune(Scalar lb) {
     // A best distance that only rounded to 0 (no exact intersection found yet): every pair that
     // may touch is still examined, so that `intersecting` stays an exact answer.
-    if (best_ == 0 && !intersecting_) return lb > 0;
+    if (hunting()) return lb > 0;
     if (lb >= best_) return true;
     const Scalar tol = std::max(request_.abs_tolerance, request_.rel_tolerance * best_);
     if (lb > request_.upper_bound || lb >= best_ - tol) {
@@ -81,6 +81,8 @@ class Search {
   }
 
   [[nodiscard]] bool done() const { return intersecting_; }
+  /// Looking for an exact intersection: the best distance rounded to 0 without one.
+  [[nodiscard]] bool hunting() const { return best_ == 0 && !intersecting_; }
 
   void finish(const Transform& pose_a, std::span<const std::uint32_t> tris_a,
               std::span<const std::uint32_t> tris_b, DistanceResult& out) const {
@@ -135,48 +137,57 @@ DistanceResult distance(const Model& a, const Transform& pose_a, const Model& b,
     return std::max(sphere, detail::obb_gap(na.obb, nb.obb, rot, trans) - frame.margin);
   };
 
-  // B's leaf triangles in A's frame with their boxes, kept while consecutive leaf pairs share B's
-  // leaf; leaves larger than the cache are mapped triangle by triangle.
+  // B's leaf triangles in A's frame with their boxes and unit normals, in chunks of kCached,
+  // kept while consecutive leaf pairs share the chunk (the walk descends A under a fixed B node).
+  struct Mapped {
+    std::array<Vec3, 3> v;
+    Vec3 lo, hi, n;
+  };
   constexpr std::uint32_t kCached = 8;
-  std::array<Vec3, 3 * kCached> tri_b;
-  std::array<Vec3, kCached> lo_b;
-  std::array<Vec3, kCached> hi_b;
-  std::uint32_t cached_leaf = UINT32_MAX;
-  const auto map_b = [&](std::uint32_t jb, Vec3* out, Vec3& lo, Vec3& hi) {
-    for (int v = 0; v < 3; ++v) out[v] = frame.b_to_a.apply(verts_b[3 * jb + v]);
-    lo = out[0].cwiseMin(out[1]).cwiseMin(out[2]);
-    hi = out[0].cwiseMax(out[1]).cwiseMax(out[2]);
+  std::array<Mapped, kCached> chunk;
+  std::uint32_t chunk_first = UINT32_MAX;  // leaf-order index of chunk[0]
+  const auto unit_normal = [](const Vec3* t) {
+    const Vec3 n = (t[1] - t[0]).cross(t[2] - t[0]);
+    const Scalar len = n.norm();
+    return len > 0 ? Vec3(n / len) : Vec3::Zero();
   };
   const auto leaf_pair = [&](std::uint32_t la, std::uint32_t lb) {
     const BvhNode& na = nodes_a[la];
     const BvhNode& nb = nodes_b[lb];
-    const bool cached = nb.count <= kCached;
-    if (cached && cached_leaf != lb) {
-      for (std::uint32_t k = 0; k < nb.count; ++k) {
-        map_b(nb.first_or_right + k, &tri_b[3 * k], lo_b[k], hi_b[k]);
+    for (std::uint32_t first = nb.first_or_right; first < nb.first_or_right + nb.count;
+         first += kCached) {
+      const std::uint32_t count = std::min(kCached, nb.first_or_right + nb.count - first);
+      if (chunk_first != first) {
+        for (std::uint32_t k = 0; k < count; ++k) {
+          Mapped& m = chunk[k];
+          for (int v = 0; v < 3; ++v) m.v[v] = frame.b_to_a.apply(verts_b[3 * (first + k) + v]);
+          m.lo = m.v[0].cwiseMin(m.v[1]).cwiseMin(m.v[2]);
+          m.hi = m.v[0].cwiseMax(m.v[1]).cwiseMax(m.v[2]);
+          m.n = unit_normal(m.v.data());
+        }
+        chunk_first = first;
       }
-      cached_leaf = lb;
-    }
-    for (std::uint32_t ia = na.first_or_right; ia < na.first_or_right + na.count; ++ia) {
-      const Vec3* ta = &verts_a[3 * ia];
-      const Vec3 lo_a = ta[0].cwiseMin(ta[1]).cwiseMin(ta[2]);
-      const Vec3 hi_a = ta[0].cwiseMax(ta[1]).cwiseMax(ta[2]);
-      for (std::uint32_t k = 0; k < nb.count; ++k) {
-        const std::uint32_t jb = nb.first_or_right + k;
-        std::array<Vec3, 3> mapped;
-        const Vec3* tb = &tri_b[3 * k];
-        Vec3 lo, hi;
-        if (!cached) {
-          map_b(jb, mapped.data(), lo, hi);
-          tb = mapped.data();
+      for (std::uint32_t ia = na.first_or_right; ia < na.first_or_right + na.count; ++ia) {
+        const Vec3* ta = &verts_a[3 * ia];
+        const Vec3 lo_a = ta[0].cwiseMin(ta[1]).cwiseMin(ta[2]);
+        const Vec3 hi_a = ta[0].cwiseMax(ta[1]).cwiseMax(ta[2]);
+        const Vec3 n_a = unit_normal(ta);
+        for (std::uint32_t k = 0; k < count; ++k) {
+          const Mapped& m = chunk[k];
+          // The box gap is exact in its sign (monotone rounding); the plane gaps are rounded, so
+          // they are left out while an exact intersection is being looked for.
+          Scalar lb = detail::box_gap(lo_a, hi_a, m.lo, m.hi);
+          if (!search.hunting()) {
+            lb = std::max({lb, detail::plane_gap(n_a, ta[0], m.v.data()),
+                           detail::plane_gap(m.n, m.v[0], ta)});
+          }
+          if (search.prune(lb)) continue;
+          ++result.triangle_tests;
+          search.offer(
+              geometry::triangle_distance(ta[0], ta[1], ta[2], m.v[0], m.v[1], m.v[2]), ta,
+              m.v.data(), ia, first + k);
+          if (search.done()) return;
         }
-        if (search.prune(detail::box_gap(lo_a, hi_a, cached ? lo_b[k] : lo, cached ? hi_b[k] : hi))) {
-          continue;
-        }
-        ++result.triangle_tests;
-        search.offer(geometry::triangle_distance(ta[0], ta[1], ta[2], tb[0], tb[1], tb[2]), ta, tb,
-                     ia, jb);
-        if (search.done()) return;
       }
     }
   };

@@ -55,4 +55,14 @@ inline Scalar box_gap(const Vec3& lo_a, const Vec3& hi_a, const Vec3& lo_b, cons
   return g.norm();
 }
 
+/// Lower bound from a triangle's plane (through p0, unit normal n): when the three points `q` lie
+/// strictly on one side of it, their smallest distance to it; else 0. (Rounded, so it may exceed
+/// the exact value by a few ulps: not for deciding a touch.)
+inline Scalar plane_gap(const Vec3& n, const Vec3& p0, const Vec3* q) {
+  const Scalar d0 = n.dot(q[0] - p0);
+  const Scalar d1 = n.dot(q[1] - p0);
+  const Scalar d2 = n.dot(q[2] - p0);
+  return std::max({Scalar{0}, std::min({d0, d1, d2}), -std::max({d0, d1, d2})});
+}
+
 }  // namespace antcd::detail
