@@ -81,6 +81,12 @@ class Search {
   }
 
   [[nodiscard]] bool done() const { return intersecting_; }
+  /// Any pair whose bound exceeds this is pruned.
+  [[nodiscard]] Scalar cutoff() const {
+    if (hunting()) return 0;
+    const Scalar tol = std::max(request_.abs_tolerance, request_.rel_tolerance * best_);
+    return std::min(best_ - tol, request_.upper_bound);
+  }
   /// Looking for an exact intersection: the best distance rounded to 0 without one.
   [[nodiscard]] bool hunting() const { return best_ == 0 && !intersecting_; }
 
@@ -126,15 +132,38 @@ DistanceResult distance(const Model& a, const Transform& pose_a, const Model& b,
   const auto verts_a = a.leaf_vertices();
   const auto verts_b = b.leaf_vertices();
 
+  // A node of B with its volumes mapped into A's frame (the box only when needed): while the walk
+  // descends A, both child pairs share it.
+  struct MappedNode {
+    std::uint32_t index = UINT32_MAX;
+    Vec3 sphere_center;
+    Mat3 axes;
+    Vec3 center;
+    bool has_box = false;
+  };
+  const auto map_node = [&](std::uint32_t ib, MappedNode& m) {
+    if (m.index == ib) return;
+    m.index = ib;
+    m.sphere_center = rot * nodes_b[ib].sphere.center + trans;
+    m.has_box = false;
+  };
   // Lower bound for a node pair; the OBB gap is only computed when the sphere gap cannot prune.
-  const auto bound = [&](std::uint32_t ia, std::uint32_t ib) {
+  const auto bound = [&](std::uint32_t ia, MappedNode& mb) {
     ++result.node_pairs;
     const BvhNode& na = nodes_a[ia];
-    const BvhNode& nb = nodes_b[ib];
-    const Scalar sphere = detail::sphere_gap(na.sphere, rot * nb.sphere.center + trans,
-                                             nb.sphere.radius) - frame.margin;
+    const BvhNode& nb = nodes_b[mb.index];
+    const Scalar sphere =
+        detail::sphere_gap(na.sphere, mb.sphere_center, nb.sphere.radius) - frame.margin;
     if (search.prune(sphere)) return sphere;
-    return std::max(sphere, detail::obb_gap(na.obb, nb.obb, rot, trans) - frame.margin);
+    if (!mb.has_box) {
+      mb.axes = rot * nb.obb.axes;
+      mb.center = rot * nb.obb.center + trans;
+      mb.has_box = true;
+    }
+    const Scalar obb = detail::obb_gap(na.obb, mb.axes, mb.center, nb.obb.half_extents,
+                                       search.cutoff() + frame.margin) -
+                       frame.margin;
+    return std::max(sphere, obb);
   };
 
   // B's leaf triangles in A's frame with their boxes and unit normals, in chunks of kCached,
@@ -200,7 +229,9 @@ DistanceResult distance(const Model& a, const Transform& pose_a, const Model& b,
   // never holds more than depth(A) + depth(B) entries; the build caps each depth far below.
   std::array<Item, 512> stack;
   std::size_t top = 0;
-  if (const Scalar lb = bound(0, 0); !search.prune(lb)) stack[top++] = {0, 0, lb};
+  MappedNode mapped[2];
+  map_node(0, mapped[0]);
+  if (const Scalar lb = bound(0, mapped[0]); !search.prune(lb)) stack[top++] = {0, 0, lb};
   while (top > 0 && !search.done()) {
     const Item item = stack[--top];
     if (search.prune(item.lb)) continue;  // the best distance may have dropped since the push
@@ -219,8 +250,14 @@ DistanceResult distance(const Model& a, const Transform& pose_a, const Model& b,
       first = {item.ia, item.ib + 1, 0};
       second = {item.ia, nb.first_or_right, 0};
     }
-    first.lb = bound(first.ia, first.ib);
-    second.lb = bound(second.ia, second.ib);
+    map_node(first.ib, mapped[0]);
+    first.lb = bound(first.ia, mapped[0]);
+    if (second.ib != first.ib) {
+      map_node(second.ib, mapped[1]);
+      second.lb = bound(second.ia, mapped[1]);
+    } else {
+      second.lb = bound(second.ia, mapped[0]);
+    }
     if (second.lb < first.lb) std::swap(first, second);
     // The farther pair is pushed first so that the nearer one is examined first.
     if (!search.prune(second.lb)) stack[top++] = second;

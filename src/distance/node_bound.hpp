@@ -17,19 +17,22 @@ inline Scalar sphere_gap(const Sphere& a, const Vec3& cb, Scalar rb) {
 /// Largest gap between the two boxes' projections over the 15 separating-axis candidates (the
 /// face normals of each box and the 9 cross products of their edges), each axis normalised, 0 when
 /// no axis separates them. Projection onto a unit axis never lengthens a segment, so this is a
-/// lower bound of the distance between any point of `a` and any point of `b`. B is given in its
-/// own frame with the rigid motion (rot, trans) into A's frame.
-inline Scalar obb_gap(const Obb& a, const Obb& b, const Mat3& rot, const Vec3& trans) {
-  const Mat3 r = a.axes.transpose() * (rot * b.axes);
-  const Vec3 t = a.axes.transpose() * (rot * b.center + trans - a.center);
+/// lower bound of the distance between any point of `a` and any point of `b`. B's box is given in
+/// A's frame (axes as columns, centre) with its half extents `eb`. Returns as soon as the gap
+/// exceeds `stop` (the caller only needs to know that it does).
+inline Scalar obb_gap(const Obb& a, const Mat3& b_axes, const Vec3& b_center, const Vec3& eb,
+                      Scalar stop) {
+  const Mat3 r = a.axes.transpose() * b_axes;
+  const Vec3 t = a.axes.transpose() * (b_center - a.center);
   const Vec3& ea = a.half_extents;
-  const Vec3& eb = b.half_extents;
   const Mat3 abs_r = r.cwiseAbs();
   Scalar gap = 0;
   for (int i = 0; i < 3; ++i) gap = std::max(gap, std::abs(t[i]) - ea[i] - abs_r.row(i).dot(eb));
+  if (gap > stop) return gap;
   for (int j = 0; j < 3; ++j) {
     gap = std::max(gap, std::abs(t.dot(r.col(j))) - abs_r.col(j).dot(ea) - eb[j]);
   }
+  if (gap > stop) return gap;
   for (int i = 0; i < 3; ++i) {
     const int i1 = (i + 1) % 3;
     const int i2 = (i + 2) % 3;
