@@ -11,6 +11,8 @@
 #include <limits>
 #include <random>
 #include <string>
+#include <tuple>
+#include <vector>
 
 #include "support/test_support.hpp"
 
