@@ -29,6 +29,8 @@
 #pragma once
 
 #include <antcd/bvh.hpp>
+#include <antcd/error.hpp>
+#include <antcd/export.hpp>
 
 #include <cstdint>
 #include <limits>
@@ -68,9 +70,9 @@ struct DistanceResult {
   std::uint64_t triangle_tests = 0;  ///< exact triangle–triangle distances computed
 };
 
-/// Minimum distance between the surfaces of two posed models. Throws std::invalid_argument when
-/// a request field is out of range (negative or NaN bound or tolerance, rel_tolerance >= 1).
-DistanceResult distance(const Model& a, const Transform& pose_a, const Model& b,
+/// Minimum distance between the surfaces of two posed models. Throws ArgumentError when a request
+/// field is out of range (negative or NaN bound or tolerance, rel_tolerance >= 1).
+ANTCD_API DistanceResult distance(const Model& a, const Transform& pose_a, const Model& b,
                         const Transform& pose_b, const DistanceRequest& request = {});
 
 }  // namespace antcd

@@ -46,7 +46,7 @@ ANTCD_API void validate_mesh(const Mesh& mesh, std::string_view source);
 /// indices is shared with exactly one other triangle) and consistently oriented (the two triangles
 /// traverse their common edge in opposite directions). Triangles with a repeated index are ignored.
 /// Topology only: vertices are compared by index, so duplicated vertices make the mesh open.
-bool is_closed(const Mesh& mesh);
+ANTCD_API bool is_closed(const Mesh& mesh);
 
 /// Writes a mesh as Wavefront OBJ (atomically: a temporary file beside it, then rename).
 /// Throws Error on failure.

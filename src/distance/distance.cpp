@@ -16,7 +16,6 @@
 #include <array>
 #include <cmath>
 #include <limits>
-#include <stdexcept>
 #include <string>
 
 namespace antcd {
@@ -27,15 +26,15 @@ constexpr Scalar kInf = std::numeric_limits<Scalar>::infinity();
 
 void check_request(const DistanceRequest& r) {
   if (!(r.upper_bound >= 0)) {
-    throw std::invalid_argument("distance: upper_bound must be >= 0 (or +inf), got " +
+    throw ArgumentError("distance: upper_bound must be >= 0 (or +inf), got " +
                                 std::to_string(r.upper_bound));
   }
   if (!(r.abs_tolerance >= 0) || !std::isfinite(r.abs_tolerance)) {
-    throw std::invalid_argument("distance: abs_tolerance must be finite and >= 0, got " +
+    throw ArgumentError("distance: abs_tolerance must be finite and >= 0, got " +
                                 std::to_string(r.abs_tolerance));
   }
   if (!(r.rel_tolerance >= 0 && r.rel_tolerance < 1)) {
-    throw std::invalid_argument("distance: rel_tolerance must be in [0, 1), got " +
+    throw ArgumentError("distance: rel_tolerance must be in [0, 1), got " +
                                 std::to_string(r.rel_tolerance));
   }
 }

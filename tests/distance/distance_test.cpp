@@ -272,7 +272,7 @@ TEST(Distance, RejectsInvalidRequests) {
     request.upper_bound = ub;
     request.abs_tolerance = at;
     request.rel_tolerance = rt;
-    EXPECT_THROW(distance(a, id, a, id, request), std::invalid_argument);
+    EXPECT_THROW(distance(a, id, a, id, request), ArgumentError);
   }
 }
 
