@@ -20,6 +20,7 @@ struct CollideOptions {
   std::string pose_a = "0,0,0", pose_b = "0,0,0";
   double delta = 0;
   bool all = false;
+  bool volume = false;
   bool json = false;
   std::uint32_t leaf_size = 4;
   std::string covariance = "area";
@@ -41,6 +42,7 @@ int run_collide(const CollideOptions& o) {
   CollisionRequest request;
   request.delta = o.delta;
   request.all_contacts = o.all;
+  request.volume = o.volume;
   CollisionResult result;
   const auto start = std::chrono::steady_clock::now();
   collide(a, pa, b, pb, request, result);
@@ -53,6 +55,10 @@ int run_collide(const CollideOptions& o) {
     j["mesh_b"] = o.mesh_b;
     j["delta"] = o.delta;
     j["colliding"] = result.colliding;
+    if (o.volume) {
+      j["contained"] = result.contained;
+      j["surface_only"] = result.surface_only;
+    }
     j["query_ms"] = query_ms;
     nlohmann::json contacts = nlohmann::json::array();
     for (const Contact& c : result.contacts) {
@@ -72,7 +78,10 @@ int run_collide(const CollideOptions& o) {
   }
   std::printf("A: %s (%zu triangles)\nB: %s (%zu triangles)\ndelta: %g\n", o.mesh_a.c_str(),
               a.stats().triangles, o.mesh_b.c_str(), b.stats().triangles, o.delta);
-  std::printf("verdict: %s\n", result.colliding ? "COLLIDING" : "separate");
+  std::printf("verdict: %s%s\n", result.colliding ? "COLLIDING" : "separate",
+              result.contained      ? " (one model lies inside the other)"
+              : result.surface_only ? " (surfaces only: a model is not closed)"
+                                    : "");
   std::printf("query: %.3f ms, %llu node pairs, %llu leaf pairs, %llu triangle tests\n", query_ms,
               static_cast<unsigned long long>(result.traversal.node_pairs),
               static_cast<unsigned long long>(result.traversal.leaf_pairs),
@@ -103,6 +112,8 @@ void add_collide_command(CLI::App& app, int& code) {
       ->check(non_negative_finite());
   cmd->add_flag("--all", opts->all,
                 "Report every colliding triangle pair (default: stop at first)");
+  cmd->add_flag("--volume", opts->volume,
+                "Closed models also collide when one lies wholly inside the other");
   cmd->add_flag("--json", opts->json, "Print the result as JSON");
   cmd->add_option("--leaf-size", opts->leaf_size, "Triangles per leaf of the hierarchy")
       ->check(CLI::Range(1, 1 << 20));

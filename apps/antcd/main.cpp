@@ -36,6 +36,7 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", version);
   int code = 0;
   antcd::cli::add_collide_command(app, code);
+  antcd::cli::add_distance_command(app, code);
   antcd::cli::add_info_command(app, code);
   antcd::cli::add_demo_command(app, code);
   antcd::cli::add_scene_commands(app, code);

@@ -66,6 +66,9 @@ class ANTCD_API Model {
   /// Vertex positions of leaf_triangles()[k], packed: 3 per triangle, model frame.
   [[nodiscard]] std::span<const Vec3> leaf_vertices() const { return leaf_vertices_; }
   [[nodiscard]] const BvhStats& stats() const { return stats_; }
+  /// The mesh is closed and consistently oriented (antcd::is_closed, decided at construction):
+  /// it bounds a solid, and volume queries (CollisionRequest::volume) apply to it.
+  [[nodiscard]] bool is_closed() const { return closed_; }
 
  private:
   Mesh mesh_;
@@ -75,6 +78,7 @@ class ANTCD_API Model {
   std::vector<std::uint32_t> leaf_triangles_;
   std::vector<Vec3> leaf_vertices_;
   BvhStats stats_;
+  bool closed_ = false;
 };
 
 /// Counters of one traversal, for tests and tuning.

@@ -5,8 +5,10 @@
 //   world (p_world = R p + t). Contact points are returned in WORLD coordinates.
 // - What counts as colliding: with delta == 0, the two surfaces share at least one point.
 //   Triangles are closed, so touching at a vertex or along an edge, and coplanar overlap, collide.
-//   Nested models whose surfaces do not meet (one entirely inside the other) do NOT collide: antcd
-//   tests surfaces, not volumes.
+//   Nested models whose surfaces do not meet (one entirely inside the other) do NOT collide by
+//   default: antcd tests surfaces. With CollisionRequest::volume, two closed models (see
+//   Model::is_closed) also collide when one lies wholly inside the other; open models keep the
+//   surface semantics and the result says so (surface_only).
 // - delta (the paper's collision threshold δ, Eq. 5) is a distance in mesh units, >= 0: the models
 //   collide when some triangle of A is within distance delta of some triangle of B. Distances are
 //   exact triangle–triangle distances, never centroid distances.
@@ -30,6 +32,11 @@ struct CollisionRequest {
   bool all_contacts = false;
   /// With all_contacts, stop after this many contacts (0 = no limit).
   std::size_t max_contacts = 0;
+  /// Solids: when both models are closed and their surfaces do not meet (within delta), they
+  /// still collide when a vertex of one lies inside the other (winding number of one vertex of
+  /// each, so one model wholly inside the other; a model made of several disjoint closed parts is
+  /// represented by the vertex of one part). Skipped when a surface contact was found.
+  bool volume = false;
 };
 
 struct Contact {
@@ -46,6 +53,10 @@ struct CollisionResult {
   std::vector<Contact> contacts;
   TraversalStats traversal;
   std::uint64_t triangle_tests = 0;
+  /// With request.volume: colliding because one model lies inside the other (no contacts then).
+  bool contained = false;
+  /// With request.volume: a model is not closed, so only the surfaces were tested.
+  bool surface_only = false;
 
   /// Empties the result but keeps the contacts' storage, so a reused result does not allocate.
   void clear() {
@@ -53,6 +64,8 @@ struct CollisionResult {
     contacts.clear();
     traversal = {};
     triangle_tests = 0;
+    contained = false;
+    surface_only = false;
   }
 };
 

@@ -59,6 +59,11 @@ ANTCD_API Scalar orient3d(const Vec3& a, const Vec3& b, const Vec3& c, const Vec
 ANTCD_API bool triangles_intersect(const Vec3& a0, const Vec3& a1, const Vec3& a2, const Vec3& b0,
                                    const Vec3& b1, const Vec3& b2, Vec3* point = nullptr);
 
+/// Signed solid angle (steradians, in [-2π, 2π]) of triangle (a, b, c) seen from p: positive when
+/// (a, b, c) is counter-clockwise seen from p. Summed over a closed, consistently oriented surface
+/// it is ±4π for a point inside and 0 outside (the winding number times 4π).
+ANTCD_API Scalar solid_angle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c);
+
 /// Squared distance from p to the closed triangle (a, b, c); the closest point is written to
 /// `closest` when not null.
 ANTCD_API Scalar point_triangle_distance_squared(const Vec3& p, const Vec3& a, const Vec3& b,

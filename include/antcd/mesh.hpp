@@ -42,6 +42,12 @@ ANTCD_API Mesh load_mesh(const std::filesystem::path& path);
 /// Throws MeshError with `source` as the name.
 ANTCD_API void validate_mesh(const Mesh& mesh, std::string_view source);
 
+/// True when the mesh bounds a solid: closed (every edge of a triangle with three distinct vertex
+/// indices is shared with exactly one other triangle) and consistently oriented (the two triangles
+/// traverse their common edge in opposite directions). Triangles with a repeated index are ignored.
+/// Topology only: vertices are compared by index, so duplicated vertices make the mesh open.
+ANTCD_API bool is_closed(const Mesh& mesh);
+
 /// Writes a mesh as Wavefront OBJ (atomically: a temporary file beside it, then rename).
 /// Throws Error on failure.
 ANTCD_API void save_obj(const Mesh& mesh, const std::filesystem::path& path);

@@ -78,6 +78,7 @@ Model::Model(Mesh mesh, const BuildOptions& options, std::string source)
     throw antcd::ArgumentError(source_ + ": leaf size must be at least 1");
   }
   validate_mesh(mesh_, source_);
+  closed_ = antcd::is_closed(mesh_);
 
   std::vector<BuildTriangle> tris;
   tris.reserve(mesh_.triangles.size());

@@ -2,6 +2,7 @@
 #include <antcd/collide.hpp>
 
 #include "bvh/traverse.hpp"
+#include "exact/volume.hpp"
 
 #include <array>
 #include <cmath>
@@ -95,6 +96,18 @@ bool collide(const Model& a, const Transform& pose_a, const Model& b, const Tran
   // A query that stops at its first contact visits the nearer children first.
   result.traversal = limit == 1 ? detail::dual_traverse<true>(a, b, frame, on_leaf)
                                 : detail::dual_traverse<false>(a, b, frame, on_leaf);
+  if (request.volume) {
+    if (!a.is_closed() || !b.is_closed()) {
+      result.surface_only = true;
+    } else if (!result.colliding) {
+      // Surfaces apart: the solids meet only if one lies wholly inside the other, which one
+      // vertex of each tells (a vertex on the other surface would have been a surface contact).
+      const Vec3 va_in_b = frame.b_to_a.inverse().apply(a.leaf_vertices().front());
+      const Vec3 vb_in_a = frame.b_to_a.apply(b.leaf_vertices().front());
+      result.contained = detail::inside_closed(b, va_in_b) || detail::inside_closed(a, vb_in_a);
+      result.colliding = result.contained;
+    }
+  }
   return result.colliding;
 }
 

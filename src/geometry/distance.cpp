@@ -25,8 +25,35 @@ Scalar point_segment_distance_squared(const Vec3& p, const Vec3& a, const Vec3& 
   return (p - c).squaredNorm();
 }
 
-// Minimum over the 6 vertex-triangle and 9 edge-edge distances: the squared distance of two
-// disjoint triangles, with a closest pair.
+// The interior critical point of |p(s) - q(t)|² for p(s) = p0 + s (p1 - p0), q(t) = q0 + t (q1 - q0):
+// when both parameters lie in [0, 1], its squared distance (x, y receive the points); otherwise,
+// or for parallel segments, +inf. The other candidates of a segment pair's minimum have an end
+// point of one segment, which callers cover separately.
+Scalar segment_interior_distance_squared(const Vec3& p0, const Vec3& p1, const Vec3& q0,
+                                         const Vec3& q1, Vec3& x, Vec3& y) {
+  const Vec3 d1 = p1 - p0;
+  const Vec3 d2 = q1 - q0;
+  const Vec3 r = p0 - q0;
+  const Scalar a = d1.squaredNorm();
+  const Scalar e = d2.squaredNorm();
+  const Scalar b = d1.dot(d2);
+  const Scalar denom = a * e - b * b;
+  x = p0;
+  y = q0;
+  if (!(denom > 0)) return std::numeric_limits<Scalar>::infinity();
+  const Scalar cc = d1.dot(r);
+  const Scalar f = d2.dot(r);
+  const Scalar s = (b * f - cc * e) / denom;
+  const Scalar t = (a * f - b * cc) / denom;
+  if (!(s >= 0 && s <= 1 && t >= 0 && t <= 1)) return std::numeric_limits<Scalar>::infinity();
+  x = p0 + s * d1;
+  y = q0 + t * d2;
+  return (x - y).squaredNorm();
+}
+
+// The squared distance of two disjoint triangles with a closest pair: the minimum is attained at
+// a vertex of one and a point of the other (6 vertex-triangle distances) or at interior points of
+// two edges (9 edge-pair critical points; an edge pair's end point cases are vertex-triangle ones).
 Scalar disjoint_distance_squared(const Vec3* const A[3], const Vec3* const B[3], Vec3& pa,
                                  Vec3& pb) {
   Scalar best = std::numeric_limits<Scalar>::infinity();
@@ -50,7 +77,7 @@ Scalar disjoint_distance_squared(const Vec3* const A[3], const Vec3* const B[3],
   for (int i = 0; i < 3; ++i) {
     for (int j = 0; j < 3; ++j) {
       const Scalar d =
-          segment_segment_distance_squared(*A[i], *A[(i + 1) % 3], *B[j], *B[(j + 1) % 3], &c, &cq);
+          segment_interior_distance_squared(*A[i], *A[(i + 1) % 3], *B[j], *B[(j + 1) % 3], c, cq);
       if (d < best) {
         best = d;
         pa = c;
@@ -157,7 +184,7 @@ Scalar segment_segment_distance_squared(const Vec3& p0, const Vec3& p1, const Ve
   // The minimum is attained either with both parameters interior (then at the unique critical
   // point of non-parallel segments) or with an end point of one segment; parallel segments
   // always have a minimising pair involving an end point. So the minimum over the four
-  // end-point-to-segment distances and the clamped critical point is exact.
+  // end-point-to-segment distances and the interior critical point is exact.
   Vec3 bp = p0, bq = q0, c;
   Scalar best = std::numeric_limits<Scalar>::infinity();
   auto consider = [&](Scalar d, const Vec3& x, const Vec3& y) {
@@ -171,24 +198,10 @@ Scalar segment_segment_distance_squared(const Vec3& p0, const Vec3& p1, const Ve
   consider(point_segment_distance_squared(p1, q0, q1, &c), p1, c);
   consider(point_segment_distance_squared(q0, p0, p1, &c), c, q0);
   consider(point_segment_distance_squared(q1, p0, p1, &c), c, q1);
-
-  const Vec3 d1 = p1 - p0;
-  const Vec3 d2 = q1 - q0;
-  const Vec3 r = p0 - q0;
-  const Scalar a = d1.squaredNorm();
-  const Scalar e = d2.squaredNorm();
-  const Scalar b = d1.dot(d2);
-  const Scalar denom = a * e - b * b;
-  if (denom > 0 && best > 0) {
-    const Scalar cc = d1.dot(r);
-    const Scalar f = d2.dot(r);
-    // Critical point of |r + s d1 - t d2|^2; clamping keeps it a pair of points of the segments,
-    // so it can only improve the minimum when it is (nearly) the true interior optimum.
-    const Scalar s = std::clamp((b * f - cc * e) / denom, 0.0, 1.0);
-    const Scalar t = std::clamp((a * f - b * cc) / denom, 0.0, 1.0);
-    const Vec3 x = p0 + s * d1;
-    const Vec3 y = q0 + t * d2;
-    consider((x - y).squaredNorm(), x, y);
+  if (best > 0) {
+    Vec3 x = p0, y = q0;
+    const Scalar d = segment_interior_distance_squared(p0, p1, q0, q1, x, y);
+    consider(d, x, y);
   }
   if (cp != nullptr) *cp = bp;
   if (cq != nullptr) *cq = bq;

@@ -3,6 +3,7 @@
 // ThreadSanitizer too (scripts/sanitize.sh tsan runs the tests named Concurrency*), so the work
 // per thread is kept small.
 #include <antcd/collide.hpp>
+#include <antcd/distance.hpp>
 #include <antcd/random.hpp>
 #include <antcd/scene.hpp>
 
@@ -121,6 +122,7 @@ struct PoseCase {
   CollisionResult boolean;
   CollisionResult all;
   bool volumes = false;
+  DistanceResult distance;
   SearchResult maco;
   SearchResult ga;
 };
@@ -137,6 +139,7 @@ TEST(Concurrency, ModelQueriesFromManyThreadsMatchSingleThreaded) {
     c.boolean = collide(a, c.pose_a, b, c.pose_b, {});
     c.all = collide(a, c.pose_a, b, c.pose_b, {.delta = 0.01, .all_contacts = true});
     c.volumes = any_leaf_pair_overlaps(a, c.pose_a, b, c.pose_b, 0.0);
+    c.distance = distance(a, c.pose_a, b, c.pose_b);
     SearchRequest maco;
     maco.method = Method::Maco;
     maco.seed = 99;
@@ -164,6 +167,12 @@ TEST(Concurrency, ModelQueriesFromManyThreadsMatchSingleThreaded) {
                  ? 0
                  : 1;
       bad += any_leaf_pair_overlaps(a, c.pose_a, b, c.pose_b, 0.0) == c.volumes ? 0 : 1;
+      const DistanceResult d = distance(a, c.pose_a, b, c.pose_b);
+      bad += d.distance == c.distance.distance && d.point_a == c.distance.point_a &&
+                     d.point_b == c.distance.point_b && d.triangle_a == c.distance.triangle_a &&
+                     d.triangle_b == c.distance.triangle_b
+                 ? 0
+                 : 1;
       if ((k + static_cast<std::size_t>(t)) % 3 == 0) {  // a third of the random searches
         SearchRequest maco;
         maco.method = Method::Maco;

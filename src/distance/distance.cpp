@@ -1,0 +1,269 @@
+// Minimum distance between two posed models: branch-and-bound over the two Sphere-OBB
+// hierarchies, exact triangle–triangle distances at the leaves.
+//
+// Every node pair carries a lower bound of the distance between its contents (the larger of the
+// sphere gap and the OBB separating-axis gap, minus a rounding allowance). The walk is depth
+// first, nearer child pair first, so a close leaf pair is reached early and its distance prunes
+// most of the rest. A pair is pruned when its bound cannot beat the best distance found (minus
+// the request's tolerance) or exceeds the request's upper bound; the smallest bound pruned below
+// the best distance is kept, which makes DistanceResult::lower_bound a proof.
+#include <antcd/distance.hpp>
+
+#include "bvh/traverse.hpp"
+#include "distance/node_bound.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <string>
+
+namespace antcd {
+
+namespace {
+
+constexpr Scalar kInf = std::numeric_limits<Scalar>::infinity();
+
+void check_request(const DistanceRequest& r) {
+  if (!(r.upper_bound >= 0)) {
+    throw ArgumentError("distance: upper_bound must be >= 0 (or +inf), got " +
+                                std::to_string(r.upper_bound));
+  }
+  if (!(r.abs_tolerance >= 0) || !std::isfinite(r.abs_tolerance)) {
+    throw ArgumentError("distance: abs_tolerance must be finite and >= 0, got " +
+                                std::to_string(r.abs_tolerance));
+  }
+  if (!(r.rel_tolerance >= 0 && r.rel_tolerance < 1)) {
+    throw ArgumentError("distance: rel_tolerance must be in [0, 1), got " +
+                                std::to_string(r.rel_tolerance));
+  }
+}
+
+// The search state: best pair so far and the pruning rule.
+class Search {
+ public:
+  explicit Search(const DistanceRequest& r) : request_(r) {}
+
+  // True when a pair whose distance is at least `lb` need not be examined. Remembers the bound
+  // when it was below the best distance (skipped on the tolerance or upper-bound ground).
+  bool prune(Scalar lb) {
+    // A best distance that only rounded to 0 (no exact intersection found yet): every pair that
+    // may touch is still examined, so that `intersecting` stays an exact answer.
+    if (hunting()) return lb > 0;
+    if (lb >= best_) return true;
+    const Scalar tol = std::max(request_.abs_tolerance, request_.rel_tolerance * best_);
+    if (lb > request_.upper_bound || lb >= best_ - tol) {
+      min_skipped_ = std::min(min_skipped_, lb);
+      return true;
+    }
+    return false;
+  }
+
+  // `d` for the triangles (a0, a1, a2), (b0, b1, b2): leaf-order indices ia, jb.
+  void offer(const geometry::TriangleDistance& d, const Vec3* ta, const Vec3* tb, std::uint32_t ia,
+             std::uint32_t jb) {
+    if (d.distance == 0 && !intersecting_) {
+      // Zero is either an exact intersection or the rounding of a tiny positive distance; only
+      // the exact predicate tells them apart (the rare case: surfaces within rounding).
+      if (geometry::triangles_intersect(ta[0], ta[1], ta[2], tb[0], tb[1], tb[2])) {
+        intersecting_ = true;
+        best_ = kInf;  // the intersecting pair replaces any zero-rounded one
+      }
+    }
+    if (d.distance < best_) {
+      best_ = d.distance;
+      pa_ = d.pa;
+      pb_ = d.pb;
+      ia_ = ia;
+      jb_ = jb;
+    }
+  }
+
+  [[nodiscard]] bool done() const { return intersecting_; }
+  /// Any pair whose bound exceeds this is pruned.
+  [[nodiscard]] Scalar cutoff() const {
+    if (hunting()) return 0;
+    const Scalar tol = std::max(request_.abs_tolerance, request_.rel_tolerance * best_);
+    return std::min(best_ - tol, request_.upper_bound);
+  }
+  /// Looking for an exact intersection: the best distance rounded to 0 without one.
+  [[nodiscard]] bool hunting() const { return best_ == 0 && !intersecting_; }
+
+  void finish(const Transform& pose_a, std::span<const std::uint32_t> tris_a,
+              std::span<const std::uint32_t> tris_b, DistanceResult& out) const {
+    out.distance = best_;
+    out.lower_bound = std::min(best_, min_skipped_);
+    out.intersecting = intersecting_;
+    out.beyond_upper_bound = out.lower_bound > request_.upper_bound;
+    out.approximate = !out.beyond_upper_bound && out.lower_bound < out.distance;
+    if (best_ < kInf) {
+      out.point_a = pose_a.apply(pa_);
+      out.point_b = pose_a.apply(pb_);
+      out.triangle_a = tris_a[ia_];
+      out.triangle_b = tris_b[jb_];
+    }
+  }
+
+ private:
+  const DistanceRequest& request_;
+  Scalar best_ = kInf;
+  Scalar min_skipped_ = kInf;
+  bool intersecting_ = false;
+  Vec3 pa_ = Vec3::Zero();  // A's model frame
+  Vec3 pb_ = Vec3::Zero();
+  std::uint32_t ia_ = 0;  // leaf-order triangle indices
+  std::uint32_t jb_ = 0;
+};
+
+}  // namespace
+
+DistanceResult distance(const Model& a, const Transform& pose_a, const Model& b,
+                        const Transform& pose_b, const DistanceRequest& request) {
+  check_request(request);
+  DistanceResult result;
+  Search search(request);
+  // delta 0: the frame's margin is then only the rounding allowance of the volume tests.
+  const detail::PairFrame frame(a, pose_a, b, pose_b, 0);
+  const Mat3& rot = frame.b_to_a.rotation;
+  const Vec3& trans = frame.b_to_a.translation;
+  const auto nodes_a = a.nodes();
+  const auto nodes_b = b.nodes();
+  const auto verts_a = a.leaf_vertices();
+  const auto verts_b = b.leaf_vertices();
+
+  // A node of B with its volumes mapped into A's frame (the box only when needed): while the walk
+  // descends A, both child pairs share it.
+  struct MappedNode {
+    std::uint32_t index = UINT32_MAX;
+    Vec3 sphere_center;
+    Mat3 axes;
+    Vec3 center;
+    bool has_box = false;
+  };
+  const auto map_node = [&](std::uint32_t ib, MappedNode& m) {
+    if (m.index == ib) return;
+    m.index = ib;
+    m.sphere_center = rot * nodes_b[ib].sphere.center + trans;
+    m.has_box = false;
+  };
+  // Lower bound for a node pair; the OBB gap is only computed when the sphere gap cannot prune.
+  const auto bound = [&](std::uint32_t ia, MappedNode& mb) {
+    ++result.node_pairs;
+    const BvhNode& na = nodes_a[ia];
+    const BvhNode& nb = nodes_b[mb.index];
+    const Scalar sphere =
+        detail::sphere_gap(na.sphere, mb.sphere_center, nb.sphere.radius) - frame.margin;
+    if (search.prune(sphere)) return sphere;
+    if (!mb.has_box) {
+      mb.axes = rot * nb.obb.axes;
+      mb.center = rot * nb.obb.center + trans;
+      mb.has_box = true;
+    }
+    const Scalar obb = detail::obb_gap(na.obb, mb.axes, mb.center, nb.obb.half_extents,
+                                       search.cutoff() + frame.margin) -
+                       frame.margin;
+    return std::max(sphere, obb);
+  };
+
+  // B's leaf triangles in A's frame with their boxes and unit normals, in chunks of kCached,
+  // kept while consecutive leaf pairs share the chunk (the walk descends A under a fixed B node).
+  struct Mapped {
+    std::array<Vec3, 3> v;
+    Vec3 lo, hi, n;
+  };
+  constexpr std::uint32_t kCached = 8;
+  std::array<Mapped, kCached> chunk;
+  std::uint32_t chunk_first = UINT32_MAX;  // leaf-order index of chunk[0]
+  const auto unit_normal = [](const Vec3* t) {
+    const Vec3 n = (t[1] - t[0]).cross(t[2] - t[0]);
+    const Scalar len = n.norm();
+    return len > 0 ? Vec3(n / len) : Vec3::Zero();
+  };
+  const auto leaf_pair = [&](std::uint32_t la, std::uint32_t lb) {
+    const BvhNode& na = nodes_a[la];
+    const BvhNode& nb = nodes_b[lb];
+    for (std::uint32_t first = nb.first_or_right; first < nb.first_or_right + nb.count;
+         first += kCached) {
+      const std::uint32_t count = std::min(kCached, nb.first_or_right + nb.count - first);
+      if (chunk_first != first) {
+        for (std::uint32_t k = 0; k < count; ++k) {
+          Mapped& m = chunk[k];
+          for (int v = 0; v < 3; ++v) m.v[v] = frame.b_to_a.apply(verts_b[3 * (first + k) + v]);
+          m.lo = m.v[0].cwiseMin(m.v[1]).cwiseMin(m.v[2]);
+          m.hi = m.v[0].cwiseMax(m.v[1]).cwiseMax(m.v[2]);
+          m.n = unit_normal(m.v.data());
+        }
+        chunk_first = first;
+      }
+      for (std::uint32_t ia = na.first_or_right; ia < na.first_or_right + na.count; ++ia) {
+        const Vec3* ta = &verts_a[3 * ia];
+        const Vec3 lo_a = ta[0].cwiseMin(ta[1]).cwiseMin(ta[2]);
+        const Vec3 hi_a = ta[0].cwiseMax(ta[1]).cwiseMax(ta[2]);
+        const Vec3 n_a = unit_normal(ta);
+        for (std::uint32_t k = 0; k < count; ++k) {
+          const Mapped& m = chunk[k];
+          // The box gap is exact in its sign (monotone rounding); the plane gaps are rounded, so
+          // they are left out while an exact intersection is being looked for.
+          Scalar lb = detail::box_gap(lo_a, hi_a, m.lo, m.hi);
+          if (!search.hunting()) {
+            lb = std::max({lb, detail::plane_gap(n_a, ta[0], m.v.data()),
+                           detail::plane_gap(m.n, m.v[0], ta)});
+          }
+          if (search.prune(lb)) continue;
+          ++result.triangle_tests;
+          search.offer(
+              geometry::triangle_distance(ta[0], ta[1], ta[2], m.v[0], m.v[1], m.v[2]), ta,
+              m.v.data(), ia, first + k);
+          if (search.done()) return;
+        }
+      }
+    }
+  };
+
+  struct Item {
+    std::uint32_t ia, ib;
+    Scalar lb;
+  };
+  // Each step pops one pair and pushes at most two, descending one tree by one level, so the stack
+  // never holds more than depth(A) + depth(B) entries; the build caps each depth far below.
+  std::array<Item, 512> stack;
+  std::size_t top = 0;
+  MappedNode mapped[2];
+  map_node(0, mapped[0]);
+  if (const Scalar lb = bound(0, mapped[0]); !search.prune(lb)) stack[top++] = {0, 0, lb};
+  while (top > 0 && !search.done()) {
+    const Item item = stack[--top];
+    if (search.prune(item.lb)) continue;  // the best distance may have dropped since the push
+    const BvhNode& na = nodes_a[item.ia];
+    const BvhNode& nb = nodes_b[item.ib];
+    if (na.is_leaf() && nb.is_leaf()) {
+      leaf_pair(item.ia, item.ib);
+      continue;
+    }
+    // Descend the larger volume (or the only internal one).
+    Item first, second;
+    if (nb.is_leaf() || (!na.is_leaf() && na.sphere.radius >= nb.sphere.radius)) {
+      first = {item.ia + 1, item.ib, 0};
+      second = {na.first_or_right, item.ib, 0};
+    } else {
+      first = {item.ia, item.ib + 1, 0};
+      second = {item.ia, nb.first_or_right, 0};
+    }
+    map_node(first.ib, mapped[0]);
+    first.lb = bound(first.ia, mapped[0]);
+    if (second.ib != first.ib) {
+      map_node(second.ib, mapped[1]);
+      second.lb = bound(second.ia, mapped[1]);
+    } else {
+      second.lb = bound(second.ia, mapped[0]);
+    }
+    if (second.lb < first.lb) std::swap(first, second);
+    // The farther pair is pushed first so that the nearer one is examined first.
+    if (!search.prune(second.lb)) stack[top++] = second;
+    if (!search.prune(first.lb)) stack[top++] = first;
+  }
+  search.finish(pose_a, a.leaf_triangles(), b.leaf_triangles(), result);
+  return result;
+}
+
+}  // namespace antcd
