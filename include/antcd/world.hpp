@@ -1,0 +1,185 @@
+// antcd/world.hpp — a live collision world: objects that an application adds, moves and removes
+// frame by frame, and the queries it asks each frame ("what touches what now", ray casts).
+//
+// Conventions
+// - Objects: each object is a shared, immutable Model (std::shared_ptr<const Model>, so many
+//   objects may share one hierarchy), a pose (p_world = R p_model + t, see math.hpp), a name and a
+//   user tag (free for the application; antcd only reports them), a collision group and a mask.
+// - Handles: add() returns an ObjectId. It stays valid until that object is removed; a removed
+//   object's id is never valid again (slots are reused with a new generation), so a stale id is
+//   reported as an error, never silently aliased to another object.
+// - Filtering: a pair (a, b) is considered only when (a.group & b.mask) != 0 and
+//   (b.group & a.mask) != 0, and the pair was not ignored with ignore_pair(). Defaults (group 1,
+//   mask all bits) let everything collide.
+// - Results are exact: the broad phase only discards pairs whose bounding volumes are provably
+//   farther apart than the query distance; every reported pair comes from exact triangle tests
+//   (collide.hpp), with collide()'s meaning of touching and of delta.
+// - Order: results are deterministic and independent of the thread count and of the broad phase's
+//   internal shape: pairs are sorted by (a, b) in ObjectId order with a < b, single-object results
+//   by the other object's id, ray hits by (distance, object, triangle).
+// - Threads: mutating member functions (add, remove, set_pose, set_poses, set_filter,
+//   ignore_pair) must not run concurrently with anything else on the same World. Every const
+//   member function (all queries) may run from any number of threads at once between mutations.
+//   Queries spread their work over oneTBB workers of the calling thread's task arena (wrap a call
+//   in a tbb::task_arena to bound it); the answer does not depend on how many.
+// - Errors: an invalid argument (an unknown or removed ObjectId, a non-finite or non-rigid pose, a
+//   negative or non-finite distance, a zero ray direction, a null model) throws
+//   std::invalid_argument whose message names the function, the argument and the object.
+// - Broad phase: a dynamic AABB tree over fattened world boxes (docs/design.md): moving an object
+//   within its fattened box costs only the box computation; leaving it costs one removal and one
+//   insertion (O(log n)). Queries never modify the tree.
+#pragma once
+
+#include <antcd/collide.hpp>
+
+#include <cstdint>
+#include <limits>
+#include <memory>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace antcd {
+
+/// A handle to an object of a World. Compares and orders by (slot, generation).
+struct ObjectId {
+  std::uint32_t slot = UINT32_MAX;
+  std::uint32_t generation = 0;
+
+  friend auto operator<=>(const ObjectId&, const ObjectId&) = default;
+};
+
+struct ObjectOptions {
+  std::string name;             ///< reported in errors; need not be unique
+  std::uint64_t user_tag = 0;   ///< free for the application
+  std::uint32_t group = 1;      ///< the bits this object belongs to
+  std::uint32_t mask = ~0U;     ///< the groups it may collide with
+};
+
+struct WorldOptions {
+  /// Fattening of the broad phase's boxes: each side grows by this fraction of the object's
+  /// bounding-sphere radius. Larger: fewer tree updates for moving objects, more candidate pairs.
+  Scalar fat_fraction = 0.1;
+};
+
+/// An unordered pair of objects, a < b.
+struct ObjectPair {
+  ObjectId a;
+  ObjectId b;
+  friend auto operator<=>(const ObjectPair&, const ObjectPair&) = default;
+};
+
+/// A colliding pair with what collide() reported for it: contacts[k].triangle_a indexes a's mesh.
+struct PairContacts {
+  ObjectId a;
+  ObjectId b;
+  std::vector<Contact> contacts;  ///< boolean query: the one contact found; all_contacts: every one
+};
+
+/// One object touched by a query object: contacts[k].triangle_a indexes the QUERY's mesh and
+/// triangle_b this object's.
+struct ObjectContacts {
+  ObjectId object;
+  std::vector<Contact> contacts;
+};
+
+/// Which objects a query about something outside the world may meet (same rule as between
+/// objects: (group & object.mask) and (object.group & mask) both non-zero).
+struct QueryFilter {
+  std::uint32_t group = ~0U;
+  std::uint32_t mask = ~0U;
+};
+
+/// A ray: the points origin + s * direction / |direction| for 0 <= s <= max_distance.
+struct Ray {
+  Vec3 origin = Vec3::Zero();
+  Vec3 direction = Vec3::UnitZ();  ///< non-zero; need not be unit
+  Scalar max_distance = std::numeric_limits<Scalar>::infinity();
+};
+
+struct RayHit {
+  ObjectId object;
+  std::uint32_t triangle = 0;  ///< triangle index in the object's mesh
+  Scalar distance = 0;         ///< along the ray, world units
+  Vec3 point = Vec3::Zero();   ///< world frame
+  Vec3 normal = Vec3::Zero();  ///< unit geometric normal of the triangle, world frame, facing the
+                               ///< ray (normal . direction <= 0)
+};
+
+/// Ray against one posed model: every hit triangle (closed triangles; a ray lying in a triangle's
+/// plane does not hit it), sorted by (distance, triangle). Thread-safe. `object` is left default.
+std::vector<RayHit> raycast_all(const Model& model, const Transform& pose, const Ray& ray);
+/// The nearest hit of raycast_all (ties: smallest triangle index), or nothing.
+std::optional<RayHit> raycast(const Model& model, const Transform& pose, const Ray& ray);
+
+class World {
+ public:
+  explicit World(const WorldOptions& options = {});
+  World(const World&) = delete;
+  World& operator=(const World&) = delete;
+  World(World&&) noexcept;
+  World& operator=(World&&) noexcept;
+  ~World();
+
+  // ---- mutations (not concurrent with anything else on this World) ----
+
+  /// Adds an object; O(log n).
+  ObjectId add(std::shared_ptr<const Model> model, const Transform& pose,
+               ObjectOptions options = {});
+  /// Removes an object; its id becomes invalid. O(log n + ignored pairs of the object).
+  void remove(ObjectId id);
+  void set_pose(ObjectId id, const Transform& pose);
+  /// ids[k] gets poses[k]. Checks every argument first: on error nothing is changed.
+  void set_poses(std::span<const ObjectId> ids, std::span<const Transform> poses);
+  void set_filter(ObjectId id, std::uint32_t group, std::uint32_t mask);
+  /// Excludes (ignored = true) or re-admits the pair from every pair query.
+  void ignore_pair(ObjectId a, ObjectId b, bool ignored = true);
+
+  // ---- inspection ----
+
+  [[nodiscard]] std::size_t size() const;
+  [[nodiscard]] bool contains(ObjectId id) const;
+  /// Every live object, in id order.
+  [[nodiscard]] std::vector<ObjectId> objects() const;
+  [[nodiscard]] const Model& model(ObjectId id) const;
+  [[nodiscard]] const std::shared_ptr<const Model>& model_ptr(ObjectId id) const;
+  [[nodiscard]] const Transform& pose(ObjectId id) const;
+  [[nodiscard]] const ObjectOptions& options(ObjectId id) const;
+  [[nodiscard]] bool pair_ignored(ObjectId a, ObjectId b) const;
+  /// Whether the filters let a and b collide (groups, masks, ignored pairs).
+  [[nodiscard]] bool may_collide(ObjectId a, ObjectId b) const;
+  /// Heap bytes of the world's own structures (objects, tree; not the shared Models).
+  [[nodiscard]] std::size_t memory_bytes() const;
+
+  // ---- queries (const, thread-safe between mutations) ----
+
+  /// Broad phase only: the admitted pairs whose root bounding volumes (sphere and OBB) are within
+  /// `delta` >= 0, sorted. A superset of the colliding pairs at that delta.
+  [[nodiscard]] std::vector<ObjectPair> candidate_pairs(Scalar delta = 0) const;
+  /// Every admitted pair that collides under `request` (delta, all contacts or boolean), sorted.
+  [[nodiscard]] std::vector<PairContacts> collide_all(const CollisionRequest& request = {}) const;
+  /// The admitted pairs whose meshes come within `distance` >= 0 of each other, sorted.
+  [[nodiscard]] std::vector<ObjectPair> pairs_within(Scalar distance) const;
+  /// The objects that `id` collides with (admitted pairs only), sorted by id.
+  [[nodiscard]] std::vector<ObjectContacts> collide_object(
+      ObjectId id, const CollisionRequest& request = {}) const;
+  /// The objects that an external model at `pose` collides with, sorted by id.
+  [[nodiscard]] std::vector<ObjectContacts> collide_model(const Model& model,
+                                                          const Transform& pose,
+                                                          const CollisionRequest& request = {},
+                                                          const QueryFilter& filter = {}) const;
+  /// The nearest hit over every admitted object (ties: smallest object id, then triangle).
+  [[nodiscard]] std::optional<RayHit> raycast(const Ray& ray, const QueryFilter& filter = {}) const;
+  /// Every hit, sorted by (distance, object, triangle).
+  [[nodiscard]] std::vector<RayHit> raycast_all(const Ray& ray,
+                                                const QueryFilter& filter = {}) const;
+
+  /// The implementation (opaque; defined inside the library).
+  struct Impl;
+
+ private:
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace antcd

@@ -1,0 +1,258 @@
+// The World's objects: adding, removing, moving and filtering them, with the broad-phase tree
+// updated incrementally (a leaf moves only when its object leaves its fattened box).
+#include <antcd/world.hpp>
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+
+#include "world/world_impl.hpp"
+
+namespace antcd {
+
+namespace {
+
+std::string describe(ObjectId id) {
+  return "(slot " + std::to_string(id.slot) + ", generation " + std::to_string(id.generation) + ")";
+}
+
+std::string object_label(const World::Impl::Object& o, ObjectId id) {
+  return (o.options.name.empty() ? std::string("object") : "object '" + o.options.name + "'") +
+         " " + describe(id);
+}
+
+// A rigid pose: finite, rotation orthonormal with determinant +1 within 1e-6. Returns the problem,
+// or nullptr. No allocation: set_poses checks every pose of every frame.
+const char* pose_problem(const Transform& pose, Scalar& err) {
+  err = 0;
+  if (!pose.rotation.allFinite() || !pose.translation.allFinite()) {
+    return "is not finite (NaN or infinity)";
+  }
+  err = (pose.rotation.transpose() * pose.rotation - Mat3::Identity()).cwiseAbs().maxCoeff();
+  if (err > 1e-6 || pose.rotation.determinant() <= 0) {
+    return "is not a rigid motion (rotation not orthonormal with determinant +1)";
+  }
+  return nullptr;
+}
+
+void check_pose(const Transform& pose, const std::string& function, const std::string& what) {
+  Scalar err = 0;
+  if (const char* problem = pose_problem(pose, err)) {
+    std::ostringstream msg;
+    msg << function << ": " << what << " " << problem;
+    if (err > 0) msg << "; orthonormality error " << err;
+    throw std::invalid_argument(msg.str());
+  }
+}
+
+}  // namespace
+
+Aabb posed_box(const Model& model, const Transform& pose, Scalar& tolerance) {
+  const BvhNode& root = model.root();
+  const Vec3 c = pose.apply(root.obb.center);
+  const Vec3 ext = (pose.rotation * root.obb.axes).cwiseAbs() * root.obb.half_extents;
+  // The root box's axis-aligned bounds (not cut by the root sphere: World::candidate_pairs
+  // relies on the tree boxes containing the posed root box).
+  const Scalar sphere_reach = root.sphere.radius + pose.apply(root.sphere.center).norm();
+  // Relative allowance for the box fit and for rounding in the pose applied here; the same scale
+  // as the hierarchy traversal's (bvh/traverse.hpp).
+  tolerance = 1e-9 * (sphere_reach + c.norm() + ext.norm()) + 1e-300;
+  Aabb box;
+  box.min = c - ext;
+  box.max = c + ext;
+  return grown(box, tolerance);
+}
+
+const World::Impl::Object& World::Impl::get(ObjectId id, const char* function,
+                                            const char* argument) const {
+  if (id.slot >= objects.size() || !objects[id.slot].alive ||
+      objects[id.slot].generation != id.generation) {
+    throw std::invalid_argument(std::string(function) + ": " + argument + " " + describe(id) +
+                                " is not an object of this world (removed, or never added)");
+  }
+  return objects[id.slot];
+}
+
+Aabb World::Impl::fattened(const Object& o) const {
+  // At least the rounding allowance, so that the tree box always contains the box grown by it
+  // (candidate_pairs relies on that).
+  return grown(o.box, settings.fat_fraction * o.model->root().sphere.radius + o.tolerance);
+}
+
+World::World(const WorldOptions& options) : impl_(std::make_unique<Impl>()) {
+  if (!(options.fat_fraction >= 0) || !std::isfinite(options.fat_fraction)) {
+    throw std::invalid_argument("World: options.fat_fraction must be finite and >= 0");
+  }
+  impl_->settings = options;
+}
+World::World(World&&) noexcept = default;
+World& World::operator=(World&&) noexcept = default;
+World::~World() = default;
+
+ObjectId World::add(std::shared_ptr<const Model> model, const Transform& pose,
+                    ObjectOptions options) {
+  const std::string label =
+      options.name.empty() ? std::string("the new object") : "object '" + options.name + "'";
+  if (!model) throw std::invalid_argument("World::add: model is null (" + label + ")");
+  check_pose(pose, "World::add", "pose of " + label);
+  Impl& w = *impl_;
+  std::uint32_t slot;
+  if (!w.free_slots.empty()) {
+    slot = w.free_slots.back();
+    w.free_slots.pop_back();
+  } else {
+    if (w.objects.size() >= UINT32_MAX - 1) throw std::length_error("World::add: too many objects");
+    slot = static_cast<std::uint32_t>(w.objects.size());
+    w.objects.emplace_back();
+  }
+  Impl::Object& o = w.objects[slot];
+  o.model = std::move(model);
+  o.pose = pose;
+  o.options = std::move(options);
+  o.box = posed_box(*o.model, o.pose, o.tolerance);
+  o.ignored.clear();
+  o.alive = true;
+  o.leaf = w.tree.insert(w.fattened(o), slot);
+  ++w.live;
+  return {slot, o.generation};
+}
+
+void World::remove(ObjectId id) {
+  Impl& w = *impl_;
+  Impl::Object& o = w.get(id, "World::remove", "id");
+  for (const std::uint32_t other : o.ignored) {
+    auto& list = w.objects[other].ignored;
+    list.erase(std::lower_bound(list.begin(), list.end(), id.slot));
+  }
+  w.tree.remove(o.leaf);
+  o = Impl::Object{};
+  o.generation = id.generation + 1;  // the old id never matches again
+  if (o.generation != 0) w.free_slots.push_back(id.slot);  // a wrapped slot is retired
+  --w.live;
+}
+
+void World::set_pose(ObjectId id, const Transform& pose) {
+  const Impl::Object& o = impl_->get(id, "World::set_pose", "id");
+  Scalar err = 0;
+  if (pose_problem(pose, err) != nullptr) {
+    check_pose(pose, "World::set_pose", "pose of " + object_label(o, id));
+  }
+  set_poses(std::span<const ObjectId>(&id, 1), std::span<const Transform>(&pose, 1));
+}
+
+void World::set_poses(std::span<const ObjectId> ids, std::span<const Transform> poses) {
+  Impl& w = *impl_;
+  if (ids.size() != poses.size()) {
+    throw std::invalid_argument("World::set_poses: " + std::to_string(ids.size()) + " ids but " +
+                                std::to_string(poses.size()) + " poses");
+  }
+  for (std::size_t k = 0; k < ids.size(); ++k) {
+    if (!contains(ids[k])) {
+      w.get(ids[k], "World::set_poses", ("ids[" + std::to_string(k) + "]").c_str());
+    }
+    Scalar err = 0;
+    if (pose_problem(poses[k], err) != nullptr) {
+      check_pose(poses[k], "World::set_poses",
+                 "poses[" + std::to_string(k) + "] of " + object_label(w.objects[ids[k].slot], ids[k]));
+    }
+  }
+  // Boxes in parallel (independent), then the tree sequentially in argument order (a repeated id
+  // ends with its last pose).
+  std::vector<Aabb> boxes(ids.size());
+  std::vector<Scalar> tolerances(ids.size());
+  const auto fit = [&](std::size_t k) {
+    boxes[k] = posed_box(*w.objects[ids[k].slot].model, poses[k], tolerances[k]);
+  };
+  if (ids.size() < 2048) {
+    for (std::size_t k = 0; k < ids.size(); ++k) fit(k);
+  } else {
+    tbb::parallel_for(std::size_t{0}, ids.size(), fit);
+  }
+  for (std::size_t k = 0; k < ids.size(); ++k) {
+    Impl::Object& o = w.objects[ids[k].slot];
+    o.pose = poses[k];
+    o.box = boxes[k];
+    o.tolerance = tolerances[k];
+    if (!detail::box_contains(w.tree.box(o.leaf), grown(o.box, o.tolerance))) {
+      w.tree.move(o.leaf, w.fattened(o));
+    }
+  }
+}
+
+void World::set_filter(ObjectId id, std::uint32_t group, std::uint32_t mask) {
+  Impl::Object& o = impl_->get(id, "World::set_filter", "id");
+  o.options.group = group;
+  o.options.mask = mask;
+}
+
+void World::ignore_pair(ObjectId a, ObjectId b, bool ignored) {
+  Impl& w = *impl_;
+  Impl::Object& oa = w.get(a, "World::ignore_pair", "a");
+  Impl::Object& ob = w.get(b, "World::ignore_pair", "b");
+  if (a.slot == b.slot) {
+    throw std::invalid_argument("World::ignore_pair: a and b are the same " +
+                                object_label(oa, a));
+  }
+  const auto set = [&](std::vector<std::uint32_t>& list, std::uint32_t slot) {
+    const auto it = std::lower_bound(list.begin(), list.end(), slot);
+    const bool present = it != list.end() && *it == slot;
+    if (ignored && !present) list.insert(it, slot);
+    if (!ignored && present) list.erase(it);
+  };
+  set(oa.ignored, b.slot);
+  set(ob.ignored, a.slot);
+}
+
+std::size_t World::size() const { return impl_->live; }
+
+bool World::contains(ObjectId id) const {
+  return id.slot < impl_->objects.size() && impl_->objects[id.slot].alive &&
+         impl_->objects[id.slot].generation == id.generation;
+}
+
+std::vector<ObjectId> World::objects() const {
+  std::vector<ObjectId> out;
+  out.reserve(impl_->live);
+  for (std::uint32_t s = 0; s < impl_->objects.size(); ++s) {
+    if (impl_->objects[s].alive) out.push_back(impl_->id_of(s));
+  }
+  return out;
+}
+
+const Model& World::model(ObjectId id) const { return *impl_->get(id, "World::model", "id").model; }
+const std::shared_ptr<const Model>& World::model_ptr(ObjectId id) const {
+  return impl_->get(id, "World::model_ptr", "id").model;
+}
+const Transform& World::pose(ObjectId id) const { return impl_->get(id, "World::pose", "id").pose; }
+const ObjectOptions& World::options(ObjectId id) const {
+  return impl_->get(id, "World::options", "id").options;
+}
+
+bool World::pair_ignored(ObjectId a, ObjectId b) const {
+  const Impl::Object& oa = impl_->get(a, "World::pair_ignored", "a");
+  impl_->get(b, "World::pair_ignored", "b");
+  return std::binary_search(oa.ignored.begin(), oa.ignored.end(), b.slot);
+}
+
+bool World::may_collide(ObjectId a, ObjectId b) const {
+  const Impl::Object& oa = impl_->get(a, "World::may_collide", "a");
+  const Impl::Object& ob = impl_->get(b, "World::may_collide", "b");
+  return a.slot != b.slot && impl_->admits(oa, b.slot, ob);
+}
+
+std::size_t World::memory_bytes() const {
+  const Impl& w = *impl_;
+  std::size_t bytes = sizeof(Impl) + w.objects.capacity() * sizeof(Impl::Object) +
+                      w.free_slots.capacity() * sizeof(std::uint32_t) + w.tree.memory_bytes();
+  for (const Impl::Object& o : w.objects) {
+    bytes += o.ignored.capacity() * sizeof(std::uint32_t);
+    if (o.options.name.capacity() > 15) bytes += o.options.name.capacity() + 1;
+  }
+  return bytes;
+}
+
+}  // namespace antcd
