@@ -12,10 +12,13 @@
 // - Names are unique and non-empty. Quaternions within 1e-3 of unit length are normalised; others
 //   are an error. Every error names the scene file and the object.
 //
-// Engine: one Model per distinct (mesh file, scale), shared by the objects that use it. Each frame:
-// poses → broad phase (sweep and prune on world AABBs of the root spheres, then the root spheres,
+// Engine: one Model per distinct (mesh file, scale), shared by the objects that use it, and one
+// World (world.hpp) holding every object, object index = ObjectId slot. Each frame: the frame's
+// poses go to the World (set_poses; its tree moves only the objects that left their fattened
+// boxes, so consecutive frames are cheap) → World::candidate_pairs (tree, then the root spheres,
 // then the root OBBs) → the chosen narrow phase on each surviving pair. Scene::run_frame is const
-// and thread-safe; with threads > 1 the candidate pairs are spread over oneTBB workers and the
+// and thread-safe: concurrent calls take turns for the pose update and broad phase (a mutex), and
+// run their narrow phases at once; with threads > 1 the work is spread over oneTBB workers and the
 // answer is the same as with one thread (each pair's random stream depends only on the seed, the
 // frame and the two object indices).
 #pragma once
@@ -109,6 +112,9 @@ class ANTCD_API Scene {
   /// Loads every mesh (once per distinct file and scale) and builds the hierarchies.
   /// Throws MeshError / SceneError naming the object whose mesh failed.
   explicit Scene(SceneDescription description, const BuildOptions& options = {});
+  Scene(Scene&&) noexcept;
+  Scene& operator=(Scene&&) noexcept;
+  ~Scene();
 
   [[nodiscard]] const SceneDescription& description() const { return description_; }
   [[nodiscard]] std::size_t object_count() const { return description_.objects.size(); }
@@ -130,10 +136,12 @@ class ANTCD_API Scene {
 
  private:
   SceneDescription description_;
-  std::vector<std::unique_ptr<Model>> models_;
+  std::vector<std::shared_ptr<const Model>> models_;
   std::vector<std::size_t> model_index_;
   std::vector<Scalar> feature_radius_;  ///< per model, for the random methods' default delta
   double build_ms_ = 0;
+  struct Broad;  // the World and the mutex that orders its updates (scene.cpp)
+  std::unique_ptr<Broad> broad_;
 };
 
 }  // namespace antcd

@@ -1,8 +1,9 @@
-// The scene engine: shared models, a sweep-and-prune broad phase, and the narrow phase of the
-// chosen method on each surviving pair.
+// The scene engine: shared models in one World (its incremental broad phase), and the narrow
+// phase of the chosen method on each surviving pair.
 #include <antcd/collide.hpp>
 #include <antcd/random.hpp>
 #include <antcd/scene.hpp>
+#include <antcd/world.hpp>
 
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
@@ -12,14 +13,25 @@
 #include <cmath>
 #include <cstdint>
 #include <map>
+#include <mutex>
 #include <stdexcept>
 
 #include "scene/pair_query.hpp"
 
 namespace antcd {
 
+struct Scene::Broad {
+  std::mutex mutex;
+  World world;
+  std::vector<ObjectId> ids;  ///< per object index; ids[i].slot == i
+};
+
+Scene::Scene(Scene&&) noexcept = default;
+Scene& Scene::operator=(Scene&&) noexcept = default;
+Scene::~Scene() = default;
+
 Scene::Scene(SceneDescription description, const BuildOptions& options)
-    : description_(std::move(description)) {
+    : description_(std::move(description)), broad_(std::make_unique<Broad>()) {
   const auto start = std::chrono::steady_clock::now();
   std::map<std::pair<std::string, Scalar>, std::size_t> built;
   model_index_.reserve(description_.objects.size());
@@ -36,11 +48,15 @@ Scene::Scene(SceneDescription description, const BuildOptions& options)
       if (o.scale != 1) {
         for (Vec3& v : mesh.vertices) v *= o.scale;
       }
-      models_.push_back(std::make_unique<Model>(std::move(mesh), options, o.mesh.string()));
+      models_.push_back(std::make_shared<const Model>(std::move(mesh), options, o.mesh.string()));
       feature_radius_.push_back(feature_radius(*models_.back()));
       it = built.emplace(key, models_.size() - 1).first;
     }
     model_index_.push_back(it->second);
+  }
+  for (std::size_t i = 0; i < description_.objects.size(); ++i) {
+    const SceneObject& o = description_.objects[i];
+    broad_->ids.push_back(broad_->world.add(models_[model_index_[i]], o.pose(0), {o.name}));
   }
   build_ms_ =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
@@ -53,50 +69,17 @@ std::vector<std::pair<std::uint32_t, std::uint32_t>> Scene::broad_phase(std::siz
                         std::to_string(description_.frames) + " frames)");
   }
   if (!(delta >= 0) || !std::isfinite(delta)) throw ArgumentError("delta must be finite and >= 0");
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> candidates;
+  // The frame's poses into the World, then its candidate pairs: one caller at a time (the World's
+  // mutations must not overlap its queries).
   const std::size_t n = description_.objects.size();
-
-  // Poses and world bounding spheres of the roots.
   std::vector<Transform> poses(n);
-  std::vector<Vec3> centers(n);
-  std::vector<Scalar> radii(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    poses[i] = description_.objects[i].pose(frame);
-    const Sphere& s = model_of(i).root().sphere;
-    centers[i] = poses[i].apply(s.center);
-    radii[i] = s.radius;
-  }
-
-  // Sweep and prune along x on the spheres' boxes, then y/z box overlap, the sphere test and the
-  // root OBB test, all widened by delta.
-  std::vector<std::uint32_t> order(n);
-  for (std::uint32_t i = 0; i < n; ++i) order[i] = i;
-  std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
-    const Scalar la = centers[a].x() - radii[a];
-    const Scalar lb = centers[b].x() - radii[b];
-    return la < lb || (la == lb && a < b);
-  });
-  std::vector<std::uint32_t> active;
-  for (const std::uint32_t i : order) {
-    const Scalar lo = centers[i].x() - radii[i];
-    std::erase_if(active, [&](std::uint32_t j) { return centers[j].x() + radii[j] + delta < lo; });
-    for (const std::uint32_t j : active) {
-      const Vec3 d = (centers[i] - centers[j]).cwiseAbs();
-      const Scalar reach = radii[i] + radii[j] + delta;
-      if (d.y() > reach || d.z() > reach) continue;
-      if (d.squaredNorm() > reach * reach) continue;
-      Obb oi = model_of(i).root().obb;
-      oi.axes = poses[i].rotation * oi.axes;
-      oi.center = poses[i].apply(oi.center);
-      Obb oj = model_of(j).root().obb;
-      oj.axes = poses[j].rotation * oj.axes;
-      oj.center = poses[j].apply(oj.center);
-      if (!geometry::obb_overlap(oi, oj, delta + 1e-9 * (reach + centers[i].norm()))) continue;
-      candidates.emplace_back(std::min(i, j), std::max(i, j));
-    }
-    active.push_back(i);
-  }
-  std::sort(candidates.begin(), candidates.end());
+  for (std::size_t i = 0; i < n; ++i) poses[i] = description_.objects[i].pose(frame);
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> candidates;
+  const std::lock_guard<std::mutex> lock(broad_->mutex);
+  broad_->world.set_poses(broad_->ids, poses);
+  const std::vector<ObjectPair> pairs = broad_->world.candidate_pairs(delta);
+  candidates.reserve(pairs.size());
+  for (const ObjectPair& p : pairs) candidates.emplace_back(p.a.slot, p.b.slot);
   return candidates;
 }
 
@@ -127,10 +110,12 @@ FrameResult Scene::run_frame(std::size_t frame, const SceneQuery& query) const {
   result.frame = frame;
   const std::size_t n = description_.objects.size();
 
-  // Poses and the broad phase's candidate pairs.
+  // Poses of the frame, then the World's broad phase inside this query's arena, so that
+  // threads = 1 keeps the whole frame on the calling thread.
   std::vector<Transform> poses(n);
   for (std::size_t i = 0; i < n; ++i) poses[i] = description_.objects[i].pose(frame);
-  result.candidates = broad_phase(frame, query.delta);
+  tbb::task_arena arena(query.threads);
+  result.candidates = arena.execute([&] { return broad_phase(frame, query.delta); });
 
   // Narrow phase, one independent task per candidate pair.
   const std::size_t m = result.candidates.size();
@@ -144,7 +129,6 @@ FrameResult Scene::run_frame(std::size_t frame, const SceneQuery& query) const {
   if (query.threads == 1 || m < 2) {
     for (std::size_t k = 0; k < m; ++k) work(k);
   } else {
-    tbb::task_arena arena(query.threads);
     arena.execute([&] { tbb::parallel_for(std::size_t{0}, m, [&](std::size_t k) { work(k); }); });
   }
   for (std::size_t k = 0; k < m; ++k) {
