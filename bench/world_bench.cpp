@@ -1,0 +1,255 @@
+// antcd::World against FCL's DynamicAABBTreeCollisionManager, in one binary (Google Benchmark).
+//
+// world_frame/<engine>/<objects>: a world of N small moving meshes (boxes and spheres of 12 and 64
+// triangles, radius about 0.5, density 1 object per 8 volume units so that a few percent of them
+// touch). One iteration = one frame: every object gets its next pose (a drift and a spin, the
+// same sequence for both engines), then every pair is queried exactly (boolean).
+//   antcd: World::set_poses + World::collide_all.
+//   FCL:   setTransform + computeAABB per object, manager.update(), manager.collide() with a
+//          callback that runs fcl::collide (BVHModel<OBBRSS>, boolean) on each broad-phase pair.
+// Counters: colliding pairs and broad-phase pairs per frame (the engines must agree on the
+// colliding count: the benchmark aborts otherwise), heap bytes of the engine's world structures
+// (mallinfo2 before/after building the world; the shared meshes excluded).
+//
+// dense_threads/<threads>: a dense world of tumbling real meshes (assimp test models when
+// installed, else generated tori), World::collide_all inside a oneTBB arena of 1 or 2 threads.
+//
+// The numbers only mean something in one run on an otherwise idle machine; quote ratios of the two
+// engines measured in the same run.
+#include <antcd/world.hpp>
+
+#include <benchmark/benchmark.h>
+#include <fcl/broadphase/broadphase_dynamic_AABB_tree.h>
+#include <fcl/geometry/bvh/BVH_model.h>
+#include <fcl/math/bv/OBBRSS.h>
+#include <fcl/narrowphase/collision.h>
+#include <fcl/narrowphase/collision_object.h>
+#include <malloc.h>
+#include <tbb/task_arena.h>
+
+#include <cmath>
+#include <cstdint>
+#include <cstdlib>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <random>
+#include <vector>
+
+namespace {
+
+using namespace antcd;
+
+std::size_t heap_in_use() {
+  const struct mallinfo2 m = mallinfo2();
+  return m.uordblks + m.hblkhd;
+}
+
+// Deterministic motion of object i: a start pose, a drift velocity and a spin, wrapped into the
+// cube [-L/2, L/2]^3.
+struct Motion {
+  std::vector<Vec3> start;
+  std::vector<Vec3> velocity;
+  std::vector<Vec3> axis;
+  std::vector<Scalar> spin;
+  std::vector<Quat> orientation;
+  Scalar side = 1;
+
+  Motion(std::size_t n, Scalar side_length, std::uint64_t seed) : side(side_length) {
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<Scalar> u(-0.5, 0.5);
+    std::normal_distribution<Scalar> g(0, 1);
+    for (std::size_t i = 0; i < n; ++i) {
+      start.emplace_back(side * u(rng), side * u(rng), side * u(rng));
+      velocity.emplace_back(0.05 * u(rng), 0.05 * u(rng), 0.05 * u(rng));
+      axis.push_back(Vec3(g(rng), g(rng), g(rng)).normalized());
+      spin.push_back(0.05 * u(rng));
+      orientation.push_back(Quat(g(rng), g(rng), g(rng), g(rng)).normalized());
+    }
+  }
+
+  [[nodiscard]] Transform pose(std::size_t i, std::size_t frame) const {
+    const auto f = static_cast<Scalar>(frame);
+    Vec3 p = start[i] + f * velocity[i];
+    for (int k = 0; k < 3; ++k) p[k] = p[k] - side * std::floor(p[k] / side + 0.5);
+    Transform t;
+    t.rotation = (Eigen::AngleAxis<Scalar>(spin[i] * f, axis[i]) * orientation[i]).toRotationMatrix();
+    t.translation = p;
+    return t;
+  }
+};
+
+std::shared_ptr<fcl::BVHModel<fcl::OBBRSSd>> fcl_model(const Mesh& m) {
+  std::vector<fcl::Vector3d> vertices(m.vertices.begin(), m.vertices.end());
+  std::vector<fcl::Triangle> triangles;
+  for (const auto& t : m.triangles) triangles.emplace_back(t[0], t[1], t[2]);
+  auto model = std::make_shared<fcl::BVHModel<fcl::OBBRSSd>>();
+  model->beginModel(static_cast<int>(triangles.size()), static_cast<int>(vertices.size()));
+  model->addSubModel(vertices, triangles);
+  model->endModel();
+  return model;
+}
+
+fcl::Transform3d to_fcl(const Transform& t) {
+  fcl::Transform3d out = fcl::Transform3d::Identity();
+  out.linear() = t.rotation;
+  out.translation() = t.translation;
+  return out;
+}
+
+const std::vector<Mesh>& small_meshes() {
+  static const std::vector<Mesh> meshes{make_box(Vec3(0.4, 0.25, 0.2), 1),
+                                        make_sphere(0.35, 8, 4)};
+  return meshes;
+}
+
+Scalar side_for(std::size_t n) { return std::cbrt(8.0 * static_cast<Scalar>(n)); }
+
+// The colliding-pair count of each frame, per world size, as antcd found it: FCL must agree.
+std::vector<std::size_t>& expected_counts(std::size_t n) {
+  static std::vector<std::vector<std::size_t>> by_size(2);
+  return by_size[n >= 100000 ? 1 : 0];
+}
+
+void world_frame_antcd(benchmark::State& state) {
+  const auto n = static_cast<std::size_t>(state.range(0));
+  std::vector<std::shared_ptr<const Model>> models;
+  for (const Mesh& m : small_meshes()) models.push_back(std::make_shared<const Model>(m));
+  const Motion motion(n, side_for(n), 42);
+  const std::size_t before = heap_in_use();
+  World world;
+  std::vector<ObjectId> ids;
+  ids.reserve(n);
+  for (std::size_t i = 0; i < n; ++i) ids.push_back(world.add(models[i % 2], motion.pose(i, 0)));
+  const std::size_t bytes = heap_in_use() - before;
+  std::vector<Transform> poses(n);
+  std::size_t frame = 0;
+  std::size_t colliding = 0;
+  std::size_t candidates = 0;
+  auto& counts = expected_counts(n);
+  for (auto _ : state) {
+    ++frame;
+    for (std::size_t i = 0; i < n; ++i) poses[i] = motion.pose(i, frame);
+    world.set_poses(ids, poses);
+    const std::vector<PairContacts> pairs = world.collide_all();
+    benchmark::DoNotOptimize(pairs.data());
+    colliding += pairs.size();
+    if (counts.size() < frame) counts.push_back(pairs.size());
+  }
+  state.PauseTiming();
+  candidates = world.candidate_pairs(0).size();
+  state.ResumeTiming();
+  state.counters["colliding_per_frame"] =
+      static_cast<double>(colliding) / static_cast<double>(frame);
+  state.counters["candidates_last_frame"] = static_cast<double>(candidates);
+  state.counters["world_heap_MB"] = static_cast<double>(bytes) / 1e6;
+  state.counters["world_bytes_per_object"] = static_cast<double>(world.memory_bytes()) /
+                                             static_cast<double>(n);
+}
+
+struct FclData {
+  fcl::CollisionRequestd request{1, false};
+  fcl::CollisionResultd result;
+  std::size_t colliding = 0;
+  std::size_t tested = 0;
+};
+
+bool fcl_callback(fcl::CollisionObjectd* a, fcl::CollisionObjectd* b, void* data) {
+  auto& d = *static_cast<FclData*>(data);
+  ++d.tested;
+  d.result.clear();
+  fcl::collide(a, b, d.request, d.result);
+  if (d.result.isCollision()) ++d.colliding;
+  return false;
+}
+
+void world_frame_fcl(benchmark::State& state) {
+  const auto n = static_cast<std::size_t>(state.range(0));
+  std::vector<std::shared_ptr<fcl::BVHModel<fcl::OBBRSSd>>> models;
+  for (const Mesh& m : small_meshes()) models.push_back(fcl_model(m));
+  const Motion motion(n, side_for(n), 42);
+  const std::size_t before = heap_in_use();
+  std::vector<std::unique_ptr<fcl::CollisionObjectd>> objects;
+  std::vector<fcl::CollisionObjectd*> raw;
+  auto manager = std::make_unique<fcl::DynamicAABBTreeCollisionManagerd>();
+  for (std::size_t i = 0; i < n; ++i) {
+    objects.push_back(
+        std::make_unique<fcl::CollisionObjectd>(models[i % 2], to_fcl(motion.pose(i, 0))));
+    objects.back()->computeAABB();
+    raw.push_back(objects.back().get());
+  }
+  manager->registerObjects(raw);
+  manager->setup();
+  const std::size_t bytes = heap_in_use() - before;
+  std::size_t frame = 0;
+  std::size_t colliding = 0;
+  std::size_t tested = 0;
+  const auto& counts = expected_counts(n);
+  for (auto _ : state) {
+    ++frame;
+    for (std::size_t i = 0; i < n; ++i) {
+      objects[i]->setTransform(to_fcl(motion.pose(i, frame)));
+      objects[i]->computeAABB();
+    }
+    manager->update();
+    FclData data;
+    manager->collide(&data, fcl_callback);
+    colliding += data.colliding;
+    tested += data.tested;
+    if (frame <= counts.size() && counts[frame - 1] != data.colliding) {
+      state.SkipWithError("FCL and antcd disagree on the colliding pairs of a frame");
+      break;
+    }
+  }
+  state.counters["colliding_per_frame"] =
+      static_cast<double>(colliding) / static_cast<double>(frame);
+  state.counters["broadphase_pairs_per_frame"] =
+      static_cast<double>(tested) / static_cast<double>(frame);
+  state.counters["world_heap_MB"] = static_cast<double>(bytes) / 1e6;
+}
+
+// ---- two-thread scaling on a dense world of real meshes ----
+
+std::vector<std::shared_ptr<const Model>> dense_models() {
+  std::vector<std::shared_ptr<const Model>> out;
+  const std::filesystem::path root = "/usr/share/assimp/models";
+  for (const char* f : {"OBJ/spider.obj", "PLY/Wuson.ply"}) {
+    if (!std::filesystem::exists(root / f)) continue;
+    Mesh m = load_mesh(root / f);
+    const Aabb b = m.bounds();
+    const Vec3 c = 0.5 * (b.min + b.max);
+    const Scalar r = 0.5 * (b.max - b.min).norm();
+    for (Vec3& v : m.vertices) v = (v - c) / r;  // radius 1
+    out.push_back(std::make_shared<const Model>(std::move(m)));
+  }
+  if (out.empty()) out.push_back(std::make_shared<const Model>(make_torus(0.8, 0.2, 96, 48)));
+  return out;
+}
+
+void dense_threads(benchmark::State& state) {
+  const auto threads = static_cast<int>(state.range(0));
+  static const auto models = dense_models();
+  constexpr std::size_t kObjects = 200;
+  const Motion motion(kObjects, std::cbrt(4.0 * kObjects), 7);
+  World world;
+  std::vector<ObjectId> ids;
+  for (std::size_t i = 0; i < kObjects; ++i) {
+    ids.push_back(world.add(models[i % models.size()], motion.pose(i, 0)));
+  }
+  tbb::task_arena arena(threads);
+  std::size_t colliding = 0;
+  for (auto _ : state) {
+    const std::vector<PairContacts> pairs = arena.execute([&] { return world.collide_all(); });
+    colliding = pairs.size();
+  }
+  state.counters["colliding"] = static_cast<double>(colliding);
+  state.counters["candidates"] = static_cast<double>(world.candidate_pairs(0).size());
+}
+
+}  // namespace
+
+BENCHMARK(world_frame_antcd)->Arg(10000)->Arg(100000)->Unit(benchmark::kMillisecond)->Iterations(20)->Repetitions(3)->ReportAggregatesOnly(true);
+BENCHMARK(world_frame_fcl)->Arg(10000)->Arg(100000)->Unit(benchmark::kMillisecond)->Iterations(20)->Repetitions(3)->ReportAggregatesOnly(true);
+BENCHMARK(dense_threads)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->MinTime(1.0)->Repetitions(3)->ReportAggregatesOnly(true)->UseRealTime();
+
+BENCHMARK_MAIN();
