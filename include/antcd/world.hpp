@@ -23,14 +23,16 @@
 //   Queries spread their work over oneTBB workers of the calling thread's task arena (wrap a call
 //   in a tbb::task_arena to bound it); the answer does not depend on how many.
 // - Errors: an invalid argument (an unknown or removed ObjectId, a non-finite or non-rigid pose, a
-//   negative or non-finite distance, a zero ray direction, a null model) throws
-//   std::invalid_argument whose message names the function, the argument and the object.
+//   negative or non-finite distance, a zero ray direction, a null model) throws ArgumentError
+//   (error.hpp) whose message names the function, the argument and the object.
 // - Broad phase: a dynamic AABB tree over fattened world boxes (docs/design.md): moving an object
 //   within its fattened box costs only the box computation; leaving it costs one removal and one
 //   insertion (O(log n)). Queries never modify the tree.
 #pragma once
 
 #include <antcd/collide.hpp>
+#include <antcd/error.hpp>
+#include <antcd/export.hpp>
 
 #include <cstdint>
 #include <limits>
@@ -109,11 +111,11 @@ struct RayHit {
 
 /// Ray against one posed model: every hit triangle (closed triangles; a ray lying in a triangle's
 /// plane does not hit it), sorted by (distance, triangle). Thread-safe. `object` is left default.
-std::vector<RayHit> raycast_all(const Model& model, const Transform& pose, const Ray& ray);
+ANTCD_API std::vector<RayHit> raycast_all(const Model& model, const Transform& pose, const Ray& ray);
 /// The nearest hit of raycast_all (ties: smallest triangle index), or nothing.
-std::optional<RayHit> raycast(const Model& model, const Transform& pose, const Ray& ray);
+ANTCD_API std::optional<RayHit> raycast(const Model& model, const Transform& pose, const Ray& ray);
 
-class World {
+class ANTCD_API World {
  public:
   explicit World(const WorldOptions& options = {});
   World(const World&) = delete;

@@ -7,7 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <stdexcept>
+#include <antcd/error.hpp>
 #include <string>
 
 #include "world/ray_check.hpp"
@@ -27,7 +27,7 @@ constexpr std::size_t kBlock = 128;  // objects per broad-phase task
 
 void check_delta(Scalar delta, const char* function, const char* argument) {
   if (!(delta >= 0) || !std::isfinite(delta)) {
-    throw std::invalid_argument(std::string(function) + ": " + argument +
+    throw ArgumentError(std::string(function) + ": " + argument +
                                 " must be finite and >= 0, got " + std::to_string(delta));
   }
 }
@@ -210,7 +210,7 @@ std::vector<ObjectContacts> World::collide_model(const Model& model, const Trans
                                                  const QueryFilter& filter) const {
   check_delta(request.delta, "World::collide_model", "request.delta");
   if (!pose.rotation.allFinite() || !pose.translation.allFinite()) {
-    throw std::invalid_argument("World::collide_model: pose is not finite (NaN or infinity)");
+    throw ArgumentError("World::collide_model: pose is not finite (NaN or infinity)");
   }
   Impl::Object probe;
   probe.box = posed_box(model, pose, probe.tolerance);

@@ -8,7 +8,7 @@
 
 namespace antcd::detail {
 
-/// Validates a ray (throws std::invalid_argument naming `function` and the field); returns the
+/// Validates a ray (throws ArgumentError naming `function` and the field); returns the
 /// unit direction.
 Vec3 checked_ray_direction(const Ray& ray, const char* function);
 

@@ -6,7 +6,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <stdexcept>
+#include <antcd/error.hpp>
 #include <string>
 
 #include "world/ray_check.hpp"
@@ -125,13 +125,13 @@ namespace detail {
 Vec3 checked_ray_direction(const Ray& ray, const char* function) {
   const std::string fn(function);
   if (!ray.origin.allFinite()) {
-    throw std::invalid_argument(fn + ": ray.origin is not finite");
+    throw ArgumentError(fn + ": ray.origin is not finite");
   }
   if (!ray.direction.allFinite() || ray.direction.squaredNorm() == 0) {
-    throw std::invalid_argument(fn + ": ray.direction must be finite and non-zero");
+    throw ArgumentError(fn + ": ray.direction must be finite and non-zero");
   }
   if (std::isnan(ray.max_distance) || ray.max_distance < 0) {
-    throw std::invalid_argument(fn + ": ray.max_distance must be >= 0 (may be infinite)");
+    throw ArgumentError(fn + ": ray.max_distance must be >= 0 (may be infinite)");
   }
   return ray.direction.normalized();
 }

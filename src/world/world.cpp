@@ -7,7 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <sstream>
-#include <stdexcept>
+#include <antcd/error.hpp>
 #include <string>
 
 #include "world/world_impl.hpp"
@@ -45,7 +45,7 @@ void check_pose(const Transform& pose, const std::string& function, const std::s
     std::ostringstream msg;
     msg << function << ": " << what << " " << problem;
     if (err > 0) msg << "; orthonormality error " << err;
-    throw std::invalid_argument(msg.str());
+    throw ArgumentError(msg.str());
   }
 }
 
@@ -71,7 +71,7 @@ const World::Impl::Object& World::Impl::get(ObjectId id, const char* function,
                                             const char* argument) const {
   if (id.slot >= objects.size() || !objects[id.slot].alive ||
       objects[id.slot].generation != id.generation) {
-    throw std::invalid_argument(std::string(function) + ": " + argument + " " + describe(id) +
+    throw ArgumentError(std::string(function) + ": " + argument + " " + describe(id) +
                                 " is not an object of this world (removed, or never added)");
   }
   return objects[id.slot];
@@ -85,7 +85,7 @@ Aabb World::Impl::fattened(const Object& o) const {
 
 World::World(const WorldOptions& options) : impl_(std::make_unique<Impl>()) {
   if (!(options.fat_fraction >= 0) || !std::isfinite(options.fat_fraction)) {
-    throw std::invalid_argument("World: options.fat_fraction must be finite and >= 0");
+    throw ArgumentError("World: options.fat_fraction must be finite and >= 0");
   }
   impl_->settings = options;
 }
@@ -97,7 +97,7 @@ ObjectId World::add(std::shared_ptr<const Model> model, const Transform& pose,
                     ObjectOptions options) {
   const std::string label =
       options.name.empty() ? std::string("the new object") : "object '" + options.name + "'";
-  if (!model) throw std::invalid_argument("World::add: model is null (" + label + ")");
+  if (!model) throw ArgumentError("World::add: model is null (" + label + ")");
   check_pose(pose, "World::add", "pose of " + label);
   Impl& w = *impl_;
   std::uint32_t slot;
@@ -105,7 +105,7 @@ ObjectId World::add(std::shared_ptr<const Model> model, const Transform& pose,
     slot = w.free_slots.back();
     w.free_slots.pop_back();
   } else {
-    if (w.objects.size() >= UINT32_MAX - 1) throw std::length_error("World::add: too many objects");
+    if (w.objects.size() >= UINT32_MAX - 1) throw ArgumentError("World::add: too many objects (2^32 - 2)");
     slot = static_cast<std::uint32_t>(w.objects.size());
     w.objects.emplace_back();
   }
@@ -147,7 +147,7 @@ void World::set_pose(ObjectId id, const Transform& pose) {
 void World::set_poses(std::span<const ObjectId> ids, std::span<const Transform> poses) {
   Impl& w = *impl_;
   if (ids.size() != poses.size()) {
-    throw std::invalid_argument("World::set_poses: " + std::to_string(ids.size()) + " ids but " +
+    throw ArgumentError("World::set_poses: " + std::to_string(ids.size()) + " ids but " +
                                 std::to_string(poses.size()) + " poses");
   }
   for (std::size_t k = 0; k < ids.size(); ++k) {
@@ -194,7 +194,7 @@ void World::ignore_pair(ObjectId a, ObjectId b, bool ignored) {
   Impl::Object& oa = w.get(a, "World::ignore_pair", "a");
   Impl::Object& ob = w.get(b, "World::ignore_pair", "b");
   if (a.slot == b.slot) {
-    throw std::invalid_argument("World::ignore_pair: a and b are the same " +
+    throw ArgumentError("World::ignore_pair: a and b are the same " +
                                 object_label(oa, a));
   }
   const auto set = [&](std::vector<std::uint32_t>& list, std::uint32_t slot) {

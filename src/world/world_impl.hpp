@@ -36,7 +36,7 @@ struct World::Impl {
   detail::AabbTree tree;
   std::size_t live = 0;
 
-  /// The live object of `id`, or an std::invalid_argument naming `function` and `argument`.
+  /// The live object of `id`, or an ArgumentError naming `function` and `argument`.
   const Object& get(ObjectId id, const char* function, const char* argument) const;
   Object& get(ObjectId id, const char* function, const char* argument) {
     return const_cast<Object&>(std::as_const(*this).get(id, function, argument));

@@ -137,7 +137,7 @@ void run_random_sequence(const std::vector<ModelPtr>& models, std::uint64_t seed
       ref.objects.erase(id);
       std::erase_if(ref.ignored, [&](const auto& p) { return p.first == id || p.second == id; });
       EXPECT_FALSE(world.contains(id));
-      EXPECT_THROW(world.set_pose(id, Transform{}), std::invalid_argument);
+      EXPECT_THROW(world.set_pose(id, Transform{}), ArgumentError);
     } else if (o <= 5) {  // batch move of about half the objects
       std::vector<ObjectId> ids;
       std::vector<Transform> poses;
@@ -306,7 +306,7 @@ TEST(World, InvalidArgumentsNameTheArgumentAndChangeNothing) {
   const auto message = [](auto&& f) {
     try {
       f();
-    } catch (const std::invalid_argument& e) {
+    } catch (const ArgumentError& e) {
       return std::string(e.what());
     }
     return std::string("no exception");
