@@ -246,8 +246,8 @@ void dense_threads(benchmark::State& state) {
 
 }  // namespace
 
-BENCHMARK(world_frame_antcd)->Arg(10000)->Arg(100000)->Unit(benchmark::kMillisecond)->Iterations(20)->Repetitions(3)->ReportAggregatesOnly(true);
-BENCHMARK(world_frame_fcl)->Arg(10000)->Arg(100000)->Unit(benchmark::kMillisecond)->Iterations(20)->Repetitions(3)->ReportAggregatesOnly(true);
+BENCHMARK(world_frame_antcd)->Arg(10000)->Arg(100000)->Unit(benchmark::kMillisecond)->Iterations(8)->Repetitions(3)->ReportAggregatesOnly(true);
+BENCHMARK(world_frame_fcl)->Arg(10000)->Arg(100000)->Unit(benchmark::kMillisecond)->Iterations(8)->Repetitions(3)->ReportAggregatesOnly(true);
 BENCHMARK(dense_threads)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->MinTime(1.0)->Repetitions(3)->ReportAggregatesOnly(true)->UseRealTime();
 
 BENCHMARK_MAIN();
