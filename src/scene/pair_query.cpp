@@ -97,6 +97,8 @@ void random_frame(const std::vector<std::pair<PairSide, PairSide>>& pairs,
   std::uint64_t left = query.frame_evaluations;
   constexpr std::uint64_t kMaxRounds = 8;
   std::vector<std::uint64_t> spent(m, 0);
+  // The witness scans of phase 1 count against the frame budget too.
+  for (std::size_t k = 0; k < m; ++k) left -= std::min(left, out[k].evaluations);
   for (std::uint64_t round = 0; round < (frame_budget ? kMaxRounds : 1); ++round) {
     std::vector<std::size_t> todo;
     for (std::size_t k = 0; k < m; ++k) {
