@@ -390,10 +390,11 @@ void run_paper_bench(const PaperBenchOptions& options, std::ostream& log) {
       const auto t0 = Clock::now();
       const FeatureSpace space = build_feature_space(a, pa, b, pb, sampling, seed);
       const double build_ms = ms_since(t0);
-      out.delta = space.delta;
+      out.delta = space.centroid_delta;
       auto detect = [&](const FeatureSpace& sp, Method method, std::uint64_t budget, double base_ms,
-                        std::size_t salt) {
+                        std::size_t salt, Verdict verdict = Verdict::Witness) {
         SearchRequest req = paper_request(method, shared::derive_seed(seed, 5, salt));
+        req.verdict = verdict;
         req.restarts = std::numeric_limits<std::uint32_t>::max();
         req.stop.first_hit = true;
         req.stop.max_evaluations = budget;
@@ -409,11 +410,13 @@ void run_paper_bench(const PaperBenchOptions& options, std::ostream& log) {
         }
       }
       for (const double scale : P.delta_scales) {
+        // The paper-literal verdict with a smaller centroid threshold.
         SamplingOptions small = sampling;
-        small.delta = space.delta * scale;
+        small.centroid_delta = space.centroid_delta * scale;
         const auto s0 = Clock::now();
         const FeatureSpace sp = build_feature_space(a, pa, b, pb, small, seed);
-        out.sensitivity.push_back(detect(sp, Method::Maco, P.budgets.back(), ms_since(s0), 0));
+        out.sensitivity.push_back(
+            detect(sp, Method::Maco, P.budgets.back(), ms_since(s0), 0, Verdict::PaperCentroid));
       }
       const std::size_t d = ++done;
       const std::lock_guard<std::mutex> lock(log_mutex);

@@ -18,13 +18,14 @@ enum class Method {
   Pso,         ///< particle swarm (BOX-PSO / PSO random collision detection baseline)
   Ga,          ///< genetic algorithm baseline
   Exhaustive,  ///< every feature pair in row order: the searches' reference
+  Grid,        ///< fixed-radius neighbour search on a uniform grid: the second reference
 };
 
-/// True for the random searches (Aco, Maco, Pso, Ga, Exhaustive).
+/// True for the random searches (Aco, Maco, Pso, Ga, Exhaustive, Grid).
 constexpr bool is_search_method(Method m) { return m != Method::Exact && m != Method::SphereObb; }
 
 /// The method's name on command lines and in files: "exact", "sphere-obb", "aco", "maco", "pso",
-/// "ga", "exhaustive".
+/// "ga", "exhaustive", "grid".
 ANTCD_API std::string_view method_name(Method m);
 
 /// The method's name in tables and reports: "Exact", "Sphere-OBB", "ACO", "MACO", "PSO", "GA",

@@ -1,32 +1,38 @@
 // antcd/random.hpp — random (stochastic) collision detection: the paper's sections 3–4.
 //
-// The exact query (collide.hpp) tests triangles. The random query works on FEATURES instead: the
-// centroids of triangles sampled from the leaves that the Sphere-OBB traversal reports as
-// overlapping. A feature space is the 2-D grid of feature pairs (i, j), i indexing A's sampled
-// features and j B's; its fitness is the centroid distance f(i, j) (Eq. 6). A feature pair
-// COLLIDES when f(i, j) <= delta (Eq. 5). A search (ant colony, improved ant colony, particle
-// swarm, genetic algorithm or exhaustive enumeration) looks for colliding feature pairs.
+// Flow (the paper's section 4, Figure 2):
+//  1. Preliminary detection: the Sphere-OBB dual traversal at the collision threshold delta (the
+//     same delta as collide()) reports the leaf pairs whose volumes are within delta. None: the
+//     models are separate, with no search at all.
+//  2. Feature sampling: the triangles of those leaves, per side, give FEATURES (their centroids,
+//     section 3.2). A feature space is the 2-D grid of feature pairs (i, j), i indexing A's
+//     features and j B's; its fitness is the centroid distance f(i, j) (Eq. 6).
+//  3. Search: an ant colony (or a baseline) walks the grid looking for colliding feature pairs.
+//
+// What a colliding feature pair is (Verdict):
+// - Verdict::Witness (default): the exact triangle test at delta (collide()'s definition)
+//   confirms the two triangles. The centroid distance only orders the search and decides which
+//   pairs are worth that test: two triangles can be within delta only if
+//   f(i, j) <= r_i + r_j + delta, with r the triangle's circumradius about its centroid. Every
+//   reported pair is a real contact (precision 1 by construction); misses are the only
+//   approximation.
+// - Verdict::PaperCentroid: the paper literally (Eq. 5 on Eq. 6): a centroid pair within the
+//   centroid threshold delta_c. A proximity test, not contact: near misses count.
 //
 // Conventions
-// - Frames: a FeatureSpace holds its centroids in the WORLD frame (pose applied). Distances are
-//   Euclidean, in mesh units.
-// - delta here is a CENTROID distance threshold. It is not collide()'s delta (an exact
-//   triangle-to-triangle distance): two triangles that cross each other can have centroids far
-//   apart, and two triangles whose centroids are within delta need not touch. default_delta()
-//   derives a threshold from the triangles' sizes (see there). The random query is approximate by
-//   design; collide() is the exact one.
-// - Feature order: each side's features are ordered so that neighbouring indices are neighbours in
-//   space (the hierarchy's leaf order, or a Morton curve), so the grid is a landscape a local
-//   search can walk, not noise.
-// - Determinism: every random choice (sampling, search) comes from a std::mt19937_64 seeded from
-//   the seed passed in. Same inputs and seed => same result, bit for bit, on any thread.
-//   The only exception is StopCriteria::max_seconds, which makes the stopping point depend on the
-//   clock.
-// - Thread safety: no global state. Every function is reentrant; FeatureSpace and Model are only
-//   read, so any number of threads may search the same space at once.
-// - Memory: search() allocates its working set once (pheromone on at most 64 x 64 blocks, paths,
-//   swarm or population); after that only the hit list and the distinct-hit set grow, with the
-//   number of hits. Nothing is proportional to the number of feature pairs.
+// - Frames: a FeatureSpace holds its centroids and triangles in the WORLD frame (pose applied).
+//   Centroids are floats (structure of arrays); the witness test runs on doubles.
+// - Feature order: each side's features follow the hierarchy's leaf order (or a Morton curve), so
+//   neighbouring indices are neighbours in space and the grid is a landscape a local search can
+//   walk.
+// - Determinism: every random choice comes from a small xoshiro256** stream seeded from the seed
+//   passed in. Same inputs, seed and memory => same result, bit for bit, on any thread.
+//   StopCriteria::max_seconds is the only criterion that depends on the clock.
+// - Memory across frames: a ColonyMemory (optional) carries one model pair's pheromone, its
+//   iteration count N_c and the last witnesses from one search to the next (temporal coherence).
+//   A memory must not be used by two searches at once.
+// - Thread safety: no global state. FeatureSpace and Model are only read, so any number of threads
+//   may search the same space at once (each with its own memory, or none).
 // - Errors: invalid arguments throw antcd::ArgumentError naming the parameter.
 #pragma once
 
@@ -43,6 +49,14 @@ namespace antcd {
 
 // ---- Feature space (sections 3.1–3.2) ----
 
+/// What counts as a colliding feature pair (see the top of this file).
+enum class Verdict {
+  Witness,        ///< the exact triangle test at delta confirms the pair (default)
+  PaperCentroid,  ///< the paper literally: centroid distance <= the centroid threshold
+};
+
+ANTCD_API std::string_view to_string(Verdict verdict);
+
 /// How each side's sampled features are ordered along their index.
 enum class FeatureOrder {
   /// The hierarchy's leaf order (depth-first), which keeps spatially close triangles together.
@@ -53,20 +67,41 @@ enum class FeatureOrder {
 
 struct SamplingOptions {
   /// Features sampled on each side (>= 1). When a side has fewer candidate triangles, all of them
-  /// are taken. The paper runs 1000 to 5000 per side.
+  /// are taken.
   std::uint32_t samples_per_side = 1000;
-  /// Centroid threshold the space is built for (also the preliminary detection's culling margin).
-  /// Negative: default_delta(a, b). Every feature pair with centroid distance <= delta lies in
-  /// a leaf pair the traversal reports, so culling with it loses no colliding pair.
-  Scalar delta = -1;
+  /// The collision threshold delta of collide() (>= 0, mesh units): the preliminary detection
+  /// runs with it, and Verdict::Witness confirms pairs with it.
+  Scalar delta = 0;
+  /// The centroid threshold delta_c of Verdict::PaperCentroid. Negative: default_delta(a, b). It
+  /// does not widen the preliminary detection.
+  Scalar centroid_delta = -1;
   FeatureOrder order = FeatureOrder::Leaf;
+  /// Stop the preliminary detection after this many leaf pairs (0 = all). The traversal then
+  /// visits the nearer children first, so the space holds the leaf pairs met first; a search that
+  /// finds nothing there must rebuild the space with every leaf pair (FeatureSpace::complete).
+  std::uint32_t max_leaf_pairs = 0;
 };
 
-/// One side of a feature space: centroids (world frame, structure of arrays) and, for each, the
-/// index of its triangle in the mesh.
+/// One side of a feature space: centroids (world frame, float structure of arrays), the
+/// triangles' circumradii about them, their world vertices, and where each came from.
 struct FeatureSide {
-  std::vector<Scalar> x, y, z;
+  std::vector<float> x, y, z;
+  /// Largest centroid-to-vertex distance, rounded up to cover the float centroids' rounding.
+  std::vector<float> radius;
+  /// Vertices, 3 per feature, in model A's frame (the frame collide() tests in; B's are mapped
+  /// into it), for the witness test.
+  std::vector<Vec3> vertices;
+  /// Mesh triangle index of each feature.
   std::vector<std::uint32_t> triangle;
+  /// Index of each feature's triangle in Model::leaf_triangles(): pose-independent, so pheromone
+  /// kept on it stays meaningful from frame to frame.
+  std::vector<std::uint32_t> position;
+  /// Triangles in the model's hierarchy (the range of `position`).
+  std::uint32_t model_triangles = 0;
+  /// Features of each reported leaf of this side (local leaf k: leaf_features[leaf_start[k] ..
+  /// leaf_start[k + 1])); a leaf whose triangles were all left out by sampling is empty.
+  std::vector<std::uint32_t> leaf_start;
+  std::vector<std::uint32_t> leaf_features;
 
   [[nodiscard]] std::uint32_t size() const { return static_cast<std::uint32_t>(triangle.size()); }
   [[nodiscard]] Vec3 centroid(std::uint32_t i) const { return {x[i], y[i], z[i]}; }
@@ -76,45 +111,67 @@ struct FeatureSide {
 struct ANTCD_API FeatureSpace {
   FeatureSide a;  ///< features of model A, index i
   FeatureSide b;  ///< features of model B, index j
-  /// The centroid threshold the space was built for (SamplingOptions::delta, resolved).
+  /// collide()'s delta the space was built for (culling and witness test).
   Scalar delta = 0;
+  /// Centroid threshold of Verdict::PaperCentroid (SamplingOptions::centroid_delta, resolved);
+  /// also the length unit of the colony's path lengths. Always > 0.
+  Scalar centroid_delta = 0;
   /// Leaf pairs reported by the preliminary detection.
   std::size_t leaf_pairs = 0;
+  /// Whether the preliminary detection ran to the end (false: SamplingOptions::max_leaf_pairs cut
+  /// it, and other leaf pairs may exist).
+  bool complete = true;
+  /// The reported leaf pairs as local leaf indices into a.leaf_start / b.leaf_start (the cells
+  /// where the colony places its ants, section 4 step 3).
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> overlaps;
   /// Candidate triangles per side (in the reported leaves) before sampling.
   std::size_t candidates_a = 0;
   std::size_t candidates_b = 0;
 
   [[nodiscard]] std::uint64_t cells() const { return std::uint64_t{a.size()} * b.size(); }
   [[nodiscard]] bool empty() const { return a.size() == 0 || b.size() == 0; }
-  /// Fitness f(i, j) of Eq. 6: distance between the two centroids.
-  [[nodiscard]] Scalar distance(std::uint32_t i, std::uint32_t j) const;
+  /// Fitness f(i, j) of Eq. 6: distance between the two centroids (float arithmetic).
+  [[nodiscard]] float distance(std::uint32_t i, std::uint32_t j) const;
+  /// Whether cell (i, j) collides under `verdict` (centroid threshold `centroid_delta`, negative:
+  /// the space's). The witness test is exact (collide()'s triangle test at delta).
+  [[nodiscard]] bool collides(std::uint32_t i, std::uint32_t j, Verdict verdict,
+                              Scalar centroid_delta = -1) const;
 };
 
 /// Median over A's non-degenerate triangles of the largest centroid-to-vertex distance ("feature
 /// radius"), model frame (poses do not change it). O(n) in the triangles.
 ANTCD_API Scalar feature_radius(const Model& model);
 
-/// Default centroid threshold: feature_radius(a) + feature_radius(b). Any point of a triangle lies
-/// within its radius of its centroid, so two touching triangles of at most median size always have
-/// centroids within this distance: for typical triangles the threshold misses no touching pair
-/// (it does admit near misses; random detection is approximate). Always > 0.
+/// Default centroid threshold of Verdict::PaperCentroid: feature_radius(a) + feature_radius(b).
+/// Two touching triangles of at most median size have centroids within it. Always > 0.
 ANTCD_API Scalar default_delta(const Model& a, const Model& b);
 /// default_delta from radii already computed with feature_radius (a scene caches them per model).
 ANTCD_API Scalar default_delta(Scalar radius_a, Scalar radius_b);
 
-/// Preliminary detection then sampling: runs overlapping_leaves(a, pose_a, b, pose_b, delta), takes
-/// the triangles of the reported leaves of each side in leaf order, samples
+/// Preliminary detection then sampling: runs overlapping_leaves(a, pose_a, b, pose_b,
+/// options.delta), takes the triangles of the reported leaves of each side in leaf order, samples
 /// options.samples_per_side of them per side (stratified: one uniformly random triangle from each
-/// of that many equal runs of the leaf order, so the sample covers every region), computes their
-/// centroids in the world frame and orders them (options.order). `seed` drives the sampling only.
-/// Separated models (no leaf pair) give an empty space. Throws antcd::ArgumentError if
-/// samples_per_side is 0 or delta is NaN.
+/// of that many equal runs of the leaf order), computes centroids, radii and vertices in the world
+/// frame and orders them (options.order). `seed` drives the sampling only. Models with no leaf
+/// pair give an empty space. Throws antcd::ArgumentError if samples_per_side is 0, delta is
+/// negative or not finite, or centroid_delta is not finite.
 ANTCD_API FeatureSpace build_feature_space(const Model& a, const Transform& pose_a, const Model& b,
-                                           const Transform& pose_b,
-                                           const SamplingOptions& options = {},
-                                           std::uint64_t seed = 0);
+                                 const Transform& pose_b, const SamplingOptions& options = {},
+                                 std::uint64_t seed = 0);
 
 // ---- Searches (sections 3.3–4) ----
+
+
+/// Readings of Eq. 12, eta = 1 / (d_oj + d_ij + d_js) (docs/random-detection.md argues them).
+enum class PathHeuristic {
+  /// Default. d_oj = the length of the ant's path so far, d_ij = the step from the current cell
+  /// to j, d_js = the distance still missing to a collision, max(0, f(j) - reach(j)) (reach =
+  /// r_i + r_j + delta for Witness, delta_c for PaperCentroid): the fitness stays the signal.
+  Remaining,
+  /// The first reading: d_ij = f(j), d_oj = cell distance from the tour's start, d_js = cell
+  /// distance to the best cell so far (kept for the ablation).
+  Corridor,
+};
 
 /// The four improvements of section 3.4; each can be switched off alone (ablation). Used only by
 /// Method::Maco (Aco runs with all four off).
@@ -123,6 +180,21 @@ struct MacoSwitches {
   bool adaptive_evaporation = true;  ///< (2) rho = N / (Nc + N) (Eq. 11)
   bool path_heuristic = true;        ///< (3) eta = 1 / (d_oj + d_ij + d_js) (Eq. 12)
   bool reward_punishment = true;  ///< (4) reward/punish against the best evaluation (Eqs. 13–15)
+  /// Reading of Eq. 12 when path_heuristic is on.
+  PathHeuristic heuristic = PathHeuristic::Remaining;
+  /// Section 3.4 (1), "select the route with the highest probability": move to the candidate of
+  /// largest tau^alpha' eta^beta' instead of drawing by roulette (Eq. 7). Off by default (a
+  /// greedy ant re-walks the same cells; see docs/random-detection.md); an option for the study.
+  bool greedy_moves = false;
+};
+
+/// Where the ants start each tour.
+enum class AntStart {
+  /// Default: a uniformly random cell of a uniformly random reported leaf pair (section 4:
+  /// "the primitive patches between the collision nodes" are where to look).
+  LeafPairs,
+  /// A uniformly random cell of the whole grid (the classic colony's random cities).
+  Uniform,
 };
 
 /// Ant colony parameters (both Aco and Maco). See docs/random-detection.md for what a city, a path
@@ -138,9 +210,10 @@ struct AntParams {
   double theta = 0.5;  ///< reward factor of Eq. 15
   double mu = -0.5;    ///< punishment factor of Eq. 15
   std::uint32_t steps = 16;  ///< moves per ant per iteration (path length minus one)
-  /// Pheromone lives on a coarse grid of at most this many blocks per side (>= 1); a block is
-  /// ceil(size / resolution) features wide. 64 gives 4096 cells (32 KiB) whatever the space size.
+  /// Pheromone lives on a coarse grid of at most this many blocks per side (>= 1) over each
+  /// model's leaf order (FeatureSide::position), so it survives pose changes. 64 gives 4096 cells.
   std::uint32_t pheromone_resolution = 64;
+  AntStart start = AntStart::LeafPairs;
   MacoSwitches maco;
 };
 
@@ -163,7 +236,7 @@ struct GaParams {
 };
 
 /// When a search stops: at the first criterion met, else after (restarts + 1) x N iterations
-/// (Exhaustive: after the last row).
+/// (Exhaustive and Grid: after the last row).
 struct StopCriteria {
   bool first_hit = false;  ///< stop at the first colliding feature pair
   /// Stop once this share (0, 1] of the space's truly colliding pairs is found. The truth is
@@ -175,17 +248,47 @@ struct StopCriteria {
   double max_seconds = 0;             ///< wall time (0 = no limit; breaks determinism)
 };
 
+/// A colliding feature pair: grid cell (i, j), the mesh triangles, the centroid distance.
+struct FeaturePair {
+  std::uint32_t i = 0;
+  std::uint32_t j = 0;
+  std::uint32_t triangle_a = 0;
+  std::uint32_t triangle_b = 0;
+  Scalar distance = 0;
+};
+
+/// What an ant colony carries from one search of a model pair to the next (temporal coherence,
+/// section 3.1: "the position of the optimal solution ... [is] constantly changing"): the
+/// pheromone (on blocks of the models' leaf order, so it means the same regions at every pose),
+/// the iteration count N_c of Eqs. 9–11 (so a later search does not fall back to the random walks
+/// of N_c = 1; Eq. 11's rho then acts as the forgetting rate), and the last search's witnesses
+/// (mesh triangle pairs), which the next search tests first. Empty = a fresh colony.
+struct ColonyMemory {
+  std::uint32_t grid_a = 0;  ///< pheromone blocks per side (0 = not initialised)
+  std::uint32_t grid_b = 0;
+  std::vector<float> log_tau;          ///< log2 of the pheromone, grid_a x grid_b
+  std::uint64_t iterations = 0;        ///< N_c: iterations run so far
+  double best_evaluation = 0;          ///< Eq. 13's bt (0 = none yet)
+  /// Witnesses as positions in the two models' leaf order (Model::leaf_triangles() indices,
+  /// pose-independent, like FeatureSide::position), most recent first.
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> witnesses;
+  /// Largest number of witnesses kept.
+  static constexpr std::size_t kMaxWitnesses = 64;
+
+  void clear() { *this = ColonyMemory{}; }
+};
+
 struct SearchRequest {
   Method method = Method::Maco;
-  /// Centroid threshold. Negative: the space's delta. NaN is rejected. A value above the space's
-  /// delta may find pairs outside the culled leaves missing from the space.
-  Scalar delta = -1;
-  /// N: iterations (generations) of one run; also the N of Eq. 11. Exhaustive ignores it.
+  Verdict verdict = Verdict::Witness;
+  /// Centroid threshold of Verdict::PaperCentroid. Negative: the space's centroid_delta. NaN is
+  /// rejected. (Witness uses the space's delta.)
+  Scalar centroid_delta = -1;
+  /// N: iterations (generations) of one run; also the N of Eq. 11. Exhaustive and Grid ignore it.
   std::uint32_t iterations = 100;
-  /// Independent runs started after the first one when it ends its N iterations without meeting
-  /// another stop criterion: fresh pheromone / swarm / population, the random stream continues,
-  /// hits and best accumulate. Use with max_evaluations or max_seconds to search "until a budget"
-  /// without stretching N (which would change Eqs. 9–11). Exhaustive ignores it.
+  /// Further runs when a run ends its N iterations without meeting another stop criterion. PSO and
+  /// GA start fresh (new swarm / population); the colonies continue with their pheromone and N_c
+  /// (a restart re-places the ants, it does not reset Eqs. 9–11). Hits and best accumulate.
   std::uint32_t restarts = 0;
   /// Progress marks, for experiments: shares in (0, 1] of the space's colliding pairs (the truth
   /// as for StopCriteria::target_share). SearchResult::progress tells when each was reached.
@@ -195,15 +298,6 @@ struct SearchRequest {
   GaParams ga;
   StopCriteria stop;
   std::uint64_t seed = 0;
-};
-
-/// A colliding feature pair: grid cell (i, j), the mesh triangles, the centroid distance.
-struct FeaturePair {
-  std::uint32_t i = 0;
-  std::uint32_t j = 0;
-  std::uint32_t triangle_a = 0;
-  std::uint32_t triangle_b = 0;
-  Scalar distance = 0;
 };
 
 /// When a search had found a given share of the space's colliding pairs.
@@ -219,7 +313,7 @@ enum class StopReason {
   EmptySpace,   ///< nothing to search
   FirstHit,     ///< StopCriteria::first_hit
   Target,       ///< StopCriteria::target_share reached
-  Iterations,   ///< N iterations ran (or Exhaustive enumerated every pair)
+  Iterations,   ///< N iterations ran (or Exhaustive / Grid enumerated every pair)
   Evaluations,  ///< StopCriteria::max_evaluations
   Time,         ///< StopCriteria::max_seconds
 };
@@ -231,25 +325,94 @@ struct SearchResult {
   /// Smallest centroid distance evaluated (+inf if nothing was evaluated) and its cell.
   Scalar best_distance = std::numeric_limits<Scalar>::infinity();
   FeaturePair best;
-  std::uint64_t evaluations = 0;  ///< fitness evaluations, repeats included
-  std::uint32_t iterations = 0;   ///< iterations begun, over all runs (Exhaustive: rows visited)
-  std::uint32_t runs = 0;         ///< runs begun (1 + restarts used)
+  std::uint64_t evaluations = 0;     ///< fitness (centroid distance) evaluations, repeats included
+  std::uint64_t witness_tests = 0;   ///< exact triangle tests run (Verdict::Witness)
+  std::uint32_t iterations = 0;  ///< iterations begun, over all runs (Exhaustive: rows visited)
+  std::uint32_t runs = 0;        ///< runs begun (1 + restarts used)
   std::vector<ProgressMark> progress;  ///< one per SearchRequest::progress_marks, same order
   StopReason stop = StopReason::EmptySpace;
-  Scalar delta = 0;  ///< the threshold used
+  Verdict verdict = Verdict::Witness;
+  Scalar centroid_delta = 0;  ///< the centroid threshold used (PaperCentroid)
 };
 
-/// Runs one search over `space`. Throws antcd::ArgumentError on an invalid request.
-ANTCD_API SearchResult search(const FeatureSpace& space, const SearchRequest& request);
+/// Runs one search over `space`. With a memory (colonies only; others ignore it), the colony
+/// starts from the memory's pheromone and N_c, tests the memory's witnesses first (they count as
+/// evaluations), and leaves its state and this search's witnesses in it. Throws
+/// antcd::ArgumentError on an invalid request.
+ANTCD_API SearchResult search(const FeatureSpace& space, const SearchRequest& request,
+                    ColonyMemory* memory = nullptr);
 
-/// Number of colliding pairs in the space at threshold delta (negative: the space's), by
-/// enumeration: the truth against which a detection rate is measured.
-ANTCD_API std::uint64_t count_colliding(const FeatureSpace& space, Scalar delta = -1);
+/// Number of colliding pairs in the space under `verdict` (centroid threshold `centroid_delta`,
+/// negative: the space's), by enumeration: the truth a detection rate is measured against.
+ANTCD_API std::uint64_t count_colliding(const FeatureSpace& space, Verdict verdict = Verdict::Witness,
+                              Scalar centroid_delta = -1);
 
-/// One call: build_feature_space(a, pose_a, b, pose_b, sampling, request.seed), then search. When
-/// request.delta is set (>= 0) the space is built for it, overriding sampling.delta.
+// ---- One model pair, the whole flow ----
+
+struct DetectRequest {
+  /// collide()'s threshold delta (>= 0).
+  Scalar delta = 0;
+  /// The search; its stop.first_hit is forced on (a verdict needs one witness) unless
+  /// `all_witnesses` is set.
+  SearchRequest search;
+  /// Run the search to its budget and return every colliding feature pair it meets.
+  bool all_witnesses = false;
+  std::uint32_t samples_per_side = 1000;
+  FeatureOrder order = FeatureOrder::Leaf;
+  /// Leaf pairs of the first, partial preliminary detection (SamplingOptions::max_leaf_pairs; 0 =
+  /// all at once). Without a witness there, the space is rebuilt with every leaf pair.
+  std::uint32_t first_leaf_pairs = 32;
+  /// Positions around each remembered witness scanned before any traversal
+  /// (confirm_witnesses); 0 = the witnesses alone.
+  std::uint32_t witness_neighbourhood = 4;
+  /// Budget per reported leaf pair, in evaluations, added to the request's own stop criteria
+  /// (0 = none): a pair of models whose leaves overlap but whose surfaces do not meet costs about
+  /// as many centroid distances as the exact test would test triangle pairs.
+  std::uint64_t evaluations_per_leaf_pair = 0;
+};
+
+struct DetectResult {
+  bool colliding = false;
+  /// Decided by the memory's witnesses alone (no traversal, no search).
+  bool by_memory = false;
+  /// No leaf pair at delta: separate without a search.
+  bool no_leaf_pair = false;
+  /// The search stopped on a budget (evaluations or time) without a witness: "separate" is then
+  /// a guess, not a proof.
+  bool budget_exhausted = false;
+  std::size_t leaf_pairs = 0;
+  SearchResult search;
+};
+
+/// What confirm_witnesses did.
+struct WitnessCheck {
+  std::size_t valid = 0;          ///< witnesses confirmed at the new poses
+  std::uint64_t evaluations = 0;  ///< centroid distances computed (neighbourhood scan)
+  std::uint64_t tests = 0;        ///< exact triangle tests
+};
+
+/// Tests the memory's witnesses at these poses with collide()'s exact triangle test at delta.
+/// When none is still valid and `neighbourhood` > 0, scans the cells around each remembered
+/// witness, up to `neighbourhood` positions away in each model's leaf order (the grid moves an ant
+/// makes), with the reach filter f <= r_i + r_j + delta and the exact test: a contact that slid
+/// to a neighbouring triangle is found again without a traversal. stop_at_first: stops at the
+/// first valid pair, moved to the front (the other witnesses stay, untested); else keeps only
+/// the valid witnesses. Throws antcd::ArgumentError for a negative or non-finite delta.
+ANTCD_API WitnessCheck confirm_witnesses(const Model& a, const Transform& pose_a, const Model& b,
+                               const Transform& pose_b, Scalar delta, ColonyMemory& memory,
+                               bool stop_at_first, std::uint32_t neighbourhood = 0);
+
+/// The whole random query of one model pair (section 4): the memory's witnesses first (each
+/// confirmed at the new poses by the exact test counts as a hit), else preliminary detection at
+/// delta (no leaf pair => separate), feature sampling, search. `memory` may be null. Throws
+/// antcd::ArgumentError on invalid arguments.
+ANTCD_API DetectResult random_detect(const Model& a, const Transform& pose_a, const Model& b,
+                           const Transform& pose_b, const DetectRequest& request,
+                           ColonyMemory* memory = nullptr);
+
+/// One call: build_feature_space(a, pose_a, b, pose_b, sampling, request.seed), then search.
 ANTCD_API SearchResult random_collide(const Model& a, const Transform& pose_a, const Model& b,
-                                      const Transform& pose_b, const SearchRequest& request = {},
-                                      const SamplingOptions& sampling = {});
+                            const Transform& pose_b, const SearchRequest& request = {},
+                            const SamplingOptions& sampling = {});
 
 }  // namespace antcd

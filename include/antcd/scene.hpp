@@ -3,8 +3,8 @@
 // Scene file (JSON, format "antcd-scene/1"):
 //   { "format": "antcd-scene/1", "frames": 300,
 //     "objects": [ { "name": "roller_07", "mesh": "meshes/roller.obj", "scale": 1.0,
-//                    "poses": [ { "translation": [0, 1.5, 0], "rotation_wxyz": [1, 0, 0, 0] } ]
-//                  } ] }
+//                    "poses": [ { "translation": [0, 1.5, 0], "rotation_wxyz": [1, 0, 0, 0] } ] } ]
+//                    }
 // - "mesh" is relative to the scene file's folder (absolute paths are kept as they are).
 // - "poses" holds one pose (a static object) or exactly "frames" poses.
 // - "scale" is optional, uniform, > 0, default 1; it scales the mesh about its own origin before
@@ -27,9 +27,11 @@
 #include <antcd/export.hpp>
 #include <antcd/mesh.hpp>
 #include <antcd/method.hpp>
+#include <antcd/random.hpp>
 
 #include <cstdint>
 #include <filesystem>
+#include <map>
 #include <memory>
 #include <string>
 #include <string_view>
@@ -56,9 +58,8 @@ struct SceneDescription {
 
 /// Parses a scene from JSON text. `source` names the input in errors; relative mesh paths are
 /// resolved against `base_dir`. Mesh files are not opened here. Throws SceneError.
-ANTCD_API SceneDescription parse_scene(std::string_view json_text,
-                                       const std::filesystem::path& base_dir,
-                                       const std::string& source);
+ANTCD_API SceneDescription parse_scene(std::string_view json_text, const std::filesystem::path& base_dir,
+                             const std::string& source);
 /// Reads and parses a scene file. Throws SceneError.
 ANTCD_API SceneDescription load_scene(const std::filesystem::path& path);
 /// Serialises a scene (mesh paths as in mesh_text) and writes it atomically. Throws Error.
@@ -70,8 +71,12 @@ struct SceneQuery {
   Method method = Method::Exact;
   /// Collision threshold δ in mesh units (exact and sphere-obb: triangle/volume distance).
   Scalar delta = 0;
-  /// Random methods: the feature (centroid) threshold; <= 0 means the default derived from the
-  /// two models' triangle sizes (see random.hpp).
+  /// Random methods: what a colliding feature pair is. Witness (default): the exact triangle test
+  /// at delta confirms it, so every reported pair is a contact. PaperCentroid: the paper's
+  /// centroid threshold (feature_delta), a proximity test.
+  Verdict verdict = Verdict::Witness;
+  /// Random methods, PaperCentroid: the centroid threshold; <= 0 means the default derived from
+  /// the two models' triangle sizes (see random.hpp). Also the colony's length unit.
   Scalar feature_delta = 0;
   /// Random methods: features sampled per side.
   std::size_t samples_per_side = 1000;
@@ -90,8 +95,46 @@ struct SceneQuery {
   /// feature pairs (FrameResult::feature_truth), for the paper's A/B. Costs one exhaustive pass.
   /// Implies search_all.
   bool count_feature_truth = false;
+  /// Random methods without a frame budget: each pair's search gets this many evaluations per
+  /// leaf pair of its preliminary detection (0 = only the N iterations bound it). A pair whose
+  /// leaves overlap but whose surfaces do not meet then costs about as many centroid distances as
+  /// collide() tests triangle pairs.
+  std::uint64_t evaluations_per_leaf_pair = 64;
+  /// Random methods with a SceneMemory: positions around each remembered witness scanned before
+  /// any traversal (confirm_witnesses, random.hpp); 0 = the witnesses alone.
+  std::uint32_t witness_neighbourhood = 4;
+  /// Random methods: leaf pairs of the first, partial preliminary detection (nearest first; 0 =
+  /// all at once). Without a witness there, the pair's space is rebuilt with every leaf pair.
+  std::uint32_t first_leaf_pairs = 32;
+  /// Random methods, anytime query: fitness evaluations shared by all candidate pairs of the
+  /// frame (0 = off). The budget is split equally over the pairs still undecided, in rounds; a
+  /// pair without a witness when it runs out is reported in FrameResult::undecided.
+  /// Deterministic (the split depends only on counts).
+  std::uint64_t frame_evaluations = 0;
+  /// Random methods, anytime query: wall time for the frame's searches (0 = off; not
+  /// deterministic). May be combined with frame_evaluations.
+  double frame_seconds = 0;
   /// Worker threads for the narrow phase (1 = the calling thread only).
   int threads = 1;
+};
+
+/// What the random methods carry from frame to frame, per object pair: the colony's pheromone,
+/// its iteration count and the last witnesses (ColonyMemory, random.hpp). Pass the same memory to
+/// the frames of one run, in order; a memory must not be used by two run_frame calls at once.
+/// Results then depend on the frames run before (same sequence => same results).
+class SceneMemory {
+ public:
+  void clear() { pairs_.clear(); }
+  [[nodiscard]] std::size_t size() const { return pairs_.size(); }
+  /// The memory of object pair (i, j), i < j; nullptr if none yet.
+  [[nodiscard]] const ColonyMemory* find(std::uint32_t i, std::uint32_t j) const {
+    const auto it = pairs_.find({i, j});
+    return it == pairs_.end() ? nullptr : &it->second;
+  }
+
+ private:
+  friend class Scene;
+  std::map<std::pair<std::uint32_t, std::uint32_t>, ColonyMemory> pairs_;
 };
 
 struct FrameResult {
@@ -104,6 +147,12 @@ struct FrameResult {
   std::uint64_t feature_hits = 0;
   /// Random methods with count_feature_truth: colliding feature pairs in the searched spaces.
   std::uint64_t feature_truth = 0;
+  /// Random methods: candidate pairs whose search ran out of budget without a witness. They are
+  /// not in `pairs` ("separate" is a guess for them, not a proof); every other candidate pair is
+  /// decided (a witness confirmed, or no leaf pair at delta).
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> undecided;
+  /// Random methods: fitness evaluations spent over the frame.
+  std::uint64_t evaluations = 0;
   double time_ms = 0;  ///< pose update + broad phase + narrow phase
 };
 
@@ -132,7 +181,9 @@ class ANTCD_API Scene {
       std::size_t frame, Scalar delta) const;
 
   /// Runs one frame. Throws ArgumentError for a frame >= frames or a bad query.
-  [[nodiscard]] FrameResult run_frame(std::size_t frame, const SceneQuery& query) const;
+  /// `memory` (random methods; may be null) carries the colonies from frame to frame.
+  [[nodiscard]] FrameResult run_frame(std::size_t frame, const SceneQuery& query,
+                                      SceneMemory* memory = nullptr) const;
 
  private:
   SceneDescription description_;

@@ -46,6 +46,7 @@ const char* stop_name(StopReason reason) {
 struct RandomResult {
   SearchResult search;
   Method method = Method::Maco;
+  double delta = 0;  ///< collide()'s threshold the flow ran with
 };
 
 }  // namespace
@@ -96,8 +97,8 @@ void bind_random(py::module_& m) {
                              "Fitness evaluations, repeats included.")
       .def_property_readonly("iterations", [](const RandomResult& r) { return r.search.iterations; })
       .def_property_readonly("runs", [](const RandomResult& r) { return r.search.runs; })
-      .def_property_readonly("delta", [](const RandomResult& r) { return r.search.delta; },
-                             "The centroid threshold used.")
+      .def_property_readonly("delta", [](const RandomResult& r) { return r.delta; },
+                             "collide()'s threshold the flow ran with (culling and witness test).")
       .def_property_readonly("stop", [](const RandomResult& r) { return std::string(stop_name(r.search.stop)); },
                              "Why the search stopped: empty-space, first-hit, target, iterations, "
                              "evaluations or time.")
@@ -117,12 +118,13 @@ void bind_random(py::module_& m) {
         const Transform pa = to_transform(pose_a, "pose_a");
         const Transform pb = to_transform(pose_b, "pose_b");
         SearchRequest request;
+        SamplingOptions sampling;
         request.method = parse_search_method(method);
         request.seed = to_count(seed, "seed", 0, std::numeric_limits<std::uint64_t>::max());
         if (!delta.is_none()) {
           const double d = PyFloat_AsDouble(delta.ptr());  // TypeError for a non-number
           if (d == -1.0 && PyErr_Occurred() != nullptr) throw py::error_already_set();
-          request.delta = to_non_negative(d, "delta");
+          sampling.delta = to_non_negative(d, "delta");
         }
         request.iterations = static_cast<std::uint32_t>(to_count(iterations, "iterations", 1, 1'000'000'000));
         const auto m_agents = static_cast<std::uint32_t>(to_count(agents, "agents", 2, 1'000'000));
@@ -133,11 +135,11 @@ void bind_random(py::module_& m) {
         request.stop.max_evaluations = to_count(max_evaluations, "max_evaluations", 0,
                                                 std::numeric_limits<std::uint64_t>::max());
         request.restarts = static_cast<std::uint32_t>(to_count(restarts, "restarts", 0, 1'000'000));
-        SamplingOptions sampling;
         sampling.samples_per_side =
             static_cast<std::uint32_t>(to_count(samples_per_side, "samples_per_side", 1, 10'000'000));
         RandomResult result;
         result.method = request.method;
+        result.delta = sampling.delta;
         {
           py::gil_scoped_release release;
           result.search = random_collide(a, pa, b, pb, request, sampling);
@@ -150,11 +152,12 @@ void bind_random(py::module_& m) {
       py::arg("first_hit") = false, py::arg("max_evaluations") = 0, py::arg("restarts") = 0,
       "Random collision detection (the paper's sections 3-4): preliminary Sphere-OBB detection, "
       "triangles of the overlapping leaves sampled into a feature grid (samples_per_side per "
-      "model), then a search for feature pairs whose centroids are within delta.\n\n"
+      "model), then a search for feature pairs whose triangles the exact test confirms within "
+      "delta (the witness verdict).\n\n"
       "method: 'maco' (the paper's improved ant colony), 'aco', 'pso', 'ga' or 'exhaustive' "
       "(every pair: the reference).\n"
       "seed: same inputs and seed give the same result, on any thread.\n"
-      "delta: centroid threshold (None: derived from the two models' triangle sizes).\n"
+      "delta: collide()'s threshold, >= 0 (None: 0).\n"
       "iterations: N per run; agents: ants / particles / population (>= 2); first_hit: stop at "
       "the first colliding pair; max_evaluations: budget (0 = none); restarts: fresh runs after "
       "the first one ends without meeting another criterion.\n"

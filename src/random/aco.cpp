@@ -2,20 +2,25 @@
 // (section 3.4, Eqs. 9–15). docs/random-detection.md explains the reading of the paper on the
 // feature grid; in short:
 // - a city is a cell (i, j) of the grid, i.e. a feature pair;
-// - an ant's tour starts at a uniformly random cell and makes `steps` moves; from cell c the
-//   candidates J_k(c) are the 8 neighbours at distance 1 and the 8 at distance `hop` (one
-//   pheromone block) not yet on the ant's path; every candidate is evaluated (and any collision
-//   recorded);
-// - pheromone lives on a grid of at most pheromone_resolution² blocks (64² by default),
-//   tau_ij = tau(block of j);
-// - L_k, the path length, is the mean centroid distance of the path's cells in units of delta.
-#include "random/engines.hpp"
-
+// - an ant's tour starts at a cell of a reported leaf pair (or a uniformly random cell) and makes
+//   `steps` moves; from cell c the candidates J_k(c) are the 8 neighbours at distance 1 and the 8
+//   at distance `hop`, not yet on the ant's path; every candidate is evaluated (and any collision
+//   recorded) in one batch;
+// - pheromone lives on a grid of at most pheromone_resolution² blocks over the two models' leaf
+//   order (pose-independent), tau_ij = tau(block of j), and is kept in a ColonyMemory from one
+//   search to the next;
+// - L_k, the path length, is the mean centroid distance of the path's cells in units of the
+//   space's centroid threshold.
+// The inner loop uses floats, the pheromone kept as log2(tau) per block and the fast log2 / exp2
+// of fast_math.hpp: no call into the maths library per candidate.
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
 #include <vector>
+
+#include "random/fast_math.hpp"
+#include "random/engines.hpp"
 
 namespace antcd::detail {
 namespace {
@@ -25,70 +30,94 @@ struct Cell {
   std::uint32_t j = 0;
 };
 
-/// The distance between two cells used by the path heuristic of Eq. 12: how far the pair's two
-/// features move in space, |a_i - a_i'| + |b_j - b_j'| (mesh units, a metric on the grid). With it
-/// f(c') <= f(c) + D(c, c'), so D bounds how much closer to colliding a cell can be than another.
-Scalar cell_distance(const FeatureSpace& s, Cell p, Cell q) {
-  const Scalar ax = s.a.x[p.i] - s.a.x[q.i];
-  const Scalar ay = s.a.y[p.i] - s.a.y[q.i];
-  const Scalar az = s.a.z[p.i] - s.a.z[q.i];
-  const Scalar bx = s.b.x[p.j] - s.b.x[q.j];
-  const Scalar by = s.b.y[p.j] - s.b.y[q.j];
-  const Scalar bz = s.b.z[p.j] - s.b.z[q.j];
-  return std::sqrt(ax * ax + ay * ay + az * az) + std::sqrt(bx * bx + by * by + bz * bz);
+/// Distance between two features of one side with the L1 norm (a metric; no square root).
+inline float feature_step(const FeatureSide& s, std::uint32_t p, std::uint32_t q) {
+  return std::abs(s.x[p] - s.x[q]) + std::abs(s.y[p] - s.y[q]) + std::abs(s.z[p] - s.z[q]);
 }
 
-/// Index of the first entry of the non-decreasing `cumulative` that exceeds u * total.
-std::size_t roulette(const double* cumulative, std::size_t count, double u) {
-  const double target = u * cumulative[count - 1];
-  const double* it = std::upper_bound(cumulative, cumulative + count, target);
-  return std::min<std::size_t>(static_cast<std::size_t>(it - cumulative), count - 1);
+/// The cell metric of Eq. 12: how far the pair's two features move in space,
+/// |a_i - a_i'|_1 + |b_j - b_j'|_1 (mesh units).
+inline float cell_distance(const FeatureSpace& s, Cell p, Cell q) {
+  return feature_step(s.a, p.i, q.i) + feature_step(s.b, p.j, q.j);
+}
+
+/// Pheromone grid size along one side: at most `resolution` blocks, at most one per triangle.
+std::uint32_t grid_size(std::uint32_t resolution, std::uint32_t model_triangles) {
+  return std::max<std::uint32_t>(1, std::min(resolution, model_triangles));
 }
 
 }  // namespace
 
 void run_colony(const FeatureSpace& space, const SearchRequest& request, bool improved,
-                std::uint64_t seed, Recorder& rec) {
+                std::uint64_t seed, ColonyMemory& memory, Recorder& rec) {
   const AntParams& p = request.ant;
-  const MacoSwitches sw = improved ? p.maco : MacoSwitches{false, false, false, false};
+  MacoSwitches sw = p.maco;
+  if (!improved) {
+    sw.adaptive_exponents = sw.adaptive_evaporation = sw.path_heuristic = false;
+    sw.reward_punishment = sw.greedy_moves = false;
+  }
   const std::uint32_t na = space.a.size();
   const std::uint32_t nb = space.b.size();
   const std::uint32_t big_n = request.iterations;
 
-  // Pheromone grid: blocks of block_a x block_b cells, ga x gb of them.
-  const std::uint32_t block_a = (na + p.pheromone_resolution - 1) / p.pheromone_resolution;
-  const std::uint32_t block_b = (nb + p.pheromone_resolution - 1) / p.pheromone_resolution;
-  const std::uint32_t ga = (na + block_a - 1) / block_a;
-  const std::uint32_t gb = (nb + block_b - 1) / block_b;
-  const std::size_t blocks = std::size_t{ga} * gb;
-  const std::uint32_t hop_a = std::max<std::uint32_t>(2, block_a);
-  const std::uint32_t hop_b = std::max<std::uint32_t>(2, block_b);
+  // Pheromone grid over the models' leaf order, carried in the memory.
+  const std::uint32_t ga = grid_size(p.pheromone_resolution, space.a.model_triangles);
+  const std::uint32_t gb = grid_size(p.pheromone_resolution, space.b.model_triangles);
+  if (memory.grid_a != ga || memory.grid_b != gb ||
+      memory.log_tau.size() != std::size_t{ga} * gb) {
+    const auto witnesses = std::move(memory.witnesses);
+    memory.clear();
+    memory.witnesses = witnesses;
+    memory.grid_a = ga;
+    memory.grid_b = gb;
+    memory.log_tau.assign(std::size_t{ga} * gb, static_cast<float>(std::log2(p.tau0)));
+  }
+  // The pheromone is kept as log2(tau): a candidate's weight needs alpha' log2 tau (Eq. 7 in
+  // logarithms), so no logarithm is taken per candidate, and evaporation is one addition.
+  std::vector<float>& log_tau = memory.log_tau;
   std::vector<std::uint32_t> block_row(na), block_col(nb);  // no division in the inner loop
-  for (std::uint32_t i = 0; i < na; ++i) block_row[i] = (i / block_a) * gb;
-  for (std::uint32_t j = 0; j < nb; ++j) block_col[j] = j / block_b;
-  auto block_of = [&](Cell c) { return std::size_t{block_row[c.i]} + block_col[c.j]; };
+  for (std::uint32_t i = 0; i < na; ++i) {
+    block_row[i] = static_cast<std::uint32_t>(std::uint64_t{space.a.position[i]} * ga /
+                                              std::max<std::uint32_t>(1, space.a.model_triangles)) *
+                   gb;
+  }
+  for (std::uint32_t j = 0; j < nb; ++j) {
+    block_col[j] = static_cast<std::uint32_t>(std::uint64_t{space.b.position[j]} * gb /
+                                              std::max<std::uint32_t>(1, space.b.model_triangles));
+  }
+  auto block_of = [&](std::uint32_t i, std::uint32_t j) {
+    return std::size_t{block_row[i]} + block_col[j];
+  };
+  // Hops: about one 64th of a side, so a tour can leave a patch of the grid.
+  const std::uint32_t hop_a = std::max<std::uint32_t>(2, (na + 63) / 64);
+  const std::uint32_t hop_b = std::max<std::uint32_t>(2, (nb + 63) / 64);
 
-  // Everything the loops touch is allocated here, once.
-  std::vector<double> tau(blocks, p.tau0);
-  std::vector<double> tau_weight(blocks);  // tau^alpha' for this iteration
+  // Leaf pairs whose both leaves kept features: the starting cells (section 4 step 3).
+  std::vector<std::uint32_t> starts;
+  if (p.start == AntStart::LeafPairs) {
+    for (std::uint32_t k = 0; k < space.overlaps.size(); ++k) {
+      const auto [la, lb] = space.overlaps[k];
+      if (space.a.leaf_start[la] != space.a.leaf_start[la + 1] &&
+          space.b.leaf_start[lb] != space.b.leaf_start[lb + 1]) {
+        starts.push_back(k);
+      }
+    }
+  }
+
   const std::size_t path_capacity = std::size_t{p.steps} + 1;
   std::vector<Cell> paths(std::size_t{p.ants} * path_capacity);
   std::vector<std::uint32_t> path_length(p.ants);
   std::vector<double> tour_length(p.ants);  // L_k
-  constexpr std::size_t kCandidates = 16;
-  std::array<Cell, kCandidates> cand{};
-  std::array<double, kCandidates> cand_cumulative{};
-  std::array<Scalar, kCandidates> cand_distance{};
+  constexpr std::uint32_t kCandidates = 16;
+  std::array<std::uint32_t, kCandidates> cand_i{}, cand_j{};
+  std::array<float, kCandidates> cand_d{}, cand_reach{}, cand_step{}, cand_log{},
+      cand_cumulative{};
 
-  const Scalar delta = rec.delta();
-  // L_k is measured in units of delta so that Q / L_k does not depend on the mesh units.
-  const Scalar length_unit = delta > 0 ? delta : Scalar{1};
-  // Guards a zero denominator in eta (two coincident centroids at the tour's start).
-  const Scalar eta_floor = 1e-12 * length_unit;
-  // Numerical floor for the pheromone (not in the paper): keeps every block reachable and the
-  // values out of denormals after many evaporations.
-  const double tau_floor = 1e-9 * p.tau0;
-  double bt = std::numeric_limits<double>::infinity();  // Eq. 13's best evaluation
+  const auto unit = static_cast<float>(space.centroid_delta);  // > 0: the length unit
+  const float denom_floor = 1e-6f * unit;
+  const auto log_tau_floor = static_cast<float>(std::log2(1e-9 * p.tau0));
+  double bt = memory.best_evaluation > 0 ? memory.best_evaluation
+                                         : std::numeric_limits<double>::infinity();
 
   static constexpr std::array<std::array<int, 2>, 8> kDirections = {
       {{-1, -1}, {-1, 0}, {-1, 1}, {0, -1}, {0, 1}, {1, -1}, {1, 0}, {1, 1}}};
@@ -96,48 +125,61 @@ void run_colony(const FeatureSpace& space, const SearchRequest& request, bool im
   // Same stream for Aco and Maco: Maco with every switch off runs exactly as Aco.
   Rng rng(seed ^ 0xAC0ULL);
 
-  for (std::uint32_t nc = 1; nc <= big_n; ++nc) {
-    if (!rec.begin_iteration(nc)) return;
-    // Eqs. 9–10 (switch 1) or the fixed exponents of Eq. 7.
-    const double scale = sw.adaptive_exponents ? static_cast<double>(nc) / p.n : 1.0;
-    const double alpha = p.alpha * scale;
-    const double beta = p.beta * scale;
-    // Eq. 11 (switch 2) or the fixed rho of Eq. 8.
-    const double rho = sw.adaptive_evaporation ? static_cast<double>(big_n) / (nc + big_n) : p.rho;
-
-    for (std::size_t k = 0; k < blocks; ++k) {
-      tau_weight[k] = alpha == 1.0 ? tau[k] : std::pow(tau[k], alpha);
+  auto pick_start = [&]() -> Cell {
+    if (!starts.empty()) {
+      const auto [la, lb] = space.overlaps[starts[rng.below32(
+          static_cast<std::uint32_t>(starts.size()))]];
+      const std::uint32_t a0 = space.a.leaf_start[la], a1 = space.a.leaf_start[la + 1];
+      const std::uint32_t b0 = space.b.leaf_start[lb], b1 = space.b.leaf_start[lb + 1];
+      return {space.a.leaf_features[a0 + rng.below32(a1 - a0)],
+              space.b.leaf_features[b0 + rng.below32(b1 - b0)]};
     }
-    // The end point s of Eq. 12: the best cell known when the iteration starts.
-    const bool has_goal = rec.has_best();
-    const Cell goal{rec.best().i, rec.best().j};
+    return {rng.below32(na), rng.below32(nb)};
+  };
 
+  for (std::uint32_t k = 1; k <= big_n; ++k) {
+    if (!rec.begin_iteration(k)) break;
+    // N_c counts every iteration this colony has run (memory), capped at N for Eqs. 9–11 so that
+    // a long-lived colony stays in its mature stage instead of growing alpha' without bound.
+    const std::uint64_t nc_total = ++memory.iterations;
+    const double nc = static_cast<double>(std::min<std::uint64_t>(nc_total, big_n));
+    const double scale = sw.adaptive_exponents ? nc / p.n : 1.0;
+    const auto alpha = static_cast<float>(p.alpha * scale);
+    const auto beta = static_cast<float>(p.beta * scale);
+    // Eq. 11 (switch 2) or the fixed rho of Eq. 8.
+    const double rho = sw.adaptive_evaporation ? big_n / (nc + big_n) : p.rho;
+
+    // The end point s of the corridor reading of Eq. 12: the best cell known so far.
+    const bool has_goal = rec.has_best();
+    const Cell goal{rec.best_i(), rec.best_j()};
+    const bool corridor = sw.path_heuristic && sw.heuristic == PathHeuristic::Corridor;
+    const bool remaining = sw.path_heuristic && sw.heuristic == PathHeuristic::Remaining;
+
+    std::uint32_t ants_done = 0;
     for (std::uint32_t ant = 0; ant < p.ants; ++ant) {
       Cell* path = &paths[std::size_t{ant} * path_capacity];
-      // Start cell: uniform over the grid, as ants are placed on random cities in the classic
-      // colony; the pheromone then acts on every move.
-      Cell cur{static_cast<std::uint32_t>(rng.below(na)),
-               static_cast<std::uint32_t>(rng.below(nb))};
-      Scalar sum_f = rec.evaluate(cur.i, cur.j);
-      if (rec.stopped()) return;
+      Cell cur = pick_start();
+      float sum_f = rec.evaluate(cur.i, cur.j);
+      if (rec.stopped()) break;
       const Cell origin = cur;
+      float travelled = 0;  // d_oj of the remaining-distance reading
       std::uint32_t len = 0;
       path[len++] = cur;
       // 256-bit filter over the path's cells: most candidates are ruled off the tabu list
       // without scanning the path.
       std::array<std::uint64_t, 4> filter{};
-      auto filter_bit = [](Cell c) {
-        return static_cast<std::uint32_t>((c.i * 0x9E3779B1U) ^ (c.j * 0x85EBCA77U)) >> 24;
+      auto filter_bit = [](std::uint32_t i, std::uint32_t j) {
+        return static_cast<std::uint32_t>((i * 0x9E3779B1U) ^ (j * 0x85EBCA77U)) >> 24;
       };
       auto remember = [&](Cell c) {
-        const std::uint32_t h = filter_bit(c);
+        const std::uint32_t h = filter_bit(c.i, c.j);
         filter[h >> 6] |= std::uint64_t{1} << (h & 63);
       };
       remember(cur);
 
+      bool stopped = false;
       for (std::uint32_t step = 0; step < p.steps; ++step) {
-        std::size_t count = 0;
-        double total = 0;
+        std::uint32_t count = 0;
         for (int scale_index = 0; scale_index < 2; ++scale_index) {
           const std::int64_t ha = scale_index == 0 ? 1 : hop_a;
           const std::int64_t hb = scale_index == 0 ? 1 : hop_b;
@@ -145,67 +187,105 @@ void run_colony(const FeatureSpace& space, const SearchRequest& request, bool im
             const std::int64_t ci = std::int64_t{cur.i} + dir[0] * ha;
             const std::int64_t cj = std::int64_t{cur.j} + dir[1] * hb;
             if (ci < 0 || cj < 0 || ci >= na || cj >= nb) continue;
-            const Cell c{static_cast<std::uint32_t>(ci), static_cast<std::uint32_t>(cj)};
+            const auto ui = static_cast<std::uint32_t>(ci);
+            const auto uj = static_cast<std::uint32_t>(cj);
             // J_k: cells not yet on this ant's path (the tabu list of Eq. 7).
-            bool visited = false;
-            const std::uint32_t h = filter_bit(c);
-            const bool maybe = (filter[h >> 6] >> (h & 63)) & 1;
-            for (std::uint32_t t = 0; maybe && t < len; ++t) {
-              if (path[t].i == c.i && path[t].j == c.j) {
-                visited = true;
-                break;
+            const std::uint32_t h = filter_bit(ui, uj);
+            if ((filter[h >> 6] >> (h & 63)) & 1) {
+              bool visited = false;
+              for (std::uint32_t t = 0; t < len && !visited; ++t) {
+                visited = path[t].i == ui && path[t].j == uj;
               }
+              if (visited) continue;
             }
-            if (visited) continue;
-            const Scalar d = rec.evaluate(c.i, c.j);
-            if (rec.stopped()) return;
-            // eta = 1/d (Eq. 7) or 1/(d_oj + d_ij + d_js) (Eq. 12, switch 3).
-            Scalar denom = d;
-            if (sw.path_heuristic) {
-              denom += cell_distance(space, origin, c);
-              if (has_goal) denom += cell_distance(space, c, goal);
-            }
-            denom = std::max(denom, eta_floor);
-            // eta^beta = d^-beta (one log and one exp; skipped when beta is 1).
-            const double eta_beta = beta == 1.0 ? 1.0 / denom : std::exp(-beta * std::log(denom));
-            const double w = tau_weight[block_of(c)] * eta_beta;
-            total += std::isfinite(w) ? w : 0.0;
-            cand[count] = c;
-            cand_distance[count] = d;
-            cand_cumulative[count] = total;
+            cand_i[count] = ui;
+            cand_j[count] = uj;
             ++count;
           }
         }
         if (count == 0) break;  // boxed in by its own path at a border
-        // Eq. 7: move to a candidate with probability proportional to tau^alpha eta^beta.
-        const std::size_t pick = total > 0 && std::isfinite(total)
-                                     ? roulette(cand_cumulative.data(), count, rng.unit())
-                                     : rng.below(count);
-        cur = cand[pick];
-        sum_f += cand_distance[pick];
+        rec.evaluate_batch(cand_i.data(), cand_j.data(), count, cand_d.data(), cand_reach.data());
+        if (rec.stopped()) {
+          stopped = true;
+          break;
+        }
+        // Eq. 7 in logarithms: log2(tau^alpha' eta^beta') = alpha' log2 tau - beta' log2 denom,
+        // with denom = 1/eta: f(j) (classic), or one of the readings of Eq. 12 (switch 3).
+        for (std::uint32_t c = 0; c < count; ++c) {
+          const Cell to{cand_i[c], cand_j[c]};
+          float denom = cand_d[c];
+          if (remaining) {
+            cand_step[c] = cell_distance(space, cur, to);
+            const float missing = cand_d[c] > cand_reach[c] ? cand_d[c] - cand_reach[c] : 0.0f;
+            denom = travelled + cand_step[c] + missing;
+          } else if (corridor) {
+            denom += cell_distance(space, origin, to);
+            if (has_goal) denom += cell_distance(space, to, goal);
+          }
+          denom = denom > denom_floor ? denom : denom_floor;
+          cand_log[c] = alpha * log_tau[block_of(to.i, to.j)] - beta * fast_log2(denom);
+        }
+        std::uint32_t pick = 0;
+        float top = cand_log[0];
+        for (std::uint32_t c = 1; c < count; ++c) {
+          if (cand_log[c] > top) {
+            top = cand_log[c];
+            pick = c;
+          }
+        }
+        if (!sw.greedy_moves) {
+          // Roulette over weights scaled by the largest (2^(l - top) in (0, 1]).
+          float total = 0;
+          for (std::uint32_t c = 0; c < count; ++c) {
+            total += fast_exp2(cand_log[c] - top);
+            cand_cumulative[c] = total;
+          }
+          const float target = rng.unit_float() * total;
+          pick = count - 1;
+          for (std::uint32_t c = 0; c < count; ++c) {
+            if (cand_cumulative[c] > target) {
+              pick = c;
+              break;
+            }
+          }
+        }
+        const Cell next{cand_i[pick], cand_j[pick]};
+        if (remaining) travelled += cand_step[pick];
+        cur = next;
+        sum_f += cand_d[pick];
         path[len++] = cur;
         remember(cur);
       }
+      if (stopped) break;
       path_length[ant] = len;
-      tour_length[ant] = std::max(sum_f / len / length_unit, 1e-9);
+      tour_length[ant] = std::max(static_cast<double>(sum_f) / len / unit, 1e-9);
+      ++ants_done;
     }
+    if (ants_done < p.ants) break;  // stopped inside the iteration: no update
 
     // Pheromone update once per iteration. Eq. 13: bt follows the best evaluation.
     const double iteration_best = *std::min_element(tour_length.begin(), tour_length.end());
     bt = std::min(bt, iteration_best);
     // Eq. 8 / Eq. 14: evaporation of every block.
-    for (double& t : tau) t *= 1.0 - rho;
+    // In log2: evaporation adds log2(1 - rho) to every block (rho = 1 forgets everything: the
+    // floor), deposits add in the linear domain (a few per ant, not per candidate).
+    const float keep = rho < 1 ? static_cast<float>(std::log2(1.0 - rho)) : -1e30f;
+    for (float& t : log_tau) t = std::max(t + keep, log_tau_floor);
     for (std::uint32_t ant = 0; ant < p.ants; ++ant) {
       // Delta tau^k = Q / L_k on each cell of the path.
       double deposit = p.q / tour_length[ant];
       // Eqs. 14–15 (switch 4): paths as good as the best evaluation are rewarded (+theta),
       // the others punished (mu < 0).
       if (sw.reward_punishment) deposit *= tour_length[ant] <= bt ? 1.0 + p.theta : 1.0 + p.mu;
+      const auto dep = static_cast<float>(deposit);
       const Cell* path = &paths[std::size_t{ant} * path_capacity];
-      for (std::uint32_t t = 0; t < path_length[ant]; ++t) tau[block_of(path[t])] += deposit;
+      for (std::uint32_t t = 0; t < path_length[ant]; ++t) {
+        float& lt = log_tau[block_of(path[t].i, path[t].j)];
+        lt = std::max(static_cast<float>(std::log2(std::exp2(double{lt}) + dep)), log_tau_floor);
+      }
     }
-    for (double& t : tau) t = std::max(t, tau_floor);
   }
+  if (std::isfinite(bt)) memory.best_evaluation = bt;
 }
 
 }  // namespace antcd::detail

@@ -1,4 +1,4 @@
-// Private: the set of distinct feature-pair cells a search has hit.
+// Private: the set of distinct feature-pair cells a search has decided (tested or hit).
 #pragma once
 
 #include <antcd/rng.hpp>
@@ -10,10 +10,11 @@
 namespace antcd::detail {
 
 /// Set of 64-bit keys (open addressing, linear probing, power-of-two capacity). Memory grows
-/// with the number of distinct hits only; growth is amortised (doubling).
+/// with the number of keys only; growth is amortised (doubling), from 64 slots, so that the many
+/// short searches of a scene frame do not clear kilobytes each.
 class CellSet {
  public:
-  CellSet() { table_.assign(1024, kEmpty); }
+  CellSet() { table_.assign(64, kEmpty); }
 
   /// Inserts `key`; true when it was not present.
   bool insert(std::uint64_t key) {

@@ -1,30 +1,57 @@
-// Exhaustive enumeration of the feature grid, row by row: the reference every heuristic search is
-// measured against (it finds every colliding pair, in na * nb evaluations).
-#include "random/engines.hpp"
+// The two reference searches every heuristic is measured against: the exhaustive scan of the
+// feature grid row by row (a vectorised loop over float structure-of-arrays), and a fixed-radius
+// neighbour search on a uniform grid (only cells whose centroids lie in neighbouring grid boxes
+// are evaluated). Both find every colliding pair of the space.
+#include <antcd/error.hpp>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <stdexcept>
+#include <vector>
+
+#include "random/engines.hpp"
 
 namespace antcd::detail {
 namespace {
 
-/// Smallest squared distance from (ax, ay, az) to B's features [0, count). Branch-free so the
-/// compiler can vectorise it.
-Scalar row_minimum(const FeatureSide& b, std::uint32_t count, Scalar ax, Scalar ay, Scalar az) {
-  const Scalar* bx = b.x.data();
-  const Scalar* by = b.y.data();
-  const Scalar* bz = b.z.data();
-  Scalar m = std::numeric_limits<Scalar>::infinity();
-  for (std::uint32_t j = 0; j < count; ++j) {
-    const Scalar dx = ax - bx[j];
-    const Scalar dy = ay - by[j];
-    const Scalar dz = az - bz[j];
-    const Scalar d2 = dx * dx + dy * dy + dz * dz;
-    m = d2 < m ? d2 : m;
+/// Fast pass over one row: the smallest squared distance and whether any cell is within reach.
+/// Branch-free so that the compiler vectorises it.
+struct RowScan {
+  float min2;
+  int within;
+};
+RowScan scan_row(const FeatureSide& b, std::uint32_t count, float ax, float ay, float az,
+                 float reach_a, bool witness, float centroid) {
+  const float* bx = b.x.data();
+  const float* by = b.y.data();
+  const float* bz = b.z.data();
+  const float* br = b.radius.data();
+  float m = std::numeric_limits<float>::infinity();
+  int within = 0;
+  if (witness) {
+    for (std::uint32_t j = 0; j < count; ++j) {
+      const float dx = ax - bx[j];
+      const float dy = ay - by[j];
+      const float dz = az - bz[j];
+      const float d2 = dx * dx + dy * dy + dz * dz;
+      const float r = reach_a + br[j];
+      within += d2 <= r * r ? 1 : 0;
+      m = d2 < m ? d2 : m;
+    }
+  } else {
+    const float c2 = centroid * centroid;
+    for (std::uint32_t j = 0; j < count; ++j) {
+      const float dx = ax - bx[j];
+      const float dy = ay - by[j];
+      const float dz = az - bz[j];
+      const float d2 = dx * dx + dy * dy + dz * dz;
+      within += d2 <= c2 ? 1 : 0;
+      m = d2 < m ? d2 : m;
+    }
   }
-  return m;
+  return {m, within};
 }
 
 }  // namespace
@@ -32,8 +59,9 @@ Scalar row_minimum(const FeatureSide& b, std::uint32_t count, Scalar ax, Scalar 
 void run_exhaustive(const FeatureSpace& space, Recorder& rec) {
   const std::uint32_t na = space.a.size();
   const std::uint32_t nb = space.b.size();
-  const Scalar delta2 = rec.delta_squared();
-  Scalar best2 = std::numeric_limits<Scalar>::infinity();
+  const Thresholds& t = rec.thresholds();
+  const bool witness = t.verdict == Verdict::Witness;
+  float best2 = std::numeric_limits<float>::infinity();
   for (std::uint32_t i = 0; i < na; ++i) {
     if (!rec.begin_iteration(i + 1)) return;
     std::uint32_t count = nb;
@@ -41,25 +69,27 @@ void run_exhaustive(const FeatureSpace& space, Recorder& rec) {
       count = static_cast<std::uint32_t>(
           std::min<std::uint64_t>(nb, rec.max_evaluations() - rec.evaluations()));
     }
-    const Scalar ax = space.a.x[i], ay = space.a.y[i], az = space.a.z[i];
-    // Fast pass; the exact per-cell pass runs only on rows that hold a hit or a new best.
-    const Scalar m = row_minimum(space.b, count, ax, ay, az);
+    const float ax = space.a.x[i], ay = space.a.y[i], az = space.a.z[i];
+    const float reach_a = witness ? space.a.radius[i] + t.delta : 0.0f;
+    // Fast pass; the per-cell pass runs only on rows that hold a cell within reach or a new best.
+    const RowScan row = scan_row(space.b, count, ax, ay, az, reach_a, witness, t.centroid);
     std::uint32_t counted = 0;  // evaluations of this row already added to the recorder
-    if (m <= delta2 || m < best2) {
+    if (row.within > 0 || row.min2 < best2) {
       for (std::uint32_t j = 0; j < count; ++j) {
-        const Scalar dx = ax - space.b.x[j];
-        const Scalar dy = ay - space.b.y[j];
-        const Scalar dz = az - space.b.z[j];
-        const Scalar d2 = dx * dx + dy * dy + dz * dz;
+        const float dx = ax - space.b.x[j];
+        const float dy = ay - space.b.y[j];
+        const float dz = az - space.b.z[j];
+        const float d2 = dx * dx + dy * dy + dz * dz;
         if (d2 < best2) {
           best2 = d2;
-          rec.offer_best(i, j, std::sqrt(d2));
+          rec.offer_best(i, j, d2);
         }
-        if (d2 <= delta2) {
-          // Bring the count up to this cell first, so the hit sees the right evaluation count.
+        const float r = witness ? reach_a + space.b.radius[j] : t.centroid;
+        if (d2 <= r * r) {
+          // Bring the count up to this cell first, so a hit sees the right evaluation count.
           rec.add_evaluations(j + 1 - counted);
           counted = j + 1;
-          rec.add_unique_hit(i, j, std::sqrt(d2));
+          rec.consider_cell(i, j, d2);
           if (rec.stopped()) return;  // first hit or target: the row ends here
         }
       }
@@ -70,29 +100,116 @@ void run_exhaustive(const FeatureSpace& space, Recorder& rec) {
   }
 }
 
+void run_grid(const FeatureSpace& space, Recorder& rec) {
+  const std::uint32_t na = space.a.size();
+  const std::uint32_t nb = space.b.size();
+  const Thresholds& t = rec.thresholds();
+  const bool witness = t.verdict == Verdict::Witness;
+  // Box size: the largest reach of any cell, so that every pair within reach lies in
+  // neighbouring boxes.
+  float box = t.centroid;
+  if (witness) {
+    const float ra = *std::max_element(space.a.radius.begin(), space.a.radius.end());
+    const float rb = *std::max_element(space.b.radius.begin(), space.b.radius.end());
+    box = ra + rb + t.delta;
+  }
+  float lo[3] = {space.b.x[0], space.b.y[0], space.b.z[0]};
+  float hi[3] = {lo[0], lo[1], lo[2]};
+  for (std::uint32_t j = 0; j < nb; ++j) {
+    const float c[3] = {space.b.x[j], space.b.y[j], space.b.z[j]};
+    for (int k = 0; k < 3; ++k) {
+      lo[k] = std::min(lo[k], c[k]);
+      hi[k] = std::max(hi[k], c[k]);
+    }
+  }
+  // At most 2^20 boxes per axis (keys pack 21 bits per axis).
+  for (int k = 0; k < 3; ++k) box = std::max(box, (hi[k] - lo[k]) * 0x1.0p-20f);
+  box = std::max(box, std::numeric_limits<float>::min());
+  const float inv = 1.0f / box;
+  auto coord = [&](float v, int k) -> std::int64_t {
+    return static_cast<std::int64_t>(std::floor((v - lo[k]) * inv));
+  };
+  auto key = [](std::int64_t x, std::int64_t y, std::int64_t z) {
+    return (static_cast<std::uint64_t>(x) << 42) | (static_cast<std::uint64_t>(y) << 21) |
+           static_cast<std::uint64_t>(z);
+  };
+  constexpr std::int64_t kMaxBox = (std::int64_t{1} << 21) - 1;
+  std::vector<std::pair<std::uint64_t, std::uint32_t>> binned(nb);
+  for (std::uint32_t j = 0; j < nb; ++j) {
+    binned[j] = {key(coord(space.b.x[j], 0), coord(space.b.y[j], 1), coord(space.b.z[j], 2)), j};
+  }
+  std::sort(binned.begin(), binned.end());
+
+  float best2 = std::numeric_limits<float>::infinity();
+  for (std::uint32_t i = 0; i < na; ++i) {
+    if (!rec.begin_iteration(i + 1)) return;
+    const float ax = space.a.x[i], ay = space.a.y[i], az = space.a.z[i];
+    const std::int64_t cx = coord(ax, 0), cy = coord(ay, 1), cz = coord(az, 2);
+    const float reach_a = witness ? space.a.radius[i] + t.delta : 0.0f;
+    for (std::int64_t x = cx - 1; x <= cx + 1; ++x) {
+      if (x < 0 || x > kMaxBox) continue;
+      for (std::int64_t y = cy - 1; y <= cy + 1; ++y) {
+        if (y < 0 || y > kMaxBox) continue;
+        for (std::int64_t z = cz - 1; z <= cz + 1; ++z) {
+          if (z < 0 || z > kMaxBox) continue;
+          const std::uint64_t k = key(x, y, z);
+          auto it = std::lower_bound(binned.begin(), binned.end(),
+                                     std::pair<std::uint64_t, std::uint32_t>{k, 0});
+          for (; it != binned.end() && it->first == k; ++it) {
+            const std::uint32_t j = it->second;
+            const float dx = ax - space.b.x[j];
+            const float dy = ay - space.b.y[j];
+            const float dz = az - space.b.z[j];
+            const float d2 = dx * dx + dy * dy + dz * dz;
+            rec.add_evaluations(1);
+            if (d2 < best2) {
+              best2 = d2;
+              rec.offer_best(i, j, d2);
+            }
+            const float r = witness ? reach_a + space.b.radius[j] : t.centroid;
+            if (d2 <= r * r) {
+              rec.consider_cell(i, j, d2);
+              if (rec.stopped()) return;
+            }
+            rec.check_budget();
+            if (rec.stopped()) return;
+          }
+        }
+      }
+    }
+  }
+}
+
 }  // namespace antcd::detail
 
 namespace antcd {
 
-std::uint64_t count_colliding(const FeatureSpace& space, Scalar delta) {
-  if (std::isnan(delta)) throw antcd::ArgumentError("count_colliding: delta is NaN");
-  const Scalar d = delta < 0 ? space.delta : delta;
-  const Scalar delta2 = d * d;
+std::uint64_t count_colliding(const FeatureSpace& space, Verdict verdict, Scalar centroid_delta) {
+  if (std::isnan(centroid_delta)) {
+    throw ArgumentError("count_colliding: centroid_delta is NaN");
+  }
+  if (space.empty()) return 0;
+  const detail::Thresholds t = detail::thresholds(space, verdict, centroid_delta);
+  const bool witness = verdict == Verdict::Witness;
   std::uint64_t total = 0;
   const std::uint32_t nb = space.b.size();
-  const Scalar* bx = space.b.x.data();
-  const Scalar* by = space.b.y.data();
-  const Scalar* bz = space.b.z.data();
   for (std::uint32_t i = 0; i < space.a.size(); ++i) {
-    const Scalar ax = space.a.x[i], ay = space.a.y[i], az = space.a.z[i];
-    std::uint64_t row = 0;
-    for (std::uint32_t j = 0; j < nb; ++j) {
-      const Scalar dx = ax - bx[j];
-      const Scalar dy = ay - by[j];
-      const Scalar dz = az - bz[j];
-      row += (dx * dx + dy * dy + dz * dz) <= delta2 ? 1 : 0;
+    const float ax = space.a.x[i], ay = space.a.y[i], az = space.a.z[i];
+    const float reach_a = witness ? space.a.radius[i] + t.delta : 0.0f;
+    const detail::RowScan row = detail::scan_row(space.b, nb, ax, ay, az, reach_a, witness,
+                                                 t.centroid);
+    if (row.within == 0) continue;
+    if (!witness) {
+      total += static_cast<std::uint64_t>(row.within);
+      continue;
     }
-    total += row;
+    for (std::uint32_t j = 0; j < nb; ++j) {
+      const float dx = ax - space.b.x[j];
+      const float dy = ay - space.b.y[j];
+      const float dz = az - space.b.z[j];
+      const float r = reach_a + space.b.radius[j];
+      if (dx * dx + dy * dy + dz * dz <= r * r && detail::witness_test(space, i, j)) ++total;
+    }
   }
   return total;
 }

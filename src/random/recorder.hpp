@@ -1,5 +1,5 @@
-// Private: bookkeeping shared by every random search — fitness evaluation, distinct hits, best,
-// stop criteria.
+// Private: bookkeeping shared by every random search — fitness evaluation, the verdict (witness
+// test or centroid threshold), distinct hits, best, stop criteria.
 #pragma once
 
 #include <antcd/random.hpp>
@@ -9,33 +9,47 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 namespace antcd::detail {
+
+/// The verdict of one cell, shared by the recorder and count_colliding: the exact triangle test
+/// at delta (Witness) on the world vertices. Call only when the cell is within reach.
+bool witness_test(const FeatureSpace& space, std::uint32_t i, std::uint32_t j);
+
+/// The resolved thresholds of a search.
+struct Thresholds {
+  Verdict verdict = Verdict::Witness;
+  float delta = 0;           ///< collide()'s delta, as float, rounded up (reach filter)
+  float centroid2 = 0;       ///< PaperCentroid: squared centroid threshold
+  float centroid = 0;        ///< PaperCentroid: centroid threshold
+};
+Thresholds thresholds(const FeatureSpace& space, Verdict verdict, Scalar centroid_delta);
 
 /// Evaluates feature pairs for a search and applies the stop criteria. One per search call.
 class Recorder {
  public:
   /// `target_hits` is the absolute hit count of StopCriteria::target_share (0 = off).
-  Recorder(const FeatureSpace& space, const SearchRequest& request, Scalar delta,
+  Recorder(const FeatureSpace& space, const SearchRequest& request, const Thresholds& thresholds,
            std::uint64_t target_hits, SearchResult& out)
       : space_(space),
         out_(out),
-        delta_(delta),
-        delta2_(delta * delta),
+        t_(thresholds),
         first_hit_(request.stop.first_hit),
         target_hits_(target_hits),
         max_evaluations_(request.stop.max_evaluations),
         max_seconds_(request.stop.max_seconds),
         start_(std::chrono::steady_clock::now()) {
-    out_.delta = delta;
+    out_.verdict = t_.verdict;
+    out_.centroid_delta = t_.centroid;
   }
 
-  [[nodiscard]] Scalar delta() const { return delta_; }
-  [[nodiscard]] Scalar delta_squared() const { return delta2_; }
+  [[nodiscard]] const Thresholds& thresholds() const { return t_; }
   [[nodiscard]] bool stopped() const { return stopped_; }
-  [[nodiscard]] bool has_best() const { return out_.evaluations > 0; }
-  [[nodiscard]] const FeaturePair& best() const { return out_.best; }
+  [[nodiscard]] bool has_best() const { return best2_ < std::numeric_limits<float>::infinity(); }
+  [[nodiscard]] std::uint32_t best_i() const { return best_i_; }
+  [[nodiscard]] std::uint32_t best_j() const { return best_j_; }
 
   /// Marks the start of iteration `k` (1-based) of the current run. Returns false (and stops)
   /// when the clock ran out.
@@ -54,7 +68,7 @@ class Recorder {
     ++out_.runs;
   }
 
-  /// Progress marks: `needed[k]` distinct hits for mark k (ascending order not required).
+  /// Progress marks: mark k needs ceil(shares[k] x truth) distinct hits.
   void set_marks(const std::vector<double>& shares, std::uint64_t truth) {
     out_.progress.clear();
     for (const double share : shares) {
@@ -65,49 +79,110 @@ class Recorder {
     }
   }
 
-  /// Fitness f(i, j) (Eq. 6); records a hit (Eq. 5) and checks every stop criterion.
-  Scalar evaluate(std::uint32_t i, std::uint32_t j) {
-    const FeatureSide& a = space_.a;
-    const FeatureSide& b = space_.b;
-    const Scalar dx = a.x[i] - b.x[j];
-    const Scalar dy = a.y[i] - b.y[j];
-    const Scalar dz = a.z[i] - b.z[j];
-    const Scalar d2 = dx * dx + dy * dy + dz * dz;
-    const Scalar d = std::sqrt(d2);
-    ++out_.evaluations;
-    if (d < out_.best_distance) {
-      out_.best_distance = d;
-      out_.best = pair(i, j, d);
-    }
-    if (d2 <= delta2_ && seen_.insert(std::uint64_t{i} * b.size() + j)) {
-      add_hit(i, j, d);
-    }
-    if (!stopped_) check_budget();
-    return d;
+  /// How far cell (i, j) may be from colliding and still collide: r_i + r_j + delta (Witness) or
+  /// the centroid threshold (PaperCentroid).
+  [[nodiscard]] float reach(std::uint32_t i, std::uint32_t j) const {
+    return t_.verdict == Verdict::Witness ? space_.a.radius[i] + space_.b.radius[j] + t_.delta
+                                          : t_.centroid;
   }
 
-  /// For the exhaustive scan, which evaluates each cell once and keeps its own counters: adds a
-  /// hit without the duplicate check.
-  void add_unique_hit(std::uint32_t i, std::uint32_t j, Scalar d) { add_hit(i, j, d); }
-  /// For the exhaustive scan: adds `count` evaluations and offers a row's best.
+  /// Fitness f(i, j) (Eq. 6) of one cell; records a hit (verdict) and checks every stop
+  /// criterion.
+  float evaluate(std::uint32_t i, std::uint32_t j) {
+    const float dx = space_.a.x[i] - space_.b.x[j];
+    const float dy = space_.a.y[i] - space_.b.y[j];
+    const float dz = space_.a.z[i] - space_.b.z[j];
+    const float d2 = dx * dx + dy * dy + dz * dz;
+    ++out_.evaluations;
+    if (d2 < best2_) offer_best(i, j, d2);
+    const float r = reach(i, j);
+    if (d2 <= r * r) consider(i, j, d2);
+    if (!stopped_) check_budget();
+    return std::sqrt(d2);
+  }
+
+  /// Evaluates up to 16 cells at once (the colony's candidates): distances into `d`, reaches into
+  /// `reach` (for the heuristic). Stops exactly at max_evaluations and at the first hit with
+  /// first_hit (the cells after it are not counted); returns how many were evaluated.
+  std::uint32_t evaluate_batch(const std::uint32_t* ci, const std::uint32_t* cj,
+                               std::uint32_t count, float* d, float* reach_out) {
+    if (max_evaluations_ != 0) {
+      const std::uint64_t left = max_evaluations_ - out_.evaluations;
+      if (left < count) count = static_cast<std::uint32_t>(left);
+    }
+    constexpr std::uint32_t kLanes = 16;
+    float ax[kLanes], ay[kLanes], az[kLanes], ra[kLanes];
+    float bx[kLanes], by[kLanes], bz[kLanes], rb[kLanes];
+    for (std::uint32_t k = 0; k < count; ++k) {
+      ax[k] = space_.a.x[ci[k]];
+      ay[k] = space_.a.y[ci[k]];
+      az[k] = space_.a.z[ci[k]];
+      bx[k] = space_.b.x[cj[k]];
+      by[k] = space_.b.y[cj[k]];
+      bz[k] = space_.b.z[cj[k]];
+    }
+    const bool witness = t_.verdict == Verdict::Witness;
+    if (witness) {
+      for (std::uint32_t k = 0; k < count; ++k) {
+        ra[k] = space_.a.radius[ci[k]];
+        rb[k] = space_.b.radius[cj[k]];
+      }
+    }
+    float d2[kLanes];
+    bool any = false;
+    float lane_min = std::numeric_limits<float>::infinity();
+    for (std::uint32_t k = 0; k < count; ++k) {
+      const float dx = ax[k] - bx[k];
+      const float dy = ay[k] - by[k];
+      const float dz = az[k] - bz[k];
+      d2[k] = dx * dx + dy * dy + dz * dz;
+      const float r = witness ? ra[k] + rb[k] + t_.delta : t_.centroid;
+      reach_out[k] = r;
+      d[k] = std::sqrt(d2[k]);
+      any |= d2[k] <= r * r;
+      lane_min = d2[k] < lane_min ? d2[k] : lane_min;
+    }
+    if (lane_min < best2_ || any) {
+      for (std::uint32_t k = 0; k < count; ++k) {
+        if (d2[k] < best2_) offer_best(ci[k], cj[k], d2[k]);
+        if (d2[k] <= reach_out[k] * reach_out[k]) {
+          out_.evaluations += k + 1 - counted_in_batch_;
+          counted_in_batch_ = k + 1;
+          consider(ci[k], cj[k], d2[k]);
+          if (stopped_) {
+            counted_in_batch_ = 0;
+            return k + 1;
+          }
+        }
+      }
+    }
+    out_.evaluations += count - counted_in_batch_;
+    counted_in_batch_ = 0;
+    if (!stopped_) check_budget();
+    return count;
+  }
+
+  /// For the exhaustive and grid scans: a cell known to be within reach (evaluation counted by
+  /// the caller).
+  void consider_cell(std::uint32_t i, std::uint32_t j, float d2) { consider(i, j, d2); }
   void add_evaluations(std::uint64_t count) { out_.evaluations += count; }
-  void offer_best(std::uint32_t i, std::uint32_t j, Scalar d) {
-    if (d < out_.best_distance) {
-      out_.best_distance = d;
-      out_.best = pair(i, j, d);
+  void offer_best(std::uint32_t i, std::uint32_t j, float d2) {
+    if (d2 < best2_) {
+      best2_ = d2;
+      best_i_ = i;
+      best_j_ = j;
     }
   }
   void check_budget() {
     if (max_evaluations_ != 0 && out_.evaluations >= max_evaluations_) {
       stop(StopReason::Evaluations);
-    } else if (max_seconds_ > 0 && (out_.evaluations & 1023) == 0 &&
-               elapsed_seconds() >= max_seconds_) {
-      stop(StopReason::Time);
+    } else if (max_seconds_ > 0 && (out_.evaluations - last_clock_) >= 1024) {
+      last_clock_ = out_.evaluations;
+      if (elapsed_seconds() >= max_seconds_) stop(StopReason::Time);
     }
   }
   [[nodiscard]] std::uint64_t evaluations() const { return out_.evaluations; }
   [[nodiscard]] std::uint64_t max_evaluations() const { return max_evaluations_; }
-  [[nodiscard]] bool time_limited() const { return max_seconds_ > 0; }
   [[nodiscard]] double elapsed_seconds() const {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
   }
@@ -122,11 +197,25 @@ class Recorder {
   void finish() {
     if (!stopped_) out_.stop = StopReason::Iterations;
     out_.found = !out_.hits.empty();
+    if (has_best()) {
+      out_.best_distance = std::sqrt(static_cast<Scalar>(best2_));
+      out_.best = pair(best_i_, best_j_, out_.best_distance);
+    }
   }
 
  private:
   [[nodiscard]] FeaturePair pair(std::uint32_t i, std::uint32_t j, Scalar d) const {
     return {i, j, space_.a.triangle[i], space_.b.triangle[j], d};
+  }
+
+  /// A cell within reach: the verdict decides (once per distinct cell).
+  void consider(std::uint32_t i, std::uint32_t j, float d2) {
+    if (!seen_.insert(std::uint64_t{i} * space_.b.size() + j)) return;
+    if (t_.verdict == Verdict::Witness) {
+      ++out_.witness_tests;
+      if (!witness_test(space_, i, j)) return;
+    }
+    add_hit(i, j, std::sqrt(static_cast<Scalar>(d2)));
   }
 
   void add_hit(std::uint32_t i, std::uint32_t j, Scalar d) {
@@ -147,8 +236,7 @@ class Recorder {
 
   const FeatureSpace& space_;
   SearchResult& out_;
-  Scalar delta_;
-  Scalar delta2_;
+  Thresholds t_;
   bool first_hit_;
   std::uint64_t target_hits_;
   std::uint64_t max_evaluations_;
@@ -156,7 +244,12 @@ class Recorder {
   std::chrono::steady_clock::time_point start_;
   bool stopped_ = false;
   std::uint32_t iteration_offset_ = 0;
-  CellSet seen_;
+  std::uint32_t counted_in_batch_ = 0;
+  std::uint64_t last_clock_ = 0;
+  float best2_ = std::numeric_limits<float>::infinity();
+  std::uint32_t best_i_ = 0;
+  std::uint32_t best_j_ = 0;
+  CellSet seen_;  ///< cells whose verdict is known (tested or hit)
 };
 
 }  // namespace antcd::detail

@@ -1,23 +1,26 @@
-// search() and random_collide(): request validation, then dispatch to one engine.
-#include <antcd/rng.hpp>
+// search(), random_detect() and random_collide(): request validation, the memory's witnesses, then
+// dispatch to one engine.
+#include <antcd/error.hpp>
 
-#include "random/engines.hpp"
-
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
+
+#include "random/engines.hpp"
 
 namespace antcd {
 namespace {
 
 void require(bool ok, const char* what) {
-  if (!ok) throw antcd::ArgumentError(std::string("antcd::search: ") + what);
+  if (!ok) throw ArgumentError(std::string("antcd::search: ") + what);
 }
 
 void validate(const SearchRequest& r) {
-  require(!std::isnan(r.delta) && !std::isinf(r.delta),
-          "delta must be finite (negative = default)");
+  require(std::isfinite(r.centroid_delta), "centroid_delta must be finite (negative = default)");
   require(r.iterations >= 1, "iterations must be >= 1");
+  require(r.verdict == Verdict::Witness || r.verdict == Verdict::PaperCentroid,
+          "unknown verdict");
   const StopCriteria& s = r.stop;
   require(s.target_share >= 0 && s.target_share <= 1, "stop.target_share must be in [0, 1]");
   require(s.max_seconds >= 0 && !std::isnan(s.max_seconds), "stop.max_seconds must be >= 0");
@@ -29,13 +32,16 @@ void validate(const SearchRequest& r) {
     case Method::Maco: {
       const AntParams& p = r.ant;
       require(p.ants >= 1, "ant.ants must be >= 1");
-      require(p.alpha >= 0 && p.beta >= 0, "ant.alpha and ant.beta must be >= 0");
+      require(p.alpha >= 0 && p.beta >= 0 && std::isfinite(p.alpha) && std::isfinite(p.beta),
+              "ant.alpha and ant.beta must be finite and >= 0");
       require(p.rho >= 0 && p.rho <= 1, "ant.rho must be in [0, 1]");
       require(p.q > 0 && std::isfinite(p.q), "ant.q must be > 0");
       require(p.tau0 > 0 && std::isfinite(p.tau0), "ant.tau0 must be > 0");
       require(p.n > 0 && std::isfinite(p.n), "ant.n must be > 0");
       require(std::isfinite(p.theta) && std::isfinite(p.mu), "ant.theta and ant.mu must be finite");
       require(p.pheromone_resolution >= 1, "ant.pheromone_resolution must be >= 1");
+      require(p.start == AntStart::LeafPairs || p.start == AntStart::Uniform,
+              "unknown ant.start");
       break;
     }
     case Method::Pso: {
@@ -55,29 +61,97 @@ void validate(const SearchRequest& r) {
       break;
     }
     case Method::Exhaustive:
+    case Method::Grid:
       break;
     case Method::Exact:
     case Method::SphereObb:
       throw ArgumentError("antcd::search: method '" + std::string(method_name(r.method)) +
-                          "' is not a random search (expected aco, maco, pso, ga or exhaustive)");
+                          "' is not a random search (expected aco, maco, pso, ga, exhaustive or "
+                          "grid)");
   }
+}
+
+/// The cells of the space that hold one of the memory's witnesses.
+std::vector<std::pair<std::uint32_t, std::uint32_t>> witness_cells(const FeatureSpace& space,
+                                                                   const ColonyMemory& memory) {
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> cells;
+  if (memory.witnesses.empty()) return cells;
+  auto index = [](const FeatureSide& side) {
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> by_position(side.size());
+    for (std::uint32_t k = 0; k < side.size(); ++k) by_position[k] = {side.position[k], k};
+    std::sort(by_position.begin(), by_position.end());
+    return by_position;
+  };
+  const auto ia = index(space.a);
+  const auto ib = index(space.b);
+  auto find = [](const auto& by_position, std::uint32_t p) -> std::int64_t {
+    auto it = std::lower_bound(by_position.begin(), by_position.end(),
+                               std::pair<std::uint32_t, std::uint32_t>{p, 0});
+    return it != by_position.end() && it->first == p ? std::int64_t{it->second} : -1;
+  };
+  for (const auto& [pa, pb] : memory.witnesses) {
+    const std::int64_t i = find(ia, pa);
+    const std::int64_t j = find(ib, pb);
+    if (i >= 0 && j >= 0) {
+      cells.emplace_back(static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(j));
+    }
+  }
+  return cells;
+}
+
+void remember_witnesses(const FeatureSpace& space, const SearchResult& result,
+                        ColonyMemory& memory) {
+  memory.witnesses.clear();
+  for (const FeaturePair& h : result.hits) {
+    if (memory.witnesses.size() == ColonyMemory::kMaxWitnesses) break;
+    memory.witnesses.emplace_back(space.a.position[h.i], space.b.position[h.j]);
+  }
+}
+
+/// A leaf-order triangle of one model, in the frame of the witness test: vertices, centroid and
+/// circumradius about it.
+struct FrameTriangle {
+  Vec3 v[3];
+  Vec3 centroid;
+  Scalar radius = 0;
+};
+
+FrameTriangle frame_triangle(const Model& model, const Transform& to_frame,
+                             std::uint32_t position) {
+  const auto verts = model.leaf_vertices();
+  FrameTriangle t;
+  for (int k = 0; k < 3; ++k) t.v[k] = to_frame.apply(verts[3 * std::size_t{position} + k]);
+  t.centroid = (t.v[0] + t.v[1] + t.v[2]) / 3;
+  Scalar r2 = 0;
+  for (const Vec3& v : t.v) r2 = std::max(r2, (v - t.centroid).squaredNorm());
+  t.radius = std::sqrt(r2);
+  return t;
+}
+
+bool within(const FrameTriangle& ta, const FrameTriangle& tb, Scalar delta) {
+  return geometry::triangles_within(ta.v[0], ta.v[1], ta.v[2], tb.v[0], tb.v[1], tb.v[2], delta);
 }
 
 }  // namespace
 
-SearchResult search(const FeatureSpace& space, const SearchRequest& request) {
+SearchResult search(const FeatureSpace& space, const SearchRequest& request,
+                    ColonyMemory* memory) {
   validate(request);
-  const Scalar delta = request.delta < 0 ? space.delta : request.delta;
   SearchResult result;
-  result.delta = delta;
+  const detail::Thresholds t =
+      detail::thresholds(space, request.verdict, request.centroid_delta);
+  result.verdict = t.verdict;
+  result.centroid_delta = t.centroid;
   if (space.empty()) {
     result.stop = StopReason::EmptySpace;
     return result;
   }
   const bool needs_truth = request.stop.target_share > 0 || !request.progress_marks.empty();
-  const std::uint64_t truth = !needs_truth                        ? 0
-                              : request.stop.reference_count != 0 ? request.stop.reference_count
-                                                                  : count_colliding(space, delta);
+  const std::uint64_t truth =
+      !needs_truth                        ? 0
+      : request.stop.reference_count != 0 ? request.stop.reference_count
+                                          : count_colliding(space, request.verdict,
+                                                            request.centroid_delta);
   std::uint64_t target = 0;
   if (request.stop.target_share > 0) {
     // A target of 0 (no colliding pair exists) cannot be met by finding pairs: the search runs to
@@ -85,11 +159,23 @@ SearchResult search(const FeatureSpace& space, const SearchRequest& request) {
     target = static_cast<std::uint64_t>(
         std::ceil(request.stop.target_share * static_cast<double>(truth)));
   }
-  detail::Recorder rec(space, request, delta, target, result);
+  detail::Recorder rec(space, request, t, target, result);
   rec.set_marks(request.progress_marks, truth);
+  const bool colony =
+      request.method == Method::Aco || request.method == Method::Maco;
+  ColonyMemory scratch;
+  ColonyMemory& mem = memory != nullptr && colony ? *memory : scratch;
+  // Temporal coherence: last search's witnesses first.
+  for (const auto& [i, j] : witness_cells(space, mem)) {
+    rec.evaluate(i, j);
+    if (rec.stopped()) break;
+  }
   if (request.method == Method::Exhaustive) {
     rec.begin_run();
-    detail::run_exhaustive(space, rec);
+    if (!rec.stopped()) detail::run_exhaustive(space, rec);
+  } else if (request.method == Method::Grid) {
+    rec.begin_run();
+    if (!rec.stopped()) detail::run_grid(space, rec);
   } else {
     for (std::uint64_t run = 0; run <= request.restarts && !rec.stopped(); ++run) {
       rec.begin_run();
@@ -97,10 +183,10 @@ SearchResult search(const FeatureSpace& space, const SearchRequest& request) {
       const std::uint64_t seed = run == 0 ? request.seed : mix_seed(request.seed + run);
       switch (request.method) {
         case Method::Aco:
-          detail::run_colony(space, request, false, seed, rec);
+          detail::run_colony(space, request, false, seed, mem, rec);
           break;
         case Method::Maco:
-          detail::run_colony(space, request, true, seed, rec);
+          detail::run_colony(space, request, true, seed, mem, rec);
           break;
         case Method::Pso:
           detail::run_pso(space, request, seed, rec);
@@ -108,24 +194,153 @@ SearchResult search(const FeatureSpace& space, const SearchRequest& request) {
         case Method::Ga:
           detail::run_ga(space, request, seed, rec);
           break;
-        case Method::Exhaustive:
-        case Method::Exact:
-        case Method::SphereObb:  // refused by validate()
+        default:
           break;
       }
     }
   }
   rec.finish();
+  if (memory != nullptr && colony) remember_witnesses(space, result, *memory);
   return result;
+}
+
+WitnessCheck confirm_witnesses(const Model& a, const Transform& pose_a, const Model& b,
+                               const Transform& pose_b, Scalar delta, ColonyMemory& memory,
+                               bool stop_at_first, std::uint32_t neighbourhood) {
+  if (!(delta >= 0) || !std::isfinite(delta)) {
+    throw ArgumentError("confirm_witnesses: delta must be finite and >= 0");
+  }
+  WitnessCheck check;
+  auto& w = memory.witnesses;
+  const auto na = static_cast<std::uint32_t>(a.leaf_triangles().size());
+  const auto nb = static_cast<std::uint32_t>(b.leaf_triangles().size());
+  // In A's frame with B mapped into it, as collide() and the feature spaces test.
+  const Transform b_to_a = pose_a.inverse() * pose_b;
+  const Transform identity = Transform::identity();
+  std::size_t valid = 0;
+  for (std::size_t k = 0; k < w.size(); ++k) {
+    const auto [pa, pb] = w[k];
+    if (pa >= na || pb >= nb) continue;
+    ++check.tests;
+    if (!within(frame_triangle(a, identity, pa), frame_triangle(b, b_to_a, pb), delta)) continue;
+    std::swap(w[valid], w[k]);
+    ++valid;
+    if (stop_at_first) {
+      check.valid = valid;
+      return check;  // the rest stay, untested
+    }
+  }
+  if (valid == 0 && neighbourhood > 0 && !w.empty()) {
+    // The contact may have slid to a neighbouring triangle: scan each witness's neighbourhood in
+    // leaf order (what an ant's unit moves reach) with the reach filter, then the exact test.
+    std::vector<FrameTriangle> side_a, side_b;
+    const auto remembered = w;  // w grows as pairs are found
+    for (const auto& [pa, pb] : remembered) {
+      if (pa >= na || pb >= nb) continue;
+      const std::uint32_t a0 = pa > neighbourhood ? pa - neighbourhood : 0;
+      const std::uint32_t a1 = std::min(na - 1, pa + neighbourhood);
+      const std::uint32_t b0 = pb > neighbourhood ? pb - neighbourhood : 0;
+      const std::uint32_t b1 = std::min(nb - 1, pb + neighbourhood);
+      side_a.clear();
+      side_b.clear();
+      for (std::uint32_t p = a0; p <= a1; ++p) side_a.push_back(frame_triangle(a, identity, p));
+      for (std::uint32_t p = b0; p <= b1; ++p) side_b.push_back(frame_triangle(b, b_to_a, p));
+      for (std::uint32_t i = 0; i < side_a.size(); ++i) {
+        for (std::uint32_t j = 0; j < side_b.size(); ++j) {
+          ++check.evaluations;
+          const Scalar reach = side_a[i].radius + side_b[j].radius + delta;
+          if ((side_a[i].centroid - side_b[j].centroid).squaredNorm() > reach * reach) continue;
+          ++check.tests;
+          if (!within(side_a[i], side_b[j], delta)) continue;
+          w.insert(w.begin() + static_cast<std::ptrdiff_t>(valid), {a0 + i, b0 + j});
+          ++valid;
+          if (stop_at_first) {
+            check.valid = valid;
+            return check;
+          }
+        }
+      }
+    }
+  }
+  // Every remembered witness was tested (and their neighbourhoods scanned): keep the valid ones.
+  w.resize(valid);
+  check.valid = valid;
+  return check;
+}
+
+DetectResult random_detect(const Model& a, const Transform& pose_a, const Model& b,
+                           const Transform& pose_b, const DetectRequest& request,
+                           ColonyMemory* memory) {
+  validate(request.search);
+  if (request.samples_per_side == 0) {
+    throw ArgumentError("random_detect: samples_per_side must be >= 1");
+  }
+  DetectResult out;
+  const bool witness = request.search.verdict == Verdict::Witness;
+  if (memory != nullptr && witness && !request.all_witnesses) {
+    const WitnessCheck check = confirm_witnesses(a, pose_a, b, pose_b, request.delta, *memory,
+                                                 true, request.witness_neighbourhood);
+    out.search.evaluations = check.evaluations;
+    out.search.witness_tests = check.tests;
+    if (check.valid > 0) {
+      out.colliding = true;
+      out.by_memory = true;
+      return out;
+    }
+  }
+  SamplingOptions sampling;
+  sampling.samples_per_side = request.samples_per_side;
+  sampling.delta = request.delta;
+  sampling.centroid_delta = request.search.centroid_delta;
+  sampling.order = request.order;
+  sampling.max_leaf_pairs = request.all_witnesses ? 0 : request.first_leaf_pairs;
+  FeatureSpace space = build_feature_space(a, pose_a, b, pose_b, sampling, request.search.seed);
+  out.leaf_pairs = space.leaf_pairs;
+  if (space.leaf_pairs == 0) {
+    out.no_leaf_pair = true;
+    if (memory != nullptr) memory->witnesses.clear();
+    return out;
+  }
+  SearchRequest search_request = request.search;
+  search_request.stop.first_hit = !request.all_witnesses;
+  if (request.evaluations_per_leaf_pair != 0) {
+    const std::uint64_t budget = request.evaluations_per_leaf_pair * space.leaf_pairs;
+    std::uint64_t& limit = search_request.stop.max_evaluations;
+    limit = limit == 0 ? budget : std::min(limit, budget);
+  }
+  SearchResult found = search(space, search_request, memory);
+  if (!found.found && !space.complete) {
+    // Nothing among the leaf pairs met first: every leaf pair, then search again.
+    const std::uint64_t partial = found.evaluations;
+    const std::uint64_t partial_tests = found.witness_tests;
+    sampling.max_leaf_pairs = 0;
+    space = build_feature_space(a, pose_a, b, pose_b, sampling, request.search.seed);
+    out.leaf_pairs = space.leaf_pairs;
+    if (request.evaluations_per_leaf_pair != 0) {
+      std::uint64_t& limit = search_request.stop.max_evaluations;
+      limit = std::max(limit, request.evaluations_per_leaf_pair * space.leaf_pairs);
+    }
+    found = search(space, search_request, memory);
+    found.evaluations += partial;
+    found.witness_tests += partial_tests;
+  }
+  const std::uint64_t pre_evaluations = out.search.evaluations;
+  const std::uint64_t pre_tests = out.search.witness_tests;
+  out.search = found;
+  out.search.evaluations += pre_evaluations;
+  out.search.witness_tests += pre_tests;
+  out.colliding = out.search.found;
+  out.budget_exhausted = !out.colliding && (out.search.stop == StopReason::Evaluations ||
+                                            out.search.stop == StopReason::Time ||
+                                            out.search.stop == StopReason::Iterations);
+  return out;
 }
 
 SearchResult random_collide(const Model& a, const Transform& pose_a, const Model& b,
                             const Transform& pose_b, const SearchRequest& request,
                             const SamplingOptions& sampling) {
   validate(request);
-  SamplingOptions options = sampling;
-  if (request.delta >= 0) options.delta = request.delta;
-  const FeatureSpace space = build_feature_space(a, pose_a, b, pose_b, options, request.seed);
+  const FeatureSpace space = build_feature_space(a, pose_a, b, pose_b, sampling, request.seed);
   return search(space, request);
 }
 

@@ -4,6 +4,9 @@
 #include <antcd/scene.hpp>
 
 #include <cstdint>
+#include <functional>
+#include <utility>
+#include <vector>
 
 namespace antcd::detail {
 
@@ -11,6 +14,8 @@ struct PairOutcome {
   bool colliding = false;
   std::uint64_t feature_hits = 0;   ///< random methods: distinct colliding feature pairs found
   std::uint64_t feature_truth = 0;  ///< random methods: colliding feature pairs in the space
+  std::uint64_t evaluations = 0;    ///< random methods: fitness evaluations spent
+  bool undecided = false;           ///< random methods: budget spent without a witness
 };
 
 /// One object of a candidate pair: its model, its pose this frame, its model's feature radius
@@ -22,9 +27,20 @@ struct PairSide {
   std::uint32_t index = 0;
 };
 
-/// Runs `query.method` on one pair. Deterministic: random methods seed their stream from
-/// (query.seed, frame, a.index, b.index) only.
-PairOutcome query_pair(const PairSide& a, const PairSide& b, const SceneQuery& query,
-                       std::size_t frame);
+/// Runs an exact method (Exact, SphereObb) on one pair.
+PairOutcome query_pair(const PairSide& a, const PairSide& b, const SceneQuery& query);
+
+/// Calls body(k) for k in [0, count), possibly in parallel.
+using ForEach = std::function<void(std::size_t, const std::function<void(std::size_t)>&)>;
+
+/// Runs a random method on every candidate pair of a frame (section 4's flow, per pair: the
+/// memory's witnesses, preliminary detection at delta, sampling, search; with a frame budget,
+/// shared in rounds). `memory` is empty or holds one ColonyMemory per pair. Deterministic:
+/// each pair's random stream depends on (query.seed, frame, a.index, b.index, round) and its
+/// memory only.
+void random_frame(const std::vector<std::pair<PairSide, PairSide>>& pairs,
+                  const SceneQuery& query, std::size_t frame,
+                  const std::vector<ColonyMemory*>& memory, std::vector<PairOutcome>& out,
+                  const ForEach& for_each);
 
 }  // namespace antcd::detail

@@ -12,6 +12,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <mutex>
 #include <stdexcept>
@@ -83,7 +84,8 @@ std::vector<std::pair<std::uint32_t, std::uint32_t>> Scene::broad_phase(std::siz
   return candidates;
 }
 
-FrameResult Scene::run_frame(std::size_t frame, const SceneQuery& query) const {
+FrameResult Scene::run_frame(std::size_t frame, const SceneQuery& query,
+                             SceneMemory* memory) const {
   if (frame >= description_.frames) {
     throw ArgumentError("frame " + std::to_string(frame) + " out of range (scene has " +
                         std::to_string(description_.frames) + " frames)");
@@ -104,6 +106,12 @@ FrameResult Scene::run_frame(std::size_t frame, const SceneQuery& query) const {
                           " (ants, particles or population)");
     }
     if (!std::isfinite(query.feature_delta)) throw ArgumentError("feature delta must be finite");
+    if (query.verdict != Verdict::Witness && query.verdict != Verdict::PaperCentroid) {
+      throw ArgumentError("unknown verdict");
+    }
+    if (!(query.frame_seconds >= 0) || !std::isfinite(query.frame_seconds)) {
+      throw ArgumentError("frame seconds must be finite and >= 0");
+    }
   }
   const auto start = std::chrono::steady_clock::now();
   FrameResult result;
@@ -120,21 +128,41 @@ FrameResult Scene::run_frame(std::size_t frame, const SceneQuery& query) const {
   // Narrow phase, one independent task per candidate pair.
   const std::size_t m = result.candidates.size();
   std::vector<detail::PairOutcome> outcomes(m);
-  const auto work = [&](std::size_t k) {
-    const auto [i, j] = result.candidates[k];
-    const detail::PairSide a{&model_of(i), poses[i], feature_radius_[model_index_[i]], i};
-    const detail::PairSide b{&model_of(j), poses[j], feature_radius_[model_index_[j]], j};
-    outcomes[k] = detail::query_pair(a, b, query, frame);
+  const detail::ForEach for_each = [&](std::size_t count,
+                                       const std::function<void(std::size_t)>& body) {
+    if (query.threads == 1 || count < 2) {
+      for (std::size_t k = 0; k < count; ++k) body(k);
+    } else {
+      tbb::task_arena arena(query.threads);
+      arena.execute(
+          [&] { tbb::parallel_for(std::size_t{0}, count, [&](std::size_t k) { body(k); }); });
+    }
   };
-  if (query.threads == 1 || m < 2) {
-    for (std::size_t k = 0; k < m; ++k) work(k);
+  const auto side = [&](std::uint32_t i) {
+    return detail::PairSide{&model_of(i), poses[i], feature_radius_[model_index_[i]], i};
+  };
+  if (query.method == Method::Exact || query.method == Method::SphereObb) {
+    for_each(m, [&](std::size_t k) {
+      const auto [i, j] = result.candidates[k];
+      outcomes[k] = detail::query_pair(side(i), side(j), query);
+    });
   } else {
-    arena.execute([&] { tbb::parallel_for(std::size_t{0}, m, [&](std::size_t k) { work(k); }); });
+    std::vector<std::pair<detail::PairSide, detail::PairSide>> pairs;
+    pairs.reserve(m);
+    std::vector<ColonyMemory*> memories;
+    for (const auto& [i, j] : result.candidates) {
+      pairs.emplace_back(side(i), side(j));
+      // Entries are created here, serially; each task then touches only its own.
+      if (memory != nullptr) memories.push_back(&memory->pairs_[{i, j}]);
+    }
+    detail::random_frame(pairs, query, frame, memories, outcomes, for_each);
   }
   for (std::size_t k = 0; k < m; ++k) {
     if (outcomes[k].colliding) result.pairs.push_back(result.candidates[k]);
     result.feature_hits += outcomes[k].feature_hits;
     result.feature_truth += outcomes[k].feature_truth;
+    result.evaluations += outcomes[k].evaluations;
+    if (outcomes[k].undecided) result.undecided.push_back(result.candidates[k]);
   }
   result.time_ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();

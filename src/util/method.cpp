@@ -21,6 +21,7 @@ constexpr MethodNames kNames[] = {
     {Method::Pso, "pso", "PSO"},
     {Method::Ga, "ga", "GA"},
     {Method::Exhaustive, "exhaustive", "Exhaustive"},
+    {Method::Grid, "grid", "Grid"},
 };
 
 const MethodNames* find(Method m) {

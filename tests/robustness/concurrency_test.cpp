@@ -76,7 +76,7 @@ bool same(const SearchResult& a, const SearchResult& b) {
   if (a.found != b.found || a.hits.size() != b.hits.size() || a.best_distance != b.best_distance ||
       !same(a.best, b.best) || a.evaluations != b.evaluations || a.iterations != b.iterations ||
       a.runs != b.runs || a.progress.size() != b.progress.size() || a.stop != b.stop ||
-      a.delta != b.delta) {
+      a.centroid_delta != b.centroid_delta || a.witness_tests != b.witness_tests) {
     return false;
   }
   for (std::size_t k = 0; k < a.hits.size(); ++k) {

@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <limits>
 #include <random>
 #include <string>
@@ -227,6 +228,42 @@ TEST(Scene, RandomVerdictsDoNotDependOnSearchingToTheEnd) {
       EXPECT_LE(a.feature_hits, a.pairs.size()) << "a first-hit search keeps one hit per pair";
     }
     EXPECT_GT(candidates, 0u);
+  }
+}
+
+// The random methods' memory and anytime budget: with a SceneMemory carried over the frames, the
+// answers are the same at any thread count; every reported pair is one exact reports (witness
+// verdict); with a frame budget, every candidate pair is reported colliding, separate or
+// undecided (never both).
+TEST(Scene, MemoryAndFrameBudgetAreDeterministicAndSound) {
+  const auto dir = test::fresh_temp_dir("scene_memory");
+  const Scene scene(small_scene(dir, 24, 6, 8));
+  SceneQuery exact;
+  for (const std::uint64_t budget : {std::uint64_t{0}, std::uint64_t{3000}}) {
+    SceneQuery q;
+    q.method = Method::Maco;
+    q.seed = 7;
+    q.frame_evaluations = budget;
+    SceneMemory one_memory, many_memory;
+    for (std::size_t f = 0; f < 6; ++f) {
+      q.threads = 1;
+      const FrameResult one = scene.run_frame(f, q, &one_memory);
+      q.threads = 3;
+      const FrameResult many = scene.run_frame(f, q, &many_memory);
+      EXPECT_EQ(one.pairs, many.pairs) << "frame " << f;
+      EXPECT_EQ(one.undecided, many.undecided) << "frame " << f;
+      EXPECT_EQ(one.evaluations, many.evaluations) << "frame " << f;
+      const FrameResult truth = scene.run_frame(f, exact);
+      for (const auto& p : one.pairs) {
+        EXPECT_TRUE(std::find(truth.pairs.begin(), truth.pairs.end(), p) != truth.pairs.end())
+            << "a reported pair exact does not report";
+      }
+      for (const auto& p : one.undecided) {
+        EXPECT_TRUE(std::find(one.pairs.begin(), one.pairs.end(), p) == one.pairs.end());
+      }
+      EXPECT_LE(one.pairs.size() + one.undecided.size(), one.candidates.size());
+    }
+    EXPECT_GT(one_memory.size(), 0u);
   }
 }
 
