@@ -77,6 +77,10 @@ GeneratedScene generate_production_line(const ProductionLineOptions& options);
 std::filesystem::path write_scene(const GeneratedScene& generated,
                                   const std::filesystem::path& dir);
 
+/// The generated scene as a Scene, with its meshes taken from memory (no file round trip, so no
+/// rounding through a mesh file format). Throws SceneError like Scene's constructor.
+Scene make_scene(const GeneratedScene& generated, const BuildOptions& options = {});
+
 /// Summary numbers for reports.
 struct SceneStats {
   std::size_t objects = 0;

@@ -31,6 +31,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <map>
 #include <memory>
 #include <string>
@@ -161,6 +162,12 @@ class ANTCD_API Scene {
   /// Loads every mesh (once per distinct file and scale) and builds the hierarchies.
   /// Throws MeshError / SceneError naming the object whose mesh failed.
   explicit Scene(SceneDescription description, const BuildOptions& options = {});
+  /// The meshes come from `mesh_source` instead of files: it is called once per distinct
+  /// (SceneObject::mesh, scale) with the first object that uses that mesh, and returns the mesh
+  /// unscaled (the scene applies SceneObject::scale). For scenes built in memory (generators,
+  /// tests). A MeshError it throws becomes a SceneError naming the object.
+  Scene(SceneDescription description, const std::function<Mesh(const SceneObject&)>& mesh_source,
+        const BuildOptions& options = {});
   Scene(Scene&&) noexcept;
   Scene& operator=(Scene&&) noexcept;
   ~Scene();

@@ -6,6 +6,7 @@
 #include <antcd/error.hpp>
 
 #include <algorithm>
+#include <filesystem>
 #include <limits>
 #include <map>
 #include <stdexcept>
@@ -66,6 +67,19 @@ SceneStats scene_stats(const GeneratedScene& generated) {
   }
   if (s.objects > 0) s.average_vertices = sum / static_cast<double>(s.objects);
   return s;
+}
+
+Scene make_scene(const GeneratedScene& generated, const BuildOptions& options) {
+  return Scene(
+      generated.scene,
+      [&generated](const SceneObject& o) {
+        const std::string name = o.mesh.lexically_normal().generic_string();
+        for (const auto& [file, mesh] : generated.meshes) {
+          if (std::filesystem::path(file).lexically_normal().generic_string() == name) return mesh;
+        }
+        throw MeshError(name, "not among the generated meshes");
+      },
+      options);
 }
 
 }  // namespace antcd::shared

@@ -32,6 +32,12 @@ Scene& Scene::operator=(Scene&&) noexcept = default;
 Scene::~Scene() = default;
 
 Scene::Scene(SceneDescription description, const BuildOptions& options)
+    : Scene(std::move(description), [](const SceneObject& o) { return load_mesh(o.mesh); },
+            options) {}
+
+Scene::Scene(SceneDescription description,
+             const std::function<Mesh(const SceneObject&)>& mesh_source,
+             const BuildOptions& options)
     : description_(std::move(description)), broad_(std::make_unique<Broad>()) {
   const auto start = std::chrono::steady_clock::now();
   std::map<std::pair<std::string, Scalar>, std::size_t> built;
@@ -42,7 +48,7 @@ Scene::Scene(SceneDescription description, const BuildOptions& options)
     if (it == built.end()) {
       Mesh mesh;
       try {
-        mesh = load_mesh(o.mesh);
+        mesh = mesh_source(o);
       } catch (const MeshError& e) {
         throw SceneError("object '" + o.name + "': " + e.what());
       }
