@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <iostream>
 #include <sstream>
 #include <vector>
 
@@ -52,6 +53,13 @@ CovarianceMethod parse_covariance(const std::string& text) {
 
 Model load_model(const std::filesystem::path& path, const BuildOptions& options) {
   return Model(load_mesh(path), options, path.string());
+}
+
+void warn_degenerate(const Model& model) {
+  if (model.stats().degenerate_triangles > 0) {
+    std::cerr << "warning: " << model.source() << ": " << model.stats().degenerate_triangles
+              << " zero-area triangle(s) ignored\n";
+  }
 }
 
 CLI::Validator non_negative_finite() {

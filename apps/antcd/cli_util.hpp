@@ -35,6 +35,8 @@ CovarianceMethod parse_covariance(const std::string& text);
 
 /// Loads a mesh and builds its hierarchy; errors name the file.
 Model load_model(const std::filesystem::path& path, const BuildOptions& options);
+/// Prints "warning: SOURCE: N zero-area triangle(s) ignored" on stderr when the model left some out.
+void warn_degenerate(const Model& model);
 
 /// Option check for --delta and friends: a finite number >= 0. (CLI::NonNegativeNumber lets NaN
 /// through, and its message prints the largest double in full.)

@@ -38,12 +38,8 @@ int run_distance(const DistanceOptions& o) {
   const BuildOptions build{o.leaf_size, parse_covariance(o.covariance)};
   const Model a = load_model(o.mesh_a, build);
   const Model b = load_model(o.mesh_b, build);
-  for (const Model* m : {&a, &b}) {
-    if (m->stats().degenerate_triangles > 0) {
-      std::cerr << "warning: " << m->source() << ": " << m->stats().degenerate_triangles
-                << " zero-area triangle(s) ignored\n";
-    }
-  }
+  warn_degenerate(a);
+  warn_degenerate(b);
   DistanceRequest request;
   request.upper_bound = o.upper_bound;
   request.abs_tolerance = o.abs_tolerance;
