@@ -167,8 +167,9 @@ int run_demo(const DemoOptions& o) {
       "accuracy: colliding object pairs against exact, over the broad phase's candidate pairs.\n"
       "maco: the paper's improved ant colony (m = %u ants, N = %u iterations, %zu features per\n"
       "side) on %zu of the %zu frames (one in %zu; --maco-step 1 runs all), stopping at the first\n"
-      "colliding feature pair; its verdict comes from triangle centroids within the default\n"
-      "threshold, so it reports near misses that exact rejects (docs/random-detection.md).\n",
+      "colliding feature pair, which the exact triangle test at delta then confirms (the witness\n"
+      "verdict): every pair it reports is a real contact, misses are its only error. Frames one\n"
+      "in ten apart run without the colony's frame-to-frame memory (docs/random-detection.md).\n",
       maco.agents, maco.iterations, maco.samples_per_side, result.frames.size(), frames,
       o.maco_step);
   if (ab_frames > 0) {
