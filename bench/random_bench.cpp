@@ -23,6 +23,17 @@
 //   evals   median evaluations per search; pairs, colliding: the space
 // The Exhaustive rows' tN_ms are the times at which the row-by-row enumeration passed each mark.
 // The MACO-without-k / MACO-only-k rows (2000² pairs) are the ablation of the four improvements.
+//
+// Cost/... rows: the price of one evaluation, apart from how good the search is. On the 5000²
+// space, under the paper-centroid verdict with a centroid threshold no pair meets (so no hit is
+// recorded and no witness test runs), Cost/exhaustive scans the whole space and Cost/aco and
+// Cost/maco run a fixed budget of evaluations. Counters:
+//   ns_per_eval   thread CPU time / evaluations (exhaustive: per centroid distance); CPU time,
+//                 not wall time, so that waiting for a core on a shared machine is not counted
+//   wall_ns       the same with wall time
+//   overhead_ns   ns_per_eval minus the exhaustive scan's ns per distance measured in the same
+//                 benchmark (interleaved): what the colony adds per evaluated candidate
+// Targets: exhaustive <= 1 ns per distance, colony overhead <= 10 ns.
 #include <antcd/random.hpp>
 
 #include <benchmark/benchmark.h>
@@ -32,6 +43,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <ctime>
 #include <limits>
 #include <map>
 #include <mutex>
@@ -170,10 +182,73 @@ void bm_search(benchmark::State& state, Method method, std::uint32_t samples,
   set_space_counters(state, sp);
 }
 
+// The cost rows' search request: nothing collides, so every evaluation is a plain one.
+SearchRequest cost_request(Method method) {
+  SearchRequest r;
+  r.method = method;
+  r.verdict = Verdict::PaperCentroid;
+  r.centroid_delta = 1e-12;
+  r.restarts = std::numeric_limits<std::uint32_t>::max();
+  return r;
+}
+
+double thread_cpu_ns() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) * 1e9 + static_cast<double>(ts.tv_nsec);
+}
+
+double exhaustive_ns_per_distance(const FeatureSpace& space) {
+  const SearchRequest r = cost_request(Method::Exhaustive);
+  const double t0 = thread_cpu_ns();
+  const SearchResult res = search(space, r);
+  const double ns = thread_cpu_ns() - t0;
+  benchmark::DoNotOptimize(res.evaluations);
+  return ns / static_cast<double>(res.evaluations);
+}
+
+void bm_cost(benchmark::State& state, Method method) {
+  const Space& sp = space_for(5000);
+  SearchRequest r = cost_request(method);
+  constexpr std::uint64_t kBudget = 4'000'000;
+  r.stop.max_evaluations = kBudget;
+  std::vector<double> per_eval, wall, reference;
+  std::uint64_t seed = 0;
+  std::uint64_t total = 0;
+  for (auto _ : state) {
+    r.seed = seed++;
+    const auto t0 = std::chrono::steady_clock::now();
+    const double c0 = thread_cpu_ns();
+    const SearchResult res = search(sp.space, r);
+    const double ns = thread_cpu_ns() - c0;
+    const double wall_ns =
+        std::chrono::duration<double, std::nano>(std::chrono::steady_clock::now() - t0).count();
+    if (!res.hits.empty()) state.SkipWithError("a cost row must record no hit");
+    total += res.evaluations;
+    per_eval.push_back(ns / static_cast<double>(res.evaluations));
+    wall.push_back(wall_ns / static_cast<double>(res.evaluations));
+    state.PauseTiming();
+    reference.push_back(exhaustive_ns_per_distance(sp.space));
+    state.ResumeTiming();
+  }
+  const double mine = median(per_eval);
+  state.counters["ns_per_eval"] = mine;
+  state.counters["wall_ns"] = median(wall);
+  if (method != Method::Exhaustive) state.counters["overhead_ns"] = mine - median(reference);
+  state.counters["exh_ns"] = median(reference);
+  state.SetItemsProcessed(static_cast<std::int64_t>(total));
+  set_space_counters(state, sp);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   benchmark::Initialize(&argc, argv);
+  for (const Method m : {Method::Exhaustive, Method::Aco, Method::Maco}) {
+    benchmark::RegisterBenchmark(("Cost/" + std::string(method_name(m))).c_str(), bm_cost, m)
+        ->Unit(benchmark::kMillisecond)
+        ->Iterations(7);
+  }
   const std::uint32_t sizes[] = {1000, 2000, 3000, 4000, 5000};
   for (const std::uint32_t n : sizes) {
     benchmark::RegisterBenchmark(("Exhaustive/samples:" + std::to_string(n)).c_str(), bm_exhaustive,

@@ -21,6 +21,7 @@
 
 #include "random/fast_math.hpp"
 #include "random/engines.hpp"
+#include "random/recorder.hpp"
 
 namespace antcd::detail {
 namespace {
@@ -39,6 +40,40 @@ inline float feature_step(const FeatureSide& s, std::uint32_t p, std::uint32_t q
 /// |a_i - a_i'|_1 + |b_j - b_j'|_1 (mesh units).
 inline float cell_distance(const FeatureSpace& s, Cell p, Cell q) {
   return feature_step(s.a, p.i, q.i) + feature_step(s.b, p.j, q.j);
+}
+
+/// d_ij of Eq. 12 for the 16 lanes: cell_distance from the current cell (cax..cbz its two
+/// centroids) to each candidate, from the centroids the batch gathered. Same sums as
+/// cell_distance, in the same order.
+ANTCD_VECTOR_CLONES void step_lengths(const Recorder::Lanes& l, float cax, float cay, float caz,
+                                      float cbx, float cby, float cbz, float* step) {
+  for (std::uint32_t k = 0; k < Recorder::kLanes; ++k) {
+    const float sa = std::abs(cax - l.ax[k]) + std::abs(cay - l.ay[k]) + std::abs(caz - l.az[k]);
+    const float sb = std::abs(cbx - l.bx[k]) + std::abs(cby - l.by[k]) + std::abs(cbz - l.bz[k]);
+    step[k] = sa + sb;
+  }
+}
+
+/// Eq. 7 in logarithms with the remaining-distance reading of Eq. 12, for the 16 lanes:
+/// alpha' log2 tau - beta' log2(d_oj + d_ij + max(0, f - reach)).
+ANTCD_VECTOR_CLONES void remaining_log_weights(const Recorder::Lanes& l, const float* step,
+                                               const float* log_tau, float travelled, float alpha,
+                                               float beta, float denom_floor, float* out) {
+  for (std::uint32_t k = 0; k < Recorder::kLanes; ++k) {
+    const float missing = l.d[k] > l.reach[k] ? l.d[k] - l.reach[k] : 0.0f;
+    float denom = travelled + step[k] + missing;
+    denom = denom > denom_floor ? denom : denom_floor;
+    out[k] = alpha * log_tau[k] - beta * fast_log2(denom);
+  }
+}
+
+/// Roulette weights 2^(l - top) of the first `count` lanes, 0 for the padding.
+ANTCD_VECTOR_CLONES void roulette_weights(const float* log_weight, float top, std::uint32_t count,
+                                          float* weight) {
+  for (std::uint32_t k = 0; k < Recorder::kLanes; ++k) {
+    const float w = fast_exp2(log_weight[k] - top);
+    weight[k] = k < count ? w : 0.0f;
+  }
 }
 
 /// Pheromone grid size along one side: at most `resolution` blocks, at most one per triangle.
@@ -108,9 +143,10 @@ void run_colony(const FeatureSpace& space, const SearchRequest& request, bool im
   std::vector<Cell> paths(std::size_t{p.ants} * path_capacity);
   std::vector<std::uint32_t> path_length(p.ants);
   std::vector<double> tour_length(p.ants);  // L_k
-  constexpr std::uint32_t kCandidates = 16;
+  constexpr std::uint32_t kCandidates = Recorder::kLanes;
   std::array<std::uint32_t, kCandidates> cand_i{}, cand_j{};
-  std::array<float, kCandidates> cand_d{}, cand_reach{}, cand_step{}, cand_log{},
+  Recorder::Lanes lanes;
+  alignas(64) std::array<float, kCandidates> cand_step{}, cand_tau{}, cand_log{}, cand_weight{},
       cand_cumulative{};
 
   const auto unit = static_cast<float>(space.centroid_delta);  // > 0: the length unit
@@ -204,26 +240,39 @@ void run_colony(const FeatureSpace& space, const SearchRequest& request, bool im
           }
         }
         if (count == 0) break;  // boxed in by its own path at a border
-        rec.evaluate_batch(cand_i.data(), cand_j.data(), count, cand_d.data(), cand_reach.data());
+        // Lanes past `count` repeat the first candidate: computed, never chosen.
+        for (std::uint32_t c = count; c < kCandidates; ++c) {
+          cand_i[c] = cand_i[0];
+          cand_j[c] = cand_j[0];
+        }
+        rec.evaluate_batch(cand_i.data(), cand_j.data(), count, lanes);
         if (rec.stopped()) {
           stopped = true;
           break;
         }
         // Eq. 7 in logarithms: log2(tau^alpha' eta^beta') = alpha' log2 tau - beta' log2 denom,
         // with denom = 1/eta: f(j) (classic), or one of the readings of Eq. 12 (switch 3).
-        for (std::uint32_t c = 0; c < count; ++c) {
-          const Cell to{cand_i[c], cand_j[c]};
-          float denom = cand_d[c];
-          if (remaining) {
-            cand_step[c] = cell_distance(space, cur, to);
-            const float missing = cand_d[c] > cand_reach[c] ? cand_d[c] - cand_reach[c] : 0.0f;
-            denom = travelled + cand_step[c] + missing;
-          } else if (corridor) {
-            denom += cell_distance(space, origin, to);
-            if (has_goal) denom += cell_distance(space, to, goal);
+        for (std::uint32_t c = 0; c < kCandidates; ++c) {
+          cand_tau[c] = log_tau[block_of(cand_i[c], cand_j[c])];
+        }
+        if (remaining) {
+          // d_ij: the step from the current cell, from the centroids the batch gathered.
+          const float cax = space.a.x[cur.i], cay = space.a.y[cur.i], caz = space.a.z[cur.i];
+          const float cbx = space.b.x[cur.j], cby = space.b.y[cur.j], cbz = space.b.z[cur.j];
+          step_lengths(lanes, cax, cay, caz, cbx, cby, cbz, cand_step.data());
+          remaining_log_weights(lanes, cand_step.data(), cand_tau.data(), travelled, alpha, beta,
+                                denom_floor, cand_log.data());
+        } else {
+          for (std::uint32_t c = 0; c < count; ++c) {
+            const Cell to{cand_i[c], cand_j[c]};
+            float denom = lanes.d[c];
+            if (corridor) {
+              denom += cell_distance(space, origin, to);
+              if (has_goal) denom += cell_distance(space, to, goal);
+            }
+            denom = denom > denom_floor ? denom : denom_floor;
+            cand_log[c] = alpha * cand_tau[c] - beta * fast_log2(denom);
           }
-          denom = denom > denom_floor ? denom : denom_floor;
-          cand_log[c] = alpha * log_tau[block_of(to.i, to.j)] - beta * fast_log2(denom);
         }
         std::uint32_t pick = 0;
         float top = cand_log[0];
@@ -234,10 +283,12 @@ void run_colony(const FeatureSpace& space, const SearchRequest& request, bool im
           }
         }
         if (!sw.greedy_moves) {
-          // Roulette over weights scaled by the largest (2^(l - top) in (0, 1]).
+          // Roulette over weights scaled by the largest (2^(l - top) in (0, 1]); padding lanes
+          // weigh 0, so the running total over the real lanes is unchanged.
+          roulette_weights(cand_log.data(), top, count, cand_weight.data());
           float total = 0;
           for (std::uint32_t c = 0; c < count; ++c) {
-            total += fast_exp2(cand_log[c] - top);
+            total += cand_weight[c];
             cand_cumulative[c] = total;
           }
           const float target = rng.unit_float() * total;
@@ -252,7 +303,7 @@ void run_colony(const FeatureSpace& space, const SearchRequest& request, bool im
         const Cell next{cand_i[pick], cand_j[pick]};
         if (remaining) travelled += cand_step[pick];
         cur = next;
-        sum_f += cand_d[pick];
+        sum_f += lanes.d[pick];
         path[len++] = cur;
         remember(cur);
       }

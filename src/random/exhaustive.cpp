@@ -5,6 +5,7 @@
 #include <antcd/error.hpp>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -12,23 +13,28 @@
 #include <vector>
 
 #include "random/engines.hpp"
+#include "random/fast_math.hpp"
 
 namespace antcd::detail {
 namespace {
 
 /// Fast pass over one row: the smallest squared distance and whether any cell is within reach.
-/// Branch-free so that the compiler vectorises it.
+/// Branch-free so that the compiler vectorises it. The minimum is taken over the squared
+/// distances' bit patterns: for non-negative floats (a sum of squares is never -0 or NaN here,
+/// coordinates being finite) their order is the integers' order, and an integer minimum
+/// vectorises where a float one would need -ffinite-math-only.
 struct RowScan {
   float min2;
   int within;
 };
-RowScan scan_row(const FeatureSide& b, std::uint32_t count, float ax, float ay, float az,
-                 float reach_a, bool witness, float centroid) {
+ANTCD_VECTOR_CLONES RowScan scan_row(const FeatureSide& b, std::uint32_t count, float ax,
+                                     float ay, float az, float reach_a, bool witness,
+                                     float centroid) {
   const float* bx = b.x.data();
   const float* by = b.y.data();
   const float* bz = b.z.data();
   const float* br = b.radius.data();
-  float m = std::numeric_limits<float>::infinity();
+  std::uint32_t m = std::bit_cast<std::uint32_t>(std::numeric_limits<float>::infinity());
   int within = 0;
   if (witness) {
     for (std::uint32_t j = 0; j < count; ++j) {
@@ -38,7 +44,8 @@ RowScan scan_row(const FeatureSide& b, std::uint32_t count, float ax, float ay, 
       const float d2 = dx * dx + dy * dy + dz * dz;
       const float r = reach_a + br[j];
       within += d2 <= r * r ? 1 : 0;
-      m = d2 < m ? d2 : m;
+      const auto bits = std::bit_cast<std::uint32_t>(d2);
+      m = bits < m ? bits : m;
     }
   } else {
     const float c2 = centroid * centroid;
@@ -48,10 +55,11 @@ RowScan scan_row(const FeatureSide& b, std::uint32_t count, float ax, float ay, 
       const float dz = az - bz[j];
       const float d2 = dx * dx + dy * dy + dz * dz;
       within += d2 <= c2 ? 1 : 0;
-      m = d2 < m ? d2 : m;
+      const auto bits = std::bit_cast<std::uint32_t>(d2);
+      m = bits < m ? bits : m;
     }
   }
-  return {m, within};
+  return {std::bit_cast<float>(m), within};
 }
 
 }  // namespace

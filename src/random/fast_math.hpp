@@ -7,6 +7,16 @@
 #include <bit>
 #include <cstdint>
 
+/// On x86-64 with GCC or Clang, a function marked ANTCD_VECTOR_CLONES is compiled twice, for the
+/// baseline (SSE2) and for AVX2, and the loader picks the clone the CPU runs (ifunc). Only for
+/// loops the compiler vectorises; -ffp-contract=off keeps both clones' arithmetic identical (no
+/// FMA), so results do not depend on the CPU.
+#if defined(__x86_64__) && defined(__GNUC__) && defined(__linux__) && !defined(ANTCD_NO_CLONES)
+#define ANTCD_VECTOR_CLONES __attribute__((target_clones("avx2", "default")))
+#else
+#define ANTCD_VECTOR_CLONES
+#endif
+
 namespace antcd::detail {
 
 /// log2(x) for finite x > 0 (normal floats): exponent from the bits, then a cubic in the mantissa

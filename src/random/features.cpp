@@ -10,6 +10,7 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <string>
 #include <utility>
 
 namespace antcd {
@@ -283,6 +284,14 @@ Thresholds thresholds(const FeatureSpace& space, Verdict verdict, Scalar centroi
 
 std::string_view to_string(Verdict verdict) {
   return verdict == Verdict::Witness ? "witness" : "paper-centroid";
+}
+
+Verdict parse_verdict(std::string_view text) {
+  for (const Verdict v : {Verdict::Witness, Verdict::PaperCentroid}) {
+    if (text == to_string(v)) return v;
+  }
+  throw ArgumentError("unknown verdict '" + std::string(text) +
+                      "' (expected witness or paper-centroid)");
 }
 
 

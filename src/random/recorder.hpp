@@ -6,6 +6,7 @@
 
 #include "random/cell_set.hpp"
 
+#include <bit>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
@@ -29,6 +30,14 @@ Thresholds thresholds(const FeatureSpace& space, Verdict verdict, Scalar centroi
 
 /// Evaluates feature pairs for a search and applies the stop criteria. One per search call.
 class Recorder {
+ public:
+  struct Lanes;
+
+ private:
+  /// The lane arithmetic of evaluate_batch: fixed length, branch-free, vectorised (recorder.cpp).
+  static void compute_lanes(Lanes& lanes, bool witness, float delta, float centroid);
+
+
  public:
   /// `target_hits` is the absolute hit count of StopCriteria::target_share (0 = off).
   Recorder(const FeatureSpace& space, const SearchRequest& request, const Thresholds& thresholds,
@@ -101,63 +110,69 @@ class Recorder {
     return std::sqrt(d2);
   }
 
-  /// Evaluates up to 16 cells at once (the colony's candidates): distances into `d`, reaches into
-  /// `reach` (for the heuristic). Stops exactly at max_evaluations and at the first hit with
-  /// first_hit (the cells after it are not counted); returns how many were evaluated.
+  /// The 16 lanes of a colony step: the candidates' centroids (gathered once, also used by the
+  /// caller for Eq. 12's step lengths), distances and reaches.
+  static constexpr std::uint32_t kLanes = 16;
+  struct Lanes {
+    alignas(64) float ax[kLanes], ay[kLanes], az[kLanes];
+    alignas(64) float bx[kLanes], by[kLanes], bz[kLanes];
+    alignas(64) float ra[kLanes], rb[kLanes];
+    alignas(64) float d2[kLanes];
+    alignas(64) float d[kLanes];      ///< f(i, j), Eq. 6
+    alignas(64) float reach[kLanes];  ///< r_i + r_j + delta (Witness) or delta_c
+    alignas(64) std::uint32_t within[kLanes];
+  };
+
+  /// Evaluates up to 16 cells at once (the colony's candidates) into `lanes`. `ci` and `cj` hold
+  /// 16 valid cells: the first `count` are the candidates, the rest padding, computed in the
+  /// same fixed-length loops (so that they vectorise) and then ignored. Stops exactly at
+  /// max_evaluations and at the first hit with first_hit (the cells after it are not counted);
+  /// returns how many were evaluated.
   std::uint32_t evaluate_batch(const std::uint32_t* ci, const std::uint32_t* cj,
-                               std::uint32_t count, float* d, float* reach_out) {
+                               std::uint32_t count, Lanes& lanes) {
     if (max_evaluations_ != 0) {
       const std::uint64_t left = max_evaluations_ - out_.evaluations;
       if (left < count) count = static_cast<std::uint32_t>(left);
     }
-    constexpr std::uint32_t kLanes = 16;
-    float ax[kLanes], ay[kLanes], az[kLanes], ra[kLanes];
-    float bx[kLanes], by[kLanes], bz[kLanes], rb[kLanes];
-    for (std::uint32_t k = 0; k < count; ++k) {
-      ax[k] = space_.a.x[ci[k]];
-      ay[k] = space_.a.y[ci[k]];
-      az[k] = space_.a.z[ci[k]];
-      bx[k] = space_.b.x[cj[k]];
-      by[k] = space_.b.y[cj[k]];
-      bz[k] = space_.b.z[cj[k]];
+    for (std::uint32_t k = 0; k < kLanes; ++k) {
+      lanes.ax[k] = space_.a.x[ci[k]];
+      lanes.ay[k] = space_.a.y[ci[k]];
+      lanes.az[k] = space_.a.z[ci[k]];
+      lanes.bx[k] = space_.b.x[cj[k]];
+      lanes.by[k] = space_.b.y[cj[k]];
+      lanes.bz[k] = space_.b.z[cj[k]];
     }
     const bool witness = t_.verdict == Verdict::Witness;
     if (witness) {
-      for (std::uint32_t k = 0; k < count; ++k) {
-        ra[k] = space_.a.radius[ci[k]];
-        rb[k] = space_.b.radius[cj[k]];
+      for (std::uint32_t k = 0; k < kLanes; ++k) {
+        lanes.ra[k] = space_.a.radius[ci[k]];
+        lanes.rb[k] = space_.b.radius[cj[k]];
       }
     }
-    float d2[kLanes];
-    bool any = false;
-    float lane_min = std::numeric_limits<float>::infinity();
+    compute_lanes(lanes, witness, t_.delta, t_.centroid);
+    // Reductions over the real lanes only. Squared distances are non-negative and not NaN, so
+    // their bit patterns order like the floats.
+    std::uint32_t any = 0;
+    std::uint32_t lane_min = std::bit_cast<std::uint32_t>(std::numeric_limits<float>::infinity());
     for (std::uint32_t k = 0; k < count; ++k) {
-      const float dx = ax[k] - bx[k];
-      const float dy = ay[k] - by[k];
-      const float dz = az[k] - bz[k];
-      d2[k] = dx * dx + dy * dy + dz * dz;
-      const float r = witness ? ra[k] + rb[k] + t_.delta : t_.centroid;
-      reach_out[k] = r;
-      d[k] = std::sqrt(d2[k]);
-      any |= d2[k] <= r * r;
-      lane_min = d2[k] < lane_min ? d2[k] : lane_min;
+      any |= lanes.within[k];
+      const auto bits = std::bit_cast<std::uint32_t>(lanes.d2[k]);
+      lane_min = bits < lane_min ? bits : lane_min;
     }
-    if (lane_min < best2_ || any) {
+    std::uint32_t counted_in_batch = 0;
+    if (std::bit_cast<float>(lane_min) < best2_ || any != 0) {
       for (std::uint32_t k = 0; k < count; ++k) {
-        if (d2[k] < best2_) offer_best(ci[k], cj[k], d2[k]);
-        if (d2[k] <= reach_out[k] * reach_out[k]) {
-          out_.evaluations += k + 1 - counted_in_batch_;
-          counted_in_batch_ = k + 1;
-          consider(ci[k], cj[k], d2[k]);
-          if (stopped_) {
-            counted_in_batch_ = 0;
-            return k + 1;
-          }
+        const float d2 = lanes.d2[k];
+        if (d2 < best2_) offer_best(ci[k], cj[k], d2);
+        if (lanes.within[k] != 0) {
+          out_.evaluations += k + 1 - counted_in_batch;
+          counted_in_batch = k + 1;
+          consider(ci[k], cj[k], d2);
+          if (stopped_) return k + 1;
         }
       }
     }
-    out_.evaluations += count - counted_in_batch_;
-    counted_in_batch_ = 0;
+    out_.evaluations += count - counted_in_batch;
     if (!stopped_) check_budget();
     return count;
   }
@@ -244,7 +259,6 @@ class Recorder {
   std::chrono::steady_clock::time_point start_;
   bool stopped_ = false;
   std::uint32_t iteration_offset_ = 0;
-  std::uint32_t counted_in_batch_ = 0;
   std::uint64_t last_clock_ = 0;
   float best2_ = std::numeric_limits<float>::infinity();
   std::uint32_t best_i_ = 0;
