@@ -62,7 +62,7 @@ NamePair key(const NamePair& p) { return p.first < p.second ? p : NamePair{p.sec
 
 RunResult run_scene(const Scene& scene, const SceneQuery& query, const std::string& scene_name,
                     const std::function<void(std::size_t, std::size_t)>& progress,
-                    std::size_t frame_step) {
+                    std::size_t frame_step, bool memory) {
   if (frame_step < 1) throw Error("frame step must be at least 1");
   RunResult out;
   out.method = std::string(method_name(query.method));
@@ -75,8 +75,13 @@ RunResult run_scene(const Scene& scene, const SceneQuery& query, const std::stri
   const std::size_t runs = (frames + frame_step - 1) / frame_step;
   out.frames.reserve(runs);
   const bool random = query.method != Method::Exact && query.method != Method::SphereObb;
+  if (random) {
+    out.verdict = std::string(to_string(query.verdict));
+    out.memory = memory;
+  }
+  SceneMemory colonies;
   for (std::size_t f = 0; f < frames; f += frame_step) {
-    const FrameResult r = scene.run_frame(f, query);
+    const FrameResult r = scene.run_frame(f, query, random && memory ? &colonies : nullptr);
     FrameRecord rec;
     rec.frame = f;
     rec.pairs = names_of(scene, r.pairs);
@@ -85,6 +90,8 @@ RunResult run_scene(const Scene& scene, const SceneQuery& query, const std::stri
     if (random) {
       rec.feature_hits = r.feature_hits;
       if (query.count_feature_truth) rec.feature_truth = r.feature_truth;
+      rec.evaluations = r.evaluations;
+      rec.undecided = names_of(scene, r.undecided);
     }
     out.total_ms += r.time_ms;
     out.frames.push_back(std::move(rec));
@@ -100,6 +107,10 @@ std::string to_json(const RunResult& result) {
   root["delta"] = result.delta;
   root["seed"] = result.seed;
   root["threads"] = result.threads;
+  if (!result.verdict.empty()) {
+    root["verdict"] = result.verdict;
+    root["memory"] = result.memory;
+  }
   root["build_ms"] = result.build_ms;
   root["total_ms"] = result.total_ms;
   json frames = json::array();
@@ -111,6 +122,10 @@ std::string to_json(const RunResult& result) {
     jf["candidates"] = pairs_json(f.candidates);
     if (f.feature_hits) jf["feature_hits"] = *f.feature_hits;
     if (f.feature_truth) jf["feature_truth"] = *f.feature_truth;
+    if (f.evaluations) {
+      jf["evaluations"] = *f.evaluations;
+      jf["undecided"] = pairs_json(f.undecided);
+    }
     frames.push_back(std::move(jf));
   }
   root["frames"] = std::move(frames);
@@ -135,6 +150,9 @@ RunResult parse_run_result(std::string_view text, const std::string& source) {
     out.seed = root["seed"].get<std::uint64_t>();
   if (root.contains("threads") && root["threads"].is_number_integer())
     out.threads = root["threads"].get<int>();
+  if (root.contains("verdict") && root["verdict"].is_string())
+    out.verdict = root["verdict"].get<std::string>();
+  if (root.contains("memory") && root["memory"].is_boolean()) out.memory = root["memory"].get<bool>();
   out.build_ms = number(root, "build_ms", source, "");
   out.total_ms = number(root, "total_ms", source, "");
   if (!root.contains("frames") || !root["frames"].is_array())
@@ -158,6 +176,11 @@ RunResult parse_run_result(std::string_view text, const std::string& source) {
     if (jf.contains("feature_truth") && jf["feature_truth"].is_number_unsigned()) {
       f.feature_truth = jf["feature_truth"].get<std::uint64_t>();
     }
+    if (jf.contains("evaluations") && jf["evaluations"].is_number_unsigned()) {
+      f.evaluations = jf["evaluations"].get<std::uint64_t>();
+    }
+    if (jf.contains("undecided"))
+      f.undecided = parse_pairs(jf["undecided"], source, where + "'undecided'");
     out.frames.push_back(std::move(f));
   }
   return out;

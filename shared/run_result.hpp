@@ -4,7 +4,10 @@
 //   { "method": "maco", "build_ms": 41.0, "total_ms": 36.2,
 //     "frames": [ { "frame": 0, "pairs": [["roller_07", "press_02"]], "time_ms": 0.12 } ] }
 // plus, per frame, "candidates" (the broad phase's pairs, same form as "pairs") and, for random
-// methods, "feature_hits" / "feature_truth"; and at the top "scene", "delta", "seed", "threads".
+// methods, "feature_hits" / "feature_truth", "evaluations" and "undecided" (candidate pairs left
+// without a witness when a frame budget ran out; same form as "pairs"); and at the top "scene",
+// "delta", "seed", "threads", and for random methods "verdict" and "memory" (whether the colonies
+// were carried from frame to frame).
 // "pairs" lists each colliding object pair once, the two names in scene order.
 #pragma once
 
@@ -27,6 +30,8 @@ struct FrameRecord {
   double time_ms = 0;
   std::optional<std::uint64_t> feature_hits;
   std::optional<std::uint64_t> feature_truth;
+  std::optional<std::uint64_t> evaluations;  ///< random methods: fitness evaluations of the frame
+  std::vector<NamePair> undecided;           ///< random methods: pairs left without a witness
 };
 
 struct RunResult {
@@ -35,6 +40,8 @@ struct RunResult {
   double delta = 0;
   std::uint64_t seed = 0;
   int threads = 1;
+  std::string verdict;  ///< random methods: "witness" or "paper-centroid"; empty otherwise
+  bool memory = false;  ///< random methods: colonies carried from frame to frame (SceneMemory)
   double build_ms = 0;
   double total_ms = 0;  ///< sum of the frames' time_ms
   std::vector<FrameRecord> frames;
@@ -42,10 +49,12 @@ struct RunResult {
 
 /// Runs frames 0, frame_step, 2 frame_step, ... of `scene` with `query` (every frame by
 /// default); `progress(done, total)` is called after each frame run when set. `build_ms` is taken
-/// from the scene (loading and building). Throws antcd::Error if frame_step is 0.
+/// from the scene (loading and building). Random methods carry their colonies from each frame run
+/// to the next (one SceneMemory for the whole run) unless `memory` is false. Throws antcd::Error if
+/// frame_step is 0.
 RunResult run_scene(const Scene& scene, const SceneQuery& query, const std::string& scene_name,
                     const std::function<void(std::size_t, std::size_t)>& progress = {},
-                    std::size_t frame_step = 1);
+                    std::size_t frame_step = 1, bool memory = true);
 
 std::string to_json(const RunResult& result);
 /// Parses a run result; errors (antcd::Error) name `source` and the problem.

@@ -30,6 +30,10 @@ struct RunOptions {
   std::uint32_t agents = 60;
   bool feature_truth = false;
   bool search_all = false;
+  std::string verdict = "witness";
+  std::uint64_t frame_evaluations = 0;
+  double frame_seconds = 0;
+  bool no_memory = false;
   std::string out;
   std::string model;
 };
@@ -63,10 +67,17 @@ int run_run(const RunOptions& o) {
   query.agents = o.agents;
   query.count_feature_truth = o.feature_truth;
   query.search_all = o.search_all;
+  try {
+    query.verdict = parse_verdict(o.verdict);
+  } catch (const ArgumentError& e) {
+    throw UsageError(std::string("--verdict: ") + e.what());
+  }
+  query.frame_evaluations = o.frame_evaluations;
+  query.frame_seconds = o.frame_seconds;
   const Scene scene(load_scene(o.scene));
   const shared::RunResult result =
       learned ? run_learned(scene, o.scene, o.method, o.model, o.delta, progress)
-              : shared::run_scene(scene, query, o.scene, progress);
+              : shared::run_scene(scene, query, o.scene, progress, 1, !o.no_memory);
   if (!o.out.empty()) {
     write_file_atomic(o.out, shared::to_json(result));
     return 0;
@@ -83,6 +94,17 @@ int run_run(const RunOptions& o) {
               scene.object_count(), scene.model_count(), result.frames.size());
   std::printf("method: %s, delta %g, seed %llu, threads %d\n", result.method.c_str(), o.delta,
               static_cast<unsigned long long>(o.seed), o.threads);
+  if (!result.verdict.empty()) {
+    std::uint64_t evaluations = 0;
+    std::size_t undecided = 0;
+    for (const auto& f : result.frames) {
+      evaluations += f.evaluations.value_or(0);
+      undecided += f.undecided.size();
+    }
+    std::printf("random search: verdict %s, memory %s, %llu evaluations, %zu undecided pairs\n",
+                result.verdict.c_str(), result.memory ? "on" : "off",
+                static_cast<unsigned long long>(evaluations), undecided);
+  }
   std::printf("build: %.1f ms\n", result.build_ms);
   std::printf("frames: total %.1f ms, mean %.3f ms, p99 %.3f ms\n", result.total_ms,
               result.total_ms / static_cast<double>(result.frames.size()),
@@ -181,6 +203,18 @@ void add_scene_commands(CLI::App& app, int& code) {
   cmd->add_flag("--search-all", run->search_all,
                 "Random methods: run every search for its N iterations instead of stopping at "
                 "the first colliding feature pair (same verdicts; feature_hits counts them all)");
+  cmd->add_option("--verdict", run->verdict,
+                  "Random methods: witness (the exact triangle test confirms each reported pair) or "
+                  "paper-centroid (the paper's centroid threshold, a proximity test)");
+  cmd->add_option("--frame-evaluations", run->frame_evaluations,
+                  "Random methods: fitness evaluations shared by a frame's candidate pairs (anytime "
+                  "query; pairs left without a witness are listed as undecided); 0 = off");
+  cmd->add_option("--frame-seconds", run->frame_seconds,
+                  "Random methods: wall-time budget of a frame's searches (not deterministic); 0 = off")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_flag("--no-memory", run->no_memory,
+                "Random methods: search each frame afresh instead of carrying the colonies' "
+                "pheromone and witnesses from frame to frame");
   cmd->add_option("--model", run->model,
                   "box-dnn / box-lstm: the model file written by antcd learn train")
       ->type_name("MODEL.pt");

@@ -55,7 +55,10 @@ enum class Verdict {
   PaperCentroid,  ///< the paper literally: centroid distance <= the centroid threshold
 };
 
+/// "witness" or "paper-centroid".
 ANTCD_API std::string_view to_string(Verdict verdict);
+/// The inverse of to_string; throws ArgumentError naming the text and the accepted names.
+ANTCD_API Verdict parse_verdict(std::string_view text);
 
 /// How each side's sampled features are ordered along their index.
 enum class FeatureOrder {
