@@ -870,6 +870,10 @@ TEST_F(Cli, UnknownMethod) {
   expect_usage_failure({"run", "scene.json", "--method", "telepathy", "--out", "result.json"},
                        "--method");
   expect_usage_failure({"info", "tet.obj", "--covariance", "median"}, "--covariance");
+  expect_usage_failure({"run", "scene.json", "--method", "maco", "--verdict", "centroid"},
+                       "--verdict");
+  expect_usage_failure({"run", "scene.json", "--method", "maco", "--frame-seconds", "-1"},
+                       "--frame-seconds");
 }
 
 TEST_F(Cli, UnknownCommandOrOption) {

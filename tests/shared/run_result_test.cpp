@@ -1,0 +1,77 @@
+// shared::run_scene and the run format: random methods carry their colonies from frame to frame
+// unless told not to, and the run JSON keeps the verdict, the memory flag, each frame's
+// evaluations and its undecided pairs through a round trip.
+#include "shared/production_line.hpp"
+#include "shared/run_result.hpp"
+
+#include <antcd/scene.hpp>
+
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <set>
+
+namespace antcd::shared {
+namespace {
+
+Scene small_line() {
+  ProductionLineOptions options;
+  options.objects = 12;
+  options.vertices = 150;
+  options.frames = 12;
+  options.seed = 5;
+  return make_scene(generate_production_line(options));
+}
+
+TEST(RunScene, RandomRunsCarryTheirColoniesAndSayWhichVerdict) {
+  const Scene scene = small_line();
+  SceneQuery maco;
+  maco.method = Method::Maco;
+  const RunResult with = run_scene(scene, maco, "line");
+  const RunResult without = run_scene(scene, maco, "line", {}, 1, false);
+  EXPECT_EQ(with.verdict, "witness");
+  EXPECT_TRUE(with.memory);
+  EXPECT_FALSE(without.memory);
+  // Same verdicts (precision 1 either way on this scene, and the same contacts found), but the
+  // memory's witnesses decide later frames with fewer evaluations.
+  const RunResult truth = run_scene(scene, SceneQuery{}, "line");
+  EXPECT_TRUE(truth.verdict.empty());
+  std::uint64_t evals_with = 0, evals_without = 0, colliding = 0;
+  for (std::size_t f = 0; f < truth.frames.size(); ++f) {
+    EXPECT_EQ(with.frames[f].pairs, truth.frames[f].pairs) << "frame " << f;
+    EXPECT_EQ(without.frames[f].pairs, truth.frames[f].pairs) << "frame " << f;
+    ASSERT_TRUE(with.frames[f].evaluations.has_value());
+    evals_with += *with.frames[f].evaluations;
+    evals_without += *without.frames[f].evaluations;
+    colliding += truth.frames[f].pairs.size();
+  }
+  ASSERT_GT(colliding, 0u) << "the scene must have contacts for this test to mean anything";
+  EXPECT_LT(evals_with, evals_without);
+}
+
+TEST(RunScene, FrameBudgetLeavesUndecidedPairsThatSurviveTheJsonRoundTrip) {
+  const Scene scene = small_line();
+  SceneQuery q;
+  q.method = Method::Maco;
+  q.frame_evaluations = 1;  // far too little: pairs with overlapping leaves stay undecided
+  const RunResult r = run_scene(scene, q, "line", {}, 1, false);
+  std::size_t undecided = 0;
+  for (const FrameRecord& f : r.frames) {
+    undecided += f.undecided.size();
+    // An undecided pair is never reported as colliding.
+    const std::set<NamePair> reported(f.pairs.begin(), f.pairs.end());
+    for (const NamePair& p : f.undecided) EXPECT_EQ(reported.count(p), 0u);
+  }
+  EXPECT_GT(undecided, 0u);
+  const RunResult back = parse_run_result(to_json(r), "round trip");
+  EXPECT_EQ(back.verdict, r.verdict);
+  EXPECT_EQ(back.memory, r.memory);
+  ASSERT_EQ(back.frames.size(), r.frames.size());
+  for (std::size_t f = 0; f < r.frames.size(); ++f) {
+    EXPECT_EQ(back.frames[f].undecided, r.frames[f].undecided);
+    EXPECT_EQ(back.frames[f].evaluations, r.frames[f].evaluations);
+  }
+}
+
+}  // namespace
+}  // namespace antcd::shared
