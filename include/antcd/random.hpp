@@ -275,6 +275,10 @@ struct ColonyMemory {
   /// Witnesses as positions in the two models' leaf order (Model::leaf_triangles() indices,
   /// pose-independent, like FeatureSide::position), most recent first.
   std::vector<std::pair<std::uint32_t, std::uint32_t>> witnesses;
+  /// The last query of this pair (a scene frame) ended without a witness while its leaves
+  /// overlapped (undecided). Its contact, if one appears, is new, so the next query traverses the
+  /// whole hierarchy at once instead of trying the nearest leaf pairs first.
+  bool undecided = false;
   /// Largest number of witnesses kept.
   static constexpr std::size_t kMaxWitnesses = 64;
 

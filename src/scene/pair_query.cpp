@@ -77,7 +77,10 @@ void random_frame(const std::vector<std::pair<PairSide, PairSide>>& pairs,
         query.feature_delta > 0
             ? query.feature_delta
             : default_delta(a.feature_radius, b.feature_radius);
-    sampling.max_leaf_pairs = all ? 0 : query.first_leaf_pairs;
+    // A pair left undecided last frame is most likely still a near miss: the partial pass would
+    // only be repeated by the full one.
+    const bool straight_to_full = all || (mem != nullptr && mem->undecided);
+    sampling.max_leaf_pairs = straight_to_full ? 0 : query.first_leaf_pairs;
     spaces[k] = build_feature_space(*a.model, a.pose, *b.model, b.pose, sampling,
                                     pair_seed(query, frame, a, b, 0));
     if (spaces[k].leaf_pairs == 0) {
@@ -169,6 +172,7 @@ void random_frame(const std::vector<std::pair<PairSide, PairSide>>& pairs,
     if (pending[k] != 0 || (all && frame_budget && !out[k].colliding && spaces[k].leaf_pairs > 0)) {
       out[k].undecided = true;
     }
+    if (!memory.empty() && memory[k] != nullptr) memory[k]->undecided = out[k].undecided;
   }
 }
 
