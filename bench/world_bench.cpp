@@ -7,15 +7,18 @@
 //   antcd: World::set_poses + World::collide_all.
 //   FCL:   setTransform + computeAABB per object, manager.update(), manager.collide() with a
 //          callback that runs fcl::collide (BVHModel<OBBRSS>, boolean) on each broad-phase pair.
-// Counters: colliding pairs and broad-phase pairs per frame (the engines must agree on the
-// colliding count: the benchmark aborts otherwise), heap bytes of the engine's world structures
-// (mallinfo2 before/after building the world; the shared meshes excluded).
+// Counters: colliding pairs and broad-phase pairs per frame, heap bytes of the engine's world
+// structures (mallinfo2 before/after building the world; the shared meshes excluded). The engines
+// must find the same colliding pairs on every frame (antcd's run records them, FCL's compares,
+// outside the timed part); otherwise FCL's run stops with an error and the first pair on which they
+// differ is printed to stderr with antcd's exact distance of that pair.
 //
 // dense_threads/<threads>: a dense world of tumbling real meshes (assimp test models when
 // installed, else generated tori), World::collide_all inside a oneTBB arena of 1 or 2 threads.
 //
 // The numbers only mean something in one run on an otherwise idle machine; quote ratios of the two
 // engines measured in the same run.
+#include <antcd/distance.hpp>
 #include <antcd/world.hpp>
 
 #include <benchmark/benchmark.h>
@@ -27,13 +30,18 @@
 #include <malloc.h>
 #include <tbb/task_arena.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
 #include <filesystem>
 #include <iostream>
+#include <iterator>
+#include <sstream>
+#include <string>
 #include <memory>
 #include <random>
+#include <utility>
 #include <vector>
 
 namespace {
@@ -105,9 +113,12 @@ const std::vector<Mesh>& small_meshes() {
 
 Scalar side_for(std::size_t n) { return std::cbrt(8.0 * static_cast<Scalar>(n)); }
 
-// The colliding-pair count of each frame, per world size, as antcd found it: FCL must agree.
-std::vector<std::size_t>& expected_counts(std::size_t n) {
-  static std::vector<std::vector<std::size_t>> by_size(2);
+// Object-index pairs (i < j), sorted.
+using IndexPairs = std::vector<std::pair<std::uint32_t, std::uint32_t>>;
+
+// The colliding pairs of each frame, per world size, as antcd found them: FCL must agree.
+std::vector<IndexPairs>& expected_pairs(std::size_t n) {
+  static std::vector<std::vector<IndexPairs>> by_size(2);
   return by_size[n >= 100000 ? 1 : 0];
 }
 
@@ -126,7 +137,12 @@ void world_frame_antcd(benchmark::State& state) {
   std::size_t frame = 0;
   std::size_t colliding = 0;
   std::size_t candidates = 0;
-  auto& counts = expected_counts(n);
+  std::vector<std::uint32_t> index_of_slot;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (index_of_slot.size() <= ids[i].slot) index_of_slot.resize(ids[i].slot + 1);
+    index_of_slot[ids[i].slot] = static_cast<std::uint32_t>(i);
+  }
+  auto& expected = expected_pairs(n);
   for (auto _ : state) {
     ++frame;
     for (std::size_t i = 0; i < n; ++i) poses[i] = motion.pose(i, frame);
@@ -134,7 +150,18 @@ void world_frame_antcd(benchmark::State& state) {
     const std::vector<PairContacts> pairs = world.collide_all();
     benchmark::DoNotOptimize(pairs.data());
     colliding += pairs.size();
-    if (counts.size() < frame) counts.push_back(pairs.size());
+    if (expected.size() < frame) {
+      state.PauseTiming();
+      IndexPairs found;
+      for (const PairContacts& p : pairs) {
+        const std::uint32_t a = index_of_slot[p.a.slot];
+        const std::uint32_t b = index_of_slot[p.b.slot];
+        found.emplace_back(std::min(a, b), std::max(a, b));
+      }
+      std::sort(found.begin(), found.end());
+      expected.push_back(std::move(found));
+      state.ResumeTiming();
+    }
   }
   candidates = world.candidate_pairs(0).size();  // after the timed loop
   state.counters["colliding_per_frame"] =
@@ -150,15 +177,48 @@ struct FclData {
   fcl::CollisionResultd result;
   std::size_t colliding = 0;
   std::size_t tested = 0;
+  IndexPairs pairs;  // object indices (user data) of the colliding pairs
 };
+
+std::uint32_t index_of(const fcl::CollisionObjectd* o) {
+  return static_cast<std::uint32_t>(reinterpret_cast<std::uintptr_t>(o->getUserData()));
+}
 
 bool fcl_callback(fcl::CollisionObjectd* a, fcl::CollisionObjectd* b, void* data) {
   auto& d = *static_cast<FclData*>(data);
   ++d.tested;
   d.result.clear();
   fcl::collide(a, b, d.request, d.result);
-  if (d.result.isCollision()) ++d.colliding;
+  if (d.result.isCollision()) {
+    ++d.colliding;
+    d.pairs.emplace_back(std::min(index_of(a), index_of(b)), std::max(index_of(a), index_of(b)));
+  }
   return false;
+}
+
+// The first pair on which FCL's sorted pairs differ from antcd's, described with antcd's exact
+// distance of that pair at this frame (an empty string when they agree).
+std::string first_difference(const IndexPairs& fcl_pairs, const IndexPairs& antcd_pairs,
+                             const Motion& motion, std::size_t frame) {
+  IndexPairs only_fcl;
+  IndexPairs only_antcd;
+  std::set_difference(fcl_pairs.begin(), fcl_pairs.end(), antcd_pairs.begin(), antcd_pairs.end(),
+                      std::back_inserter(only_fcl));
+  std::set_difference(antcd_pairs.begin(), antcd_pairs.end(), fcl_pairs.begin(), fcl_pairs.end(),
+                      std::back_inserter(only_antcd));
+  if (only_fcl.empty() && only_antcd.empty()) return {};
+  const bool fcl_side = !only_fcl.empty();
+  const auto [i, j] = fcl_side ? only_fcl.front() : only_antcd.front();
+  const Model a(small_meshes()[i % 2]);
+  const Model b(small_meshes()[j % 2]);
+  const DistanceResult d = distance(a, motion.pose(i, frame), b, motion.pose(j, frame));
+  std::ostringstream msg;
+  msg.precision(17);
+  msg << "frame " << frame << ": " << only_fcl.size() << " pairs only FCL reports, "
+      << only_antcd.size() << " only antcd; first: objects " << i << " and " << j << " (only "
+      << (fcl_side ? "FCL" : "antcd") << "), antcd distance " << d.distance
+      << (d.intersecting ? " (intersecting)" : "");
+  return msg.str();
 }
 
 void world_frame_fcl(benchmark::State& state) {
@@ -174,6 +234,7 @@ void world_frame_fcl(benchmark::State& state) {
     objects.push_back(
         std::make_unique<fcl::CollisionObjectd>(models[i % 2], to_fcl(motion.pose(i, 0))));
     objects.back()->computeAABB();
+    objects.back()->setUserData(reinterpret_cast<void*>(static_cast<std::uintptr_t>(i)));
     raw.push_back(objects.back().get());
   }
   manager->registerObjects(raw);
@@ -182,7 +243,8 @@ void world_frame_fcl(benchmark::State& state) {
   std::size_t frame = 0;
   std::size_t colliding = 0;
   std::size_t tested = 0;
-  const auto& counts = expected_counts(n);
+  const auto& expected = expected_pairs(n);
+  std::size_t checked = 0;  // frames compared with antcd's pairs (none when antcd's run was filtered out)
   for (auto _ : state) {
     ++frame;
     for (std::size_t i = 0; i < n; ++i) {
@@ -194,13 +256,22 @@ void world_frame_fcl(benchmark::State& state) {
     manager->collide(&data, fcl_callback);
     colliding += data.colliding;
     tested += data.tested;
-    if (frame <= counts.size() && counts[frame - 1] != data.colliding) {
-      state.SkipWithError("FCL and antcd disagree on the colliding pairs of a frame");
-      break;
+    if (frame <= expected.size()) {
+      state.PauseTiming();
+      std::sort(data.pairs.begin(), data.pairs.end());
+      const std::string difference = first_difference(data.pairs, expected[frame - 1], motion, frame);
+      ++checked;
+      state.ResumeTiming();
+      if (!difference.empty()) {
+        std::cerr << "world_frame_fcl/" << n << ": " << difference << "\n";
+        state.SkipWithError("FCL and antcd disagree on the colliding pairs of a frame (see stderr)");
+        break;
+      }
     }
   }
   state.counters["colliding_per_frame"] =
       static_cast<double>(colliding) / static_cast<double>(frame);
+  state.counters["frames_checked"] = static_cast<double>(checked);
   state.counters["broadphase_pairs_per_frame"] =
       static_cast<double>(tested) / static_cast<double>(frame);
   state.counters["world_heap_MB"] = static_cast<double>(bytes) / 1e6;

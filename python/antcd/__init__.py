@@ -2,6 +2,7 @@
 
 Meshes are numpy arrays in and out: ``load_mesh`` gives ``(vertices float64[n, 3], faces int64[m, 3])``,
 ``Model(vertices, faces)`` builds the Sphere-OBB hierarchy once, ``collide`` answers exactly,
+``distance`` gives the exact minimum surface distance with its closest points,
 ``random_collide`` runs the paper's improved ant colony (MACO) and its baselines, ``Scene`` /
 ``run_scene`` play an antcd-scene/1 file, and ``CollisionManager`` is a drop-in for
 ``trimesh.collision.CollisionManager``.
@@ -12,28 +13,33 @@ by any number of threads.
 """
 from ._antcd import (
     CollisionResult,
+    DistanceResult,
     Model,
     RandomResult,
     Scene,
     SceneRun,
     __version__,
     collide,
+    distance,
     load_mesh,
     random_collide,
     run_scene,
 )
-from .collision import CollisionManager, ContactData
+from .collision import CollisionManager, ContactData, DistanceData
 
 __all__ = [
     "CollisionManager",
     "CollisionResult",
     "ContactData",
+    "DistanceData",
+    "DistanceResult",
     "Model",
     "RandomResult",
     "Scene",
     "SceneRun",
     "__version__",
     "collide",
+    "distance",
     "load_mesh",
     "random_collide",
     "run_scene",

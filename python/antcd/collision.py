@@ -8,11 +8,21 @@ changing its import: ``add_object(name, mesh, transform=None)`` (same name repla
 names (a set of names; a set of 2-tuples sorted alphabetically; a set of (this, other) tuples) and
 a list of ``ContactData``, one per colliding triangle pair.
 
+``min_distance_single`` / ``min_distance_internal`` / ``min_distance_other`` return the minimum
+distance and, on request, the name(s) of the closest object(s) (a name; a 2-tuple in alphabetical
+order; a (this, other) tuple) and a ``DistanceData`` with the closest point and face index per name.
+
+The objects live in an ``antcd`` World (a dynamic AABB tree over the objects' boxes, exact
+triangle tests behind it); minimum distances are exact surface distances (``antcd.distance``)
+searched over object pairs in order of the gap between their boxes.
+
 Differences from trimesh/FCL, all documented on the methods: meshes may be ``antcd.Model``s
 (shared, built once), trimesh meshes, or ``(vertices, faces)`` pairs; collision means the surfaces
 share a point (touching counts, a mesh entirely inside another does not collide); a contact's
 ``depth`` is NaN because antcd does not compute penetration depth (``distance`` is 0 for
-intersecting triangles).
+intersecting triangles); a minimum distance is never negative (0 when surfaces meet, where FCL's
+signed distance may be negative) and is ``inf`` with the names and data ``None`` when there is no
+pair to measure.
 """
 from __future__ import annotations
 
@@ -22,9 +32,9 @@ from typing import Any, Iterable
 import numpy as np
 
 from . import _antcd
-from ._antcd import CollisionResult, Model
+from ._antcd import CollisionResult, DistanceResult, Model
 
-__all__ = ["CollisionManager", "ContactData"]
+__all__ = ["CollisionManager", "ContactData", "DistanceData"]
 
 
 def _as_model(mesh: Any) -> Model:
@@ -95,6 +105,46 @@ class ContactData:
         return f"<antcd.ContactData {sorted(self.names)} point={self._point.tolist()}>"
 
 
+class DistanceData:
+    """The closest pair of a minimum-distance query: two named objects.
+
+    ``names`` is the set of the two names; ``index(name)`` the face index of that object's closest
+    triangle; ``point(name)`` the world-frame closest point on it; ``distance`` the distance
+    between the two points (0 when the surfaces meet, never negative); ``intersecting`` whether
+    the surfaces share a point.
+    """
+
+    __slots__ = ("names", "_inds", "_points", "_distance", "_intersecting")
+
+    def __init__(self, names: tuple[str, str], result: DistanceResult) -> None:
+        self.names = set(names)
+        self._inds = {names[0]: int(result.triangle_a), names[1]: int(result.triangle_b)}
+        self._points = {names[0]: result.point_a, names[1]: result.point_b}
+        self._distance = float(result.distance)
+        self._intersecting = bool(result.intersecting)
+
+    @property
+    def distance(self) -> float:
+        """Euclidean distance between the two objects' surfaces."""
+        return self._distance
+
+    @property
+    def intersecting(self) -> bool:
+        """Whether the two surfaces share a point (distance 0)."""
+        return self._intersecting
+
+    def index(self, name: str) -> int:
+        """Face index of the closest triangle on the object called ``name``."""
+        return self._inds[name]
+
+    def point(self, name: str) -> np.ndarray:
+        """(3,) float: the closest point on the object called ``name``, world frame."""
+        return self._points[name]
+
+    def __repr__(self) -> str:
+        return f"<antcd.DistanceData {sorted(self.names)} distance={self._distance!r}>"
+
+
 def _contacts(names: tuple[str, str], model: Model, pose: np.ndarray,
               result: CollisionResult) -> Iterable[ContactData]:
     ta, tb = result.triangles_a, result.triangles_b
@@ -104,7 +154,7 @@ def _contacts(names: tuple[str, str], model: Model, pose: np.ndarray,
         yield ContactData(names, (ta[k], tb[k]), points[k], normals[k], distances[k])
 
 
-def _answer(result: bool, names: set, data: list, return_names: bool, return_data: bool) -> Any:
+def _answer(result: Any, names: Any, data: Any, return_names: bool, return_data: bool) -> Any:
     if return_names and return_data:
         return result, names, data
     if return_names:
@@ -118,12 +168,22 @@ def _mode(return_names: bool, return_data: bool) -> str:
     return "contacts" if return_data else ("pairs" if return_names else "verdict")
 
 
+def _distance_of(nearest: Any) -> float:
+    return math.inf if nearest is None else float(nearest[2].distance)
+
+
+def _check_manager(other_manager: Any) -> None:
+    if not isinstance(other_manager, CollisionManager):
+        raise TypeError("other_manager must be an antcd.CollisionManager, got "
+                        f"{type(other_manager).__name__}")
+
+
 class CollisionManager:
     """A set of named, posed meshes checked for collisions (trimesh's CollisionManager interface).
 
-    Backed by a broad phase over world-aligned boxes of each model's root OBB (sweep and prune)
-    and antcd's exact triangle-level query. Queries release the GIL; objects may be moved by one
-    thread while another queries.
+    Backed by an antcd World (dynamic AABB tree broad phase, exact triangle-level queries) and
+    antcd's exact mesh distance. Queries release the GIL; objects may be moved by one thread while
+    another queries.
     """
 
     def __init__(self) -> None:
@@ -197,11 +257,58 @@ class CollisionManager:
         Returns is_collision, plus (return_names) a set of (name in this manager, name in the
         other) tuples and (return_data) a list of ContactData.
         """
-        if not isinstance(other_manager, CollisionManager):
-            raise TypeError("other_manager must be an antcd.CollisionManager, got "
-                            f"{type(other_manager).__name__}")
+        _check_manager(other_manager)
         hits = self._world.collide_other(other_manager._world, _mode(return_names, return_data))
         return self._pairs(hits, other_manager, return_names, return_data, sort_names=False)
+
+    def min_distance_single(self, mesh: Any, transform: Any = None, return_name: bool = False,
+                            return_data: bool = False) -> Any:
+        """Minimum distance between one mesh (not added) and any object.
+
+        Returns the distance, plus (return_name) the name of the closest object and (return_data)
+        a DistanceData whose names are (object name, '__external'). With no objects: inf and None.
+        """
+        model = _as_model(mesh)
+        nearest = self._world.distance_single(model, transform)
+        name = data = None
+        if nearest is not None:
+            object_id, _, result = nearest
+            name = self._names[object_id]
+            if return_data:
+                data = DistanceData((name, "__external"), result)
+        return _answer(_distance_of(nearest), name, data, return_name, return_data)
+
+    def min_distance_internal(self, return_names: bool = False, return_data: bool = False) -> Any:
+        """Minimum distance between any two objects.
+
+        Returns the distance, plus (return_names) the 2-tuple of the closest objects' names in
+        alphabetical order and (return_data) a DistanceData. Fewer than two objects: inf and None.
+        """
+        nearest = self._world.distance_internal()
+        return self._closest(nearest, self, return_names, return_data, sort_names=True)
+
+    def min_distance_other(self, other_manager: "CollisionManager", return_names: bool = False,
+                           return_data: bool = False) -> Any:
+        """Minimum distance between any object of this manager and any object of another.
+
+        Returns the distance, plus (return_names) the (name in this manager, name in the other)
+        tuple of the closest pair and (return_data) a DistanceData. Either manager empty: inf and
+        None.
+        """
+        _check_manager(other_manager)
+        nearest = self._world.distance_other(other_manager._world)
+        return self._closest(nearest, other_manager, return_names, return_data, sort_names=False)
+
+    def _closest(self, nearest: Any, other: "CollisionManager", return_names: bool,
+                 return_data: bool, sort_names: bool) -> Any:
+        names = data = None
+        if nearest is not None:
+            id_a, id_b, result = nearest
+            pair = (self._names[id_a], other._names[id_b])
+            names = tuple(sorted(pair)) if sort_names else pair
+            if return_data:
+                data = DistanceData(pair, result)
+        return _answer(_distance_of(nearest), names, data, return_names, return_data)
 
     def _pairs(self, hits: list, other: "CollisionManager", return_names: bool, return_data: bool,
                sort_names: bool) -> Any:

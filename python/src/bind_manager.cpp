@@ -28,14 +28,19 @@ py::list to_python(std::vector<ManagedWorld::Hit> hits) {
   return out;
 }
 
+py::object to_python(const ManagedWorld::Nearest& n) {
+  if (!n.found) return py::none();
+  return py::make_tuple(n.a, n.b, n.result);
+}
+
 }  // namespace
 
 void bind_manager(py::module_& m) {
   py::class_<ManagedWorld>(
       m, "_World",
-      "Posed shared Models with a broad phase (world AABBs of the root OBBs, sweep and prune) and "
-      "exact narrow phase. Internal: use CollisionManager. Queries release the GIL and may run "
-      "while other threads move objects.")
+      "Posed shared Models in an antcd World (dynamic AABB tree broad phase, exact narrow phase). "
+      "Internal: use CollisionManager. Queries release the GIL and may run while other threads "
+      "move objects.")
       .def(py::init<>())
       .def(
           "add",
@@ -74,8 +79,8 @@ void bind_manager(py::module_& m) {
             return to_python(std::move(hits));
           },
           py::arg("mode"), py::arg("delta") = 0.0,
-          "[(id_a, id_b, CollisionResult, model_a, pose_a 4x4)] for colliding pairs, id_a added first; sorted. mode: "
-          "'verdict' (stop at the first pair), 'pairs' (every pair, first contact each) or "
+          "[(id_a, id_b, CollisionResult, model_a, pose_a 4x4)] for colliding pairs, id_a < id_b; sorted. mode: "
+          "'verdict' or 'pairs' (every pair, first contact each) or "
           "'contacts' (every pair, every contact).")
       .def(
           "collide_single",
@@ -106,7 +111,46 @@ void bind_manager(py::module_& m) {
             return to_python(std::move(hits));
           },
           py::arg("other"), py::arg("mode"), py::arg("delta") = 0.0,
-          "[(id_this, id_other, CollisionResult, model_this, pose_this)] for colliding pairs across two worlds; sorted.");
+          "[(id_this, id_other, CollisionResult, model_this, pose_this)] for colliding pairs across two worlds; sorted.")
+      .def(
+          "distance_internal",
+          [](const ManagedWorld& w) {
+            ManagedWorld::Nearest n;
+            {
+              py::gil_scoped_release release;
+              n = w.distance_internal();
+            }
+            return to_python(n);
+          },
+          "(id_a, id_b, DistanceResult) of the closest pair of objects (A = id_a), or None with "
+          "fewer than two objects.")
+      .def(
+          "distance_single",
+          [](const ManagedWorld& w, const Model& model, const py::handle pose) {
+            const Transform t = to_transform(pose, "transform");
+            ManagedWorld::Nearest n;
+            {
+              py::gil_scoped_release release;
+              n = w.distance_single(model, t);
+            }
+            return to_python(n);
+          },
+          py::arg("model"), py::arg("transform"),
+          "(id, 0, DistanceResult) of the object closest to the model (A = object, B = model), or "
+          "None for an empty world.")
+      .def(
+          "distance_other",
+          [](const ManagedWorld& w, const ManagedWorld& other) {
+            ManagedWorld::Nearest n;
+            {
+              py::gil_scoped_release release;
+              n = w.distance_other(other);
+            }
+            return to_python(n);
+          },
+          py::arg("other"),
+          "(id_this, id_other, DistanceResult) of the closest pair across two worlds (A = this "
+          "world's object), or None when either is empty.");
 }
 
 }  // namespace antcd::python

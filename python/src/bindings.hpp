@@ -9,6 +9,7 @@ void bind_model(pybind11::module_& m);
 void bind_collide(pybind11::module_& m);
 void bind_random(pybind11::module_& m);
 void bind_scene(pybind11::module_& m);
+void bind_distance(pybind11::module_& m);
 void bind_manager(pybind11::module_& m);
 
 }  // namespace antcd::python

@@ -33,5 +33,6 @@ PYBIND11_MODULE(_antcd, m) {
   antcd::python::bind_collide(m);
   antcd::python::bind_random(m);
   antcd::python::bind_scene(m);
+  antcd::python::bind_distance(m);
   antcd::python::bind_manager(m);
 }

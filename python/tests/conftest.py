@@ -87,3 +87,29 @@ def quaternion_matrix(q, t):
 def random_quaternion(rng):
     q = rng.normal(size=4)
     return q / np.linalg.norm(q)
+
+
+def random_pose(rng, extent):
+    """A uniformly random rotation and a translation uniform in [-extent, extent]^3."""
+    return quaternion_matrix(random_quaternion(rng), rng.uniform(-extent, extent, 3))
+
+
+def random_manager_step(rng, manager, objects, shapes, names, extent):
+    """One random mutation of a CollisionManager, mirrored in `objects` ({name: (model, pose)}):
+    add (a name among `names` possibly present: it replaces the object), remove or move."""
+    op = rng.uniform()
+    if op < 0.4 or len(objects) < 2:
+        name = f"obj{rng.integers(0, names)}"
+        model = shapes[rng.integers(0, len(shapes))]
+        pose = random_pose(rng, extent)
+        manager.add_object(name, model, pose)
+        objects[name] = (model, pose)
+    elif op < 0.55:
+        name = sorted(objects)[rng.integers(0, len(objects))]
+        manager.remove_object(name)
+        del objects[name]
+    else:
+        name = sorted(objects)[rng.integers(0, len(objects))]
+        pose = random_pose(rng, extent)
+        manager.set_transform(name, pose)
+        objects[name] = (objects[name][0], pose)

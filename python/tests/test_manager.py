@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 import antcd
-from conftest import box_mesh, quaternion_matrix, random_quaternion, sphere_mesh
+from conftest import box_mesh, random_manager_step, random_pose, sphere_mesh
 
 
 class FakeTrimesh:
@@ -25,8 +25,8 @@ def shapes(models_dir):
     return [box, sphere, wuson]
 
 
-def _random_pose(rng, extent=1.6):
-    return quaternion_matrix(random_quaternion(rng), rng.uniform(-extent, extent, 3))
+def _random_pose(rng):
+    return random_pose(rng, 1.6)
 
 
 def _brute_internal(objects):
@@ -38,11 +38,23 @@ def _brute_internal(objects):
     return hits
 
 
-def _contact_sets(data):
-    """{sorted name pair: {(triangle of first name, triangle of second name)}} from ContactData."""
+def _probe_last(names):
+    (name,) = names - {"__external"}
+    return name, "__external"
+
+
+def _this_first(names, objects):
+    (name,) = names & set(objects)
+    (other,) = names - {name}
+    return name, other
+
+
+def _contact_sets(data, order=sorted):
+    """{name pair (ordered by `order`): {(triangle of first name, triangle of second name)}} from
+    ContactData."""
     out = {}
     for c in data:
-        first, second = sorted(c.names)
+        first, second = order(c.names)
         out.setdefault((first, second), set()).add((c.index(first), c.index(second)))
     return out
 
@@ -54,22 +66,7 @@ def test_internal_equals_brute_force_over_random_sequences(shapes, seed):
     objects = {}
     checked_colliding = checked_free = 0
     for step in range(60):
-        op = rng.uniform()
-        if op < 0.4 or len(objects) < 2:
-            name = f"obj{rng.integers(0, 12)}"  # sometimes an existing name: replaces it
-            model = shapes[rng.integers(0, len(shapes))]
-            pose = _random_pose(rng)
-            manager.add_object(name, model, pose)
-            objects[name] = (model, pose)
-        elif op < 0.55:
-            name = sorted(objects)[rng.integers(0, len(objects))]
-            manager.remove_object(name)
-            del objects[name]
-        else:
-            name = sorted(objects)[rng.integers(0, len(objects))]
-            pose = _random_pose(rng)
-            manager.set_transform(name, pose)
-            objects[name] = (objects[name][0], pose)
+        random_manager_step(rng, manager, objects, shapes, names=12, extent=1.6)
         assert len(manager) == len(objects)
         truth = _brute_internal(objects)
         verdict, names, data = manager.in_collision_internal(return_names=True, return_data=True)
@@ -81,17 +78,30 @@ def test_internal_equals_brute_force_over_random_sequences(shapes, seed):
         checked_free += not truth
         # One more object checked against everything, and a second manager against this one.
         probe_model, probe_pose = shapes[step % len(shapes)], _random_pose(rng)
-        single_truth = {n for n, (m, p) in objects.items() if antcd.collide(m, p, probe_model, probe_pose)}
+        single_truth = {}
+        for n, (m, p) in objects.items():
+            r = antcd.collide(m, p, probe_model, probe_pose, all_contacts=True)
+            if r:
+                single_truth[(n, "__external")] = set(zip(r.triangles_a.tolist(), r.triangles_b.tolist()))
         hit, single_names = manager.in_collision_single(probe_model, probe_pose, return_names=True)
-        assert hit == bool(single_truth) and single_names == single_truth
+        assert hit == bool(single_truth) and single_names == {n for n, _ in single_truth}
+        hit, single_data = manager.in_collision_single(probe_model, probe_pose, return_data=True)
+        assert hit == bool(single_truth) and _contact_sets(single_data, order=_probe_last) == single_truth
         if step % 10 == 0:
             other_objects = {"probe": (probe_model, probe_pose), "probe2": (shapes[0], _random_pose(rng))}
             other = antcd.CollisionManager()
             for other_name, (m, p) in other_objects.items():
                 other.add_object(other_name, m, p)
-            other_truth = {(n, on) for n, (m, p) in objects.items() for on, (om, op_) in other_objects.items()
-                           if antcd.collide(m, p, om, op_)}
-            assert manager.in_collision_other(other, return_names=True) == (bool(other_truth), other_truth)
+            other_truth = {}
+            for n, (m, p) in objects.items():
+                for on, (om, op_) in other_objects.items():
+                    r = antcd.collide(m, p, om, op_, all_contacts=True)
+                    if r:
+                        other_truth[(n, on)] = set(zip(r.triangles_a.tolist(), r.triangles_b.tolist()))
+            assert manager.in_collision_other(other, return_names=True) == (bool(other_truth), set(other_truth))
+            hit, other_data = manager.in_collision_other(other, return_data=True)
+            assert hit == bool(other_truth)
+            assert _contact_sets(other_data, order=lambda names: _this_first(names, objects)) == other_truth
     assert checked_colliding > 5 and checked_free > 0, "the sequence never tested both outcomes"
 
 

@@ -1,5 +1,6 @@
 """Queries release the GIL (Python code in another thread runs while one is in C++), and Models
 shared by several Python threads give the same answers as one thread."""
+import functools
 import threading
 import time
 
@@ -42,12 +43,22 @@ def _max_gap_while(call):
     return max(b - a for a, b in zip(edges, edges[1:])), span["end"] - span["start"]
 
 
+@functools.lru_cache(maxsize=None)
+def _nested(dense):
+    """A manager holding `dense` and a slightly smaller concentric sphere: every triangle pair is
+    nearly as close as the closest, so the exact distance search takes a good while."""
+    manager = antcd.CollisionManager()
+    manager.add_object("dense", dense)
+    return manager, antcd.Model(*sphere_mesh(0.98, 100, 50))
+
+
 QUERIES = {
     "collide": lambda m, manager: antcd.collide(m, None, m, None, all_contacts=True),
     "random_collide": lambda m, manager: antcd.random_collide(m, None, m, None, method="exhaustive",
                                                               samples_per_side=1500),
     "Model": lambda m, manager: antcd.Model(m.vertices, m.faces),
     "CollisionManager": lambda m, manager: manager.in_collision_internal(return_data=True),
+    "CollisionManager.min_distance": lambda m, manager: _nested(m)[0].min_distance_single(_nested(m)[1]),
 }
 
 
@@ -108,7 +119,8 @@ def test_shared_models_give_the_same_answers_in_threads(models_dir):
 
 def test_manager_moves_during_queries():
     """One thread moves objects while another queries: no crash, every answer is one of the
-    states the manager went through (here: colliding or not, names among the objects)."""
+    states the manager went through (here: colliding or not, names among the objects, a distance
+    >= 0 between two of them)."""
     v, f = sphere_mesh(0.5, 40, 20)
     m = antcd.Model(v, f)
     manager = antcd.CollisionManager()
@@ -130,6 +142,9 @@ def test_manager_moves_during_queries():
             hit, names = manager.in_collision_internal(return_names=True)
             if hit != bool(names) or not all(a < b and a.startswith("s") for a, b in names):
                 errors.append((hit, names))
+            d, pair = manager.min_distance_internal(return_names=True)
+            if not (d >= 0 and pair[0] < pair[1] and pair[0].startswith("s")):
+                errors.append((d, pair))
     finally:
         stop.set()
         thread.join()

@@ -5,12 +5,13 @@
 // each choice causes (the usual cost model of bounding-volume trees: the chance that a random query
 // box overlaps a node grows with its area). On the way back up, nodes whose children's heights
 // differ by more than one are rotated (as in an AVL tree), so the height stays O(log n) whatever
-// the insertion order.
+// the insertion order. Every n/2 changes the tree is rebuilt top-down (aabb_tree.hpp says why).
 #include "world/aabb_tree.hpp"
 
 #include <algorithm>
 #include <cassert>
 #include <cmath>
+#include <limits>
 #include <utility>
 
 namespace antcd::detail {
@@ -77,18 +78,97 @@ std::int32_t AabbTree::insert(const Aabb& box, std::uint32_t object) {
   nodes_[leaf].box = box;
   nodes_[leaf].object = object;
   insert_leaf(leaf);
+  ++leaves_;
+  changed();
   return leaf;
 }
 
 void AabbTree::remove(std::int32_t leaf) {
   remove_leaf(leaf);
   release(leaf);
+  --leaves_;
+  changed();
 }
 
 void AabbTree::move(std::int32_t leaf, const Aabb& box) {
   remove_leaf(leaf);
   nodes_[leaf].box = box;
   insert_leaf(leaf);
+  changed();
+}
+
+void AabbTree::changed() {
+  constexpr std::size_t kMinChanges = 64;  // small trees: rebuilding costs more than it saves
+  if (++changes_ >= std::max(kMinChanges, leaves_ / 2)) rebuild();
+}
+
+void AabbTree::rebuild() {
+  changes_ = 0;
+  if (root_ == kNull) return;
+  std::vector<std::int32_t> leaves;
+  leaves.reserve(leaves_);
+  std::vector<std::int32_t> stack{root_};
+  while (!stack.empty()) {
+    const std::int32_t i = stack.back();
+    stack.pop_back();
+    if (nodes_[i].child1 == kNull) {
+      leaves.push_back(i);
+      continue;
+    }
+    stack.push_back(nodes_[i].child1);
+    stack.push_back(nodes_[i].child2);
+    release(i);
+  }
+  root_ = build(leaves.data(), leaves.data() + leaves.size());
+  nodes_[root_].parent = kNull;
+}
+
+// The subtree over leaves [first, last): split at the median of the leaves' centres along the axis
+// where those centres spread most. Depth ceil(log2 n); recursion depth the same.
+std::int32_t AabbTree::build(std::int32_t* first, std::int32_t* last) {
+  const std::ptrdiff_t count = last - first;
+  if (count == 1) return *first;
+  Vec3 lo = Vec3::Constant(std::numeric_limits<Scalar>::infinity());
+  Vec3 hi = -lo;
+  for (const std::int32_t* p = first; p != last; ++p) {
+    const Vec3 c = nodes_[*p].box.min + nodes_[*p].box.max;  // twice the centre
+    lo = lo.cwiseMin(c);
+    hi = hi.cwiseMax(c);
+  }
+  int axis = 0;
+  (hi - lo).maxCoeff(&axis);
+  std::int32_t* mid = first + count / 2;
+  std::nth_element(first, mid, last, [&](std::int32_t a, std::int32_t b) {
+    const Scalar ca = nodes_[a].box.min[axis] + nodes_[a].box.max[axis];
+    const Scalar cb = nodes_[b].box.min[axis] + nodes_[b].box.max[axis];
+    return ca != cb ? ca < cb : a < b;  // ties by index: the same tree for the same input
+  });
+  const std::int32_t child1 = build(first, mid);
+  const std::int32_t child2 = build(mid, last);
+  const std::int32_t parent = allocate();
+  Node& n = nodes_[parent];
+  n.child1 = child1;
+  n.child2 = child2;
+  n.box = merged(nodes_[child1].box, nodes_[child2].box);
+  n.height = 1 + std::max(nodes_[child1].height, nodes_[child2].height);
+  nodes_[child1].parent = parent;
+  nodes_[child2].parent = parent;
+  return parent;
+}
+
+Scalar AabbTree::relative_area() const {
+  if (root_ == kNull || nodes_[root_].child1 == kNull) return 0;
+  Scalar sum = 0;
+  std::vector<std::int32_t> stack{root_};
+  while (!stack.empty()) {
+    const Node& n = nodes_[stack.back()];
+    stack.pop_back();
+    if (n.child1 == kNull) continue;
+    sum += area(n.box);
+    stack.push_back(n.child1);
+    stack.push_back(n.child2);
+  }
+  return sum / area(nodes_[root_].box);
 }
 
 void AabbTree::insert_leaf(std::int32_t leaf) {

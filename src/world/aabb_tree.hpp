@@ -1,6 +1,11 @@
 // Private: the World's broad phase, a dynamic AABB tree (a binary tree of axis-aligned boxes whose
 // leaves are objects) kept balanced by AVL-style rotations, with insertion guided by the growth of
 // surface area. Leaves hold fattened boxes so that small motions need no update (docs/design.md).
+// Greedy insertion and height-only rotations keep the height O(log n) but not the boxes tight: on
+// many objects spread through a volume, internal boxes grow into overlapping slabs and a query
+// visits a large fraction of the tree. So after as many changes (insertions, removals, moves) as
+// half the leaves, the tree is rebuilt top-down (median splits along the widest axis of the
+// leaves' centres): O(n log n) every n/2 changes, amortized O(log n) per change.
 #pragma once
 
 #include <antcd/math.hpp>
@@ -35,6 +40,11 @@ class AabbTree {
     return nodes_.capacity() * sizeof(Node) + free_.capacity() * sizeof(std::int32_t);
   }
   [[nodiscard]] std::int32_t height() const { return root_ == kNull ? 0 : nodes_[root_].height; }
+  /// Rebuilds the internal nodes top-down; leaf indices and boxes are unchanged.
+  void rebuild();
+  /// Total surface area of the internal nodes' boxes divided by the root's: the expected number of
+  /// internal nodes a small random query box inside the root visits (the SAH cost; tree quality).
+  [[nodiscard]] Scalar relative_area() const;
 
   /// Calls visit(object) for every leaf whose box overlaps `box`. Reentrant (read only).
   template <class Visit>
@@ -103,6 +113,9 @@ class AabbTree {
   };
 
   std::int32_t allocate();
+  std::int32_t build(std::int32_t* first, std::int32_t* last);
+  /// Counts a change; rebuilds after enough of them (see the header comment).
+  void changed();
   void release(std::int32_t i);
   void insert_leaf(std::int32_t leaf);
   void remove_leaf(std::int32_t leaf);
@@ -112,6 +125,8 @@ class AabbTree {
   std::vector<Node> nodes_;
   std::vector<std::int32_t> free_;
   std::int32_t root_ = kNull;
+  std::size_t leaves_ = 0;
+  std::size_t changes_ = 0;  // since the last rebuild
 };
 
 }  // namespace antcd::detail
