@@ -229,7 +229,8 @@ void run_colony(const FeatureSpace& space, const SearchRequest& request, bool im
             const std::uint32_t h = filter_bit(ui, uj);
             if ((filter[h >> 6] >> (h & 63)) & 1) {
               bool visited = false;
-              for (std::uint32_t t = 0; t < len && !visited; ++t) {
+              // Newest first: the cell just left is always a neighbour, found at once.
+              for (std::uint32_t t = len; t-- > 0 && !visited;) {
                 visited = path[t].i == ui && path[t].j == uj;
               }
               if (visited) continue;
