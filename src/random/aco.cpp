@@ -15,6 +15,7 @@
 // of fast_math.hpp: no call into the maths library per candidate.
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
 #include <limits>
 #include <vector>
@@ -65,6 +66,19 @@ ANTCD_VECTOR_CLONES void remaining_log_weights(const Recorder::Lanes& l, const f
     denom = denom > denom_floor ? denom : denom_floor;
     out[k] = alpha * log_tau[k] - beta * fast_log2(denom);
   }
+}
+
+/// The largest of the 16 lanes. Floats are mapped to integers of the same order (negative ones
+/// have their magnitude bits flipped), whose maximum vectorises; no lane is NaN. -0 and +0 may
+/// come out either way, which no caller can tell apart (l - top and the == test treat them alike).
+ANTCD_VECTOR_CLONES float lane_max(const float* v) {
+  std::int32_t best = std::numeric_limits<std::int32_t>::min();
+  for (std::uint32_t k = 0; k < Recorder::kLanes; ++k) {
+    const auto bits = std::bit_cast<std::int32_t>(v[k]);
+    const std::int32_t key = bits ^ ((bits >> 31) & 0x7FFFFFFF);
+    best = key > best ? key : best;
+  }
+  return std::bit_cast<float>(best ^ ((best >> 31) & 0x7FFFFFFF));
 }
 
 /// Roulette weights 2^(l - top) of the first `count` lanes, 0 for the padding.
@@ -201,11 +215,11 @@ void run_colony(const FeatureSpace& space, const SearchRequest& request, bool im
       float travelled = 0;  // d_oj of the remaining-distance reading
       std::uint32_t len = 0;
       path[len++] = cur;
-      // 256-bit filter over the path's cells: most candidates are ruled off the tabu list
+      // 1024-bit filter over the path's cells: most candidates are ruled off the tabu list
       // without scanning the path.
-      std::array<std::uint64_t, 4> filter{};
+      std::array<std::uint64_t, 16> filter{};
       auto filter_bit = [](std::uint32_t i, std::uint32_t j) {
-        return static_cast<std::uint32_t>((i * 0x9E3779B1U) ^ (j * 0x85EBCA77U)) >> 24;
+        return static_cast<std::uint32_t>((i * 0x9E3779B1U) ^ (j * 0x85EBCA77U)) >> 22;
       };
       auto remember = [&](Cell c) {
         const std::uint32_t h = filter_bit(c.i, c.j);
@@ -275,14 +289,12 @@ void run_colony(const FeatureSpace& space, const SearchRequest& request, bool im
             cand_log[c] = alpha * cand_tau[c] - beta * fast_log2(denom);
           }
         }
+        // Padding lanes repeat the first candidate's value, so the maximum over all 16 lanes is
+        // the real lanes' maximum.
+        for (std::uint32_t c = count; c < kCandidates; ++c) cand_log[c] = cand_log[0];
+        const float top = lane_max(cand_log.data());
         std::uint32_t pick = 0;
-        float top = cand_log[0];
-        for (std::uint32_t c = 1; c < count; ++c) {
-          if (cand_log[c] > top) {
-            top = cand_log[c];
-            pick = c;
-          }
-        }
+        while (!(cand_log[pick] == top)) ++pick;  // the first largest (the greedy route)
         if (!sw.greedy_moves) {
           // Roulette over weights scaled by the largest (2^(l - top) in (0, 1]); padding lanes
           // weigh 0, so the running total over the real lanes is unchanged.
