@@ -99,8 +99,8 @@ struct SceneQuery {
   /// Random methods without a frame budget: each pair's search gets this many evaluations per
   /// leaf pair of its preliminary detection (0 = only the N iterations bound it). A pair whose
   /// leaves overlap but whose surfaces do not meet then costs about as many centroid distances as
-  /// collide() tests triangle pairs.
-  std::uint64_t evaluations_per_leaf_pair = 64;
+  /// collide() tests triangle pairs. Less trades recall for time (docs/random-detection.md).
+  std::uint64_t evaluations_per_leaf_pair = 32;
   /// Random methods with a SceneMemory: positions around each remembered witness scanned before
   /// any traversal (confirm_witnesses, random.hpp); 0 = the witnesses alone.
   std::uint32_t witness_neighbourhood = 4;
