@@ -34,7 +34,8 @@ TrianglePenetration intersecting_penetration(const Vec3& a0, const Vec3& a1, con
   const Vec3 eb[3] = {b1 - b0, b2 - b1, b0 - b2};
   const Vec3 na = ea[0].cross(-ea[2]);  // (a1 - a0) x (a2 - a0)
   const Vec3 nb = eb[0].cross(-eb[2]);
-  const Vec3 tie = nb.normalized() - na.normalized();  // preferred direction when both sides tie
+  // The preferred direction when both sides of an axis tie (rare: computed only then).
+  const auto tie = [&] { return Vec3(nb.normalized() - na.normalized()); };
 
   TrianglePenetration best;
   best.depth = std::numeric_limits<Scalar>::infinity();
@@ -45,7 +46,7 @@ TrianglePenetration intersecting_penetration(const Vec3& a0, const Vec3& a1, con
     // side, so the normal from B to A is +axis); moved by +s, s = ia.hi - ib.lo, normal -axis.
     const Scalar up = (ib.hi - ia.lo) / norm;
     const Scalar down = (ia.hi - ib.lo) / norm;
-    const bool plus = up < down || (up == down && axis.dot(tie) >= 0);
+    const bool plus = up < down || (up == down && axis.dot(tie()) >= 0);
     const Scalar depth = plus ? up : down;
     if (depth < best.depth) {
       best.depth = depth;
