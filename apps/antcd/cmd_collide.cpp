@@ -39,7 +39,7 @@ int run_collide(const CollideOptions& o) {
 
   CollisionRequest request;
   request.delta = o.delta;
-  request.all_contacts = o.all;
+  request.all_contacts = o.all || o.manifold > 0;  // a manifold reduces every contact
   request.volume = o.volume;
   request.contact_normals = o.normals;
   request.manifold_points = o.manifold;
@@ -96,7 +96,7 @@ int run_collide(const CollideOptions& o) {
               static_cast<unsigned long long>(result.triangle_tests));
   if (!result.contacts.empty()) {
     std::printf("contacts: %zu%s\n", result.contacts.size(),
-                o.all ? "" : " (first found; --all for every one)");
+                request.all_contacts ? "" : " (first found; --all for every one)");
     if (o.manifold > 0) std::printf("manifold: %u regions\n", result.regions);
     std::printf("  %10s %10s %14s %14s %14s %12s", "tri_a", "tri_b", "x", "y", "z", "distance");
     if (normals) std::printf(" %10s %10s %10s %12s", "nx", "ny", "nz", "depth");
@@ -134,7 +134,8 @@ void add_collide_command(CLI::App& app, int& code) {
                 "Give each contact its normal (unit, world frame, from B towards A) and "
                 "penetration depth");
   cmd->add_option("--manifold", opts->manifold,
-                  "Reduce the contacts to at most K per touching region (implies --normals)")
+                  "Every contact, reduced to at most K per touching region (implies --all and "
+                  "--normals)")
       ->check(CLI::Range(1, 1 << 20))
       ->type_name("K");
   cmd->add_flag("--json", opts->json, "Print the result as JSON");
