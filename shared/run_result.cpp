@@ -2,10 +2,13 @@
 
 #include "shared/statistics.hpp"
 
+#include <antcd/distance.hpp>
+
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <set>
 
 namespace antcd::shared {
@@ -70,6 +73,7 @@ RunResult run_scene(const Scene& scene, const SceneQuery& query, const std::stri
   out.delta = query.delta;
   out.seed = query.seed;
   out.threads = query.threads;
+  out.volume = query.volume;
   out.build_ms = scene.build_ms();
   const std::size_t frames = scene.description().frames;
   const std::size_t runs = (frames + frame_step - 1) / frame_step;
@@ -100,6 +104,33 @@ RunResult run_scene(const Scene& scene, const SceneQuery& query, const std::stri
   return out;
 }
 
+void add_distances(const Scene& scene, RunResult& result) {
+  const auto& objects = scene.description().objects;
+  std::map<std::string, std::uint32_t, std::less<>> index;
+  for (std::uint32_t i = 0; i < objects.size(); ++i) index.emplace(objects[i].name, i);
+  const auto find = [&](const std::string& name) {
+    const auto it = index.find(name);
+    if (it == index.end()) throw Error("run result names object '" + name + "' not in the scene");
+    return it->second;
+  };
+  for (FrameRecord& f : result.frames) {
+    if (f.frame >= scene.description().frames) {
+      throw Error("run result has frame " + std::to_string(f.frame) + " beyond the scene's " +
+                  std::to_string(scene.description().frames));
+    }
+    std::vector<double> d;
+    d.reserve(f.pairs.size());
+    for (const auto& [na, nb] : f.pairs) {
+      const std::uint32_t i = find(na);
+      const std::uint32_t j = find(nb);
+      d.push_back(distance(scene.model_of(i), objects[i].pose(f.frame), scene.model_of(j),
+                           objects[j].pose(f.frame))
+                      .distance);
+    }
+    f.distances = std::move(d);
+  }
+}
+
 std::string to_json(const RunResult& result) {
   json root;
   root["method"] = result.method;
@@ -111,6 +142,7 @@ std::string to_json(const RunResult& result) {
     root["verdict"] = result.verdict;
     root["memory"] = result.memory;
   }
+  if (result.volume) root["volume"] = true;
   root["build_ms"] = result.build_ms;
   root["total_ms"] = result.total_ms;
   json frames = json::array();
@@ -126,6 +158,7 @@ std::string to_json(const RunResult& result) {
       jf["evaluations"] = *f.evaluations;
       jf["undecided"] = pairs_json(f.undecided);
     }
+    if (f.distances) jf["distances"] = *f.distances;
     frames.push_back(std::move(jf));
   }
   root["frames"] = std::move(frames);
@@ -153,6 +186,7 @@ RunResult parse_run_result(std::string_view text, const std::string& source) {
   if (root.contains("verdict") && root["verdict"].is_string())
     out.verdict = root["verdict"].get<std::string>();
   if (root.contains("memory") && root["memory"].is_boolean()) out.memory = root["memory"].get<bool>();
+  if (root.contains("volume") && root["volume"].is_boolean()) out.volume = root["volume"].get<bool>();
   out.build_ms = number(root, "build_ms", source, "");
   out.total_ms = number(root, "total_ms", source, "");
   if (!root.contains("frames") || !root["frames"].is_array())
@@ -181,6 +215,17 @@ RunResult parse_run_result(std::string_view text, const std::string& source) {
     }
     if (jf.contains("undecided"))
       f.undecided = parse_pairs(jf["undecided"], source, where + "'undecided'");
+    if (jf.contains("distances")) {
+      const json& d = jf["distances"];
+      if (!d.is_array() || d.size() != f.pairs.size()) {
+        fail(source, where + "'distances' must be an array of one number per pair");
+      }
+      f.distances.emplace();
+      for (const json& x : d) {
+        if (!x.is_number()) fail(source, where + "'distances' must hold numbers");
+        f.distances->push_back(x.get<double>());
+      }
+    }
     out.frames.push_back(std::move(f));
   }
   return out;

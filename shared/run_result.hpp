@@ -8,7 +8,11 @@
 // without a witness when a frame budget ran out; same form as "pairs"); and at the top "scene",
 // "delta", "seed", "threads", and for random methods "verdict" and "memory" (whether the colonies
 // were carried from frame to frame).
-// "pairs" lists each colliding object pair once, the two names in scene order.
+// "pairs" lists each colliding object pair once, the two names in scene order. On request
+// (add_distances, `antcd run --report-distance`), each frame also has "distances": the exact
+// minimum distance between the two surfaces of each pair (antcd::distance, 0 when they meet),
+// in the order of "pairs"; and with SceneQuery::volume the top level says "volume": true.
+// Both are absent otherwise, so older readers see the format they know.
 #pragma once
 
 #include <antcd/scene.hpp>
@@ -32,6 +36,8 @@ struct FrameRecord {
   std::optional<std::uint64_t> feature_truth;
   std::optional<std::uint64_t> evaluations;  ///< random methods: fitness evaluations of the frame
   std::vector<NamePair> undecided;           ///< random methods: pairs left without a witness
+  /// With report_distance: the surface distance of each pair, in the order of `pairs`.
+  std::optional<std::vector<double>> distances;
 };
 
 struct RunResult {
@@ -42,6 +48,7 @@ struct RunResult {
   int threads = 1;
   std::string verdict;  ///< random methods: "witness" or "paper-centroid"; empty otherwise
   bool memory = false;  ///< random methods: colonies carried from frame to frame (SceneMemory)
+  bool volume = false;  ///< SceneQuery::volume was set
   double build_ms = 0;
   double total_ms = 0;  ///< sum of the frames' time_ms
   std::vector<FrameRecord> frames;
@@ -55,6 +62,12 @@ struct RunResult {
 RunResult run_scene(const Scene& scene, const SceneQuery& query, const std::string& scene_name,
                     const std::function<void(std::size_t, std::size_t)>& progress = {},
                     std::size_t frame_step = 1, bool memory = true);
+
+/// Fills FrameRecord::distances of every frame of `result` (a run of `scene`, any method): the
+/// exact minimum distance between the two surfaces of each reported pair at that frame
+/// (antcd::distance; 0 when they meet, > 0 for a pair reported by δ or by containment). Throws
+/// antcd::Error when a pair names an object the scene does not have.
+void add_distances(const Scene& scene, RunResult& result);
 
 std::string to_json(const RunResult& result);
 /// Parses a run result; errors (antcd::Error) name `source` and the problem.

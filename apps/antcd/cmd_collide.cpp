@@ -21,6 +21,8 @@ struct CollideOptions {
   double delta = 0;
   bool all = false;
   bool volume = false;
+  bool normals = false;
+  std::uint32_t manifold = 0;
   bool json = false;
   std::uint32_t leaf_size = 4;
   std::string covariance = "area";
@@ -37,8 +39,11 @@ int run_collide(const CollideOptions& o) {
 
   CollisionRequest request;
   request.delta = o.delta;
-  request.all_contacts = o.all;
+  request.all_contacts = o.all || o.manifold > 0;  // a manifold reduces every contact
   request.volume = o.volume;
+  request.contact_normals = o.normals;
+  request.manifold_points = o.manifold;
+  const bool normals = o.normals || o.manifold > 0;
   CollisionResult result;
   const auto start = std::chrono::steady_clock::now();
   collide(a, pa, b, pb, request, result);
@@ -56,12 +61,19 @@ int run_collide(const CollideOptions& o) {
       j["surface_only"] = result.surface_only;
     }
     j["query_ms"] = query_ms;
+    if (o.manifold > 0) j["regions"] = result.regions;
     nlohmann::json contacts = nlohmann::json::array();
     for (const Contact& c : result.contacts) {
-      contacts.push_back({{"triangle_a", c.triangle_a},
-                          {"triangle_b", c.triangle_b},
-                          {"point", {c.point.x(), c.point.y(), c.point.z()}},
-                          {"distance", c.distance}});
+      nlohmann::json jc = {{"triangle_a", c.triangle_a},
+                           {"triangle_b", c.triangle_b},
+                           {"point", {c.point.x(), c.point.y(), c.point.z()}},
+                           {"distance", c.distance}};
+      if (normals) {
+        jc["normal"] = {c.normal.x(), c.normal.y(), c.normal.z()};
+        jc["depth"] = c.depth;
+      }
+      if (o.manifold > 0) jc["region"] = c.region;
+      contacts.push_back(std::move(jc));
     }
     j["contacts"] = std::move(contacts);
     j["stats"] = {{"node_pairs", result.traversal.node_pairs},
@@ -84,11 +96,19 @@ int run_collide(const CollideOptions& o) {
               static_cast<unsigned long long>(result.triangle_tests));
   if (!result.contacts.empty()) {
     std::printf("contacts: %zu%s\n", result.contacts.size(),
-                o.all ? "" : " (first found; --all for every one)");
-    std::printf("  %10s %10s %14s %14s %14s %12s\n", "tri_a", "tri_b", "x", "y", "z", "distance");
+                request.all_contacts ? "" : " (first found; --all for every one)");
+    if (o.manifold > 0) std::printf("manifold: %u regions\n", result.regions);
+    std::printf("  %10s %10s %14s %14s %14s %12s", "tri_a", "tri_b", "x", "y", "z", "distance");
+    if (normals) std::printf(" %10s %10s %10s %12s", "nx", "ny", "nz", "depth");
+    std::printf("\n");
     for (const Contact& c : result.contacts) {
-      std::printf("  %10u %10u %14.6g %14.6g %14.6g %12.6g\n", c.triangle_a, c.triangle_b,
+      std::printf("  %10u %10u %14.6g %14.6g %14.6g %12.6g", c.triangle_a, c.triangle_b,
                   c.point.x(), c.point.y(), c.point.z(), c.distance);
+      if (normals) {
+        std::printf(" %10.6f %10.6f %10.6f %12.6g", c.normal.x(), c.normal.y(), c.normal.z(),
+                    c.depth);
+      }
+      std::printf("\n");
     }
   }
   return 0;
@@ -110,6 +130,14 @@ void add_collide_command(CLI::App& app, int& code) {
                 "Report every colliding triangle pair (default: stop at first)");
   cmd->add_flag("--volume", opts->volume,
                 "Closed models also collide when one lies wholly inside the other");
+  cmd->add_flag("--normals", opts->normals,
+                "Give each contact its normal (unit, world frame, from B towards A) and "
+                "penetration depth");
+  cmd->add_option("--manifold", opts->manifold,
+                  "Every contact, reduced to at most K per touching region (implies --all and "
+                  "--normals)")
+      ->check(CLI::Range(1, 1 << 20))
+      ->type_name("K");
   cmd->add_flag("--json", opts->json, "Print the result as JSON");
   cmd->add_option("--leaf-size", opts->leaf_size, "Triangles per leaf of the hierarchy")
       ->check(CLI::Range(1, 1 << 20));

@@ -4,6 +4,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
@@ -34,6 +35,8 @@ struct RunOptions {
   std::uint64_t frame_evaluations = 0;
   double frame_seconds = 0;
   bool no_memory = false;
+  bool report_distance = false;
+  bool volume = false;
   std::string out;
   std::string model;
 };
@@ -56,6 +59,9 @@ int run_run(const RunOptions& o) {
   if (!learned && !o.model.empty()) {
     throw UsageError("--model is for --method box-dnn or box-lstm, not " + o.method);
   }
+  if (o.volume && o.method != "exact") {
+    throw UsageError("--volume is for --method exact, not " + o.method);
+  }
   SceneQuery query;
   if (!learned) query.method = parse_method(o.method);
   query.delta = o.delta;
@@ -74,10 +80,12 @@ int run_run(const RunOptions& o) {
   }
   query.frame_evaluations = o.frame_evaluations;
   query.frame_seconds = o.frame_seconds;
+  query.volume = o.volume;
   const Scene scene(load_scene(o.scene));
-  const shared::RunResult result =
+  shared::RunResult result =
       learned ? run_learned(scene, o.scene, o.method, o.model, o.delta, progress)
               : shared::run_scene(scene, query, o.scene, progress, 1, !o.no_memory);
+  if (o.report_distance) shared::add_distances(scene, result);
   if (!o.out.empty()) {
     write_file_atomic(o.out, shared::to_json(result));
     return 0;
@@ -114,6 +122,14 @@ int run_run(const RunOptions& o) {
       "frame\n",
       colliding, static_cast<double>(colliding) / static_cast<double>(result.frames.size()),
       static_cast<double>(candidates) / static_cast<double>(result.frames.size()));
+  if (o.report_distance) {
+    double largest = 0;
+    for (const auto& f : result.frames) {
+      for (const double d : *f.distances) largest = std::max(largest, d);
+    }
+    std::printf("surface distance of the colliding pairs: at most %.6g (--out writes each)\n",
+                largest);
+  }
   return 0;
 }
 
@@ -215,6 +231,11 @@ void add_scene_commands(CLI::App& app, int& code) {
   cmd->add_flag("--no-memory", run->no_memory,
                 "Random methods: search each frame afresh instead of carrying the colonies' "
                 "pheromone and witnesses from frame to frame");
+  cmd->add_flag("--report-distance", run->report_distance,
+                "Also write each colliding pair's exact surface distance (\"distances\", in the "
+                "order of \"pairs\")");
+  cmd->add_flag("--volume", run->volume,
+                "Exact method: closed objects also collide when one lies wholly inside another");
   cmd->add_option("--model", run->model,
                   "box-dnn / box-lstm: the model file written by antcd learn train")
       ->type_name("MODEL.pt");

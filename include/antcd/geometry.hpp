@@ -3,7 +3,8 @@
 // Conventions
 // - Triangles are closed sets: their boundary (edges and vertices) belongs to them. Two triangles
 //   that share only a vertex, or touch edge-on-edge, or overlap while coplanar, INTERSECT.
-// - Distances are Euclidean, in mesh units, and never negative (no penetration depth).
+// - Distances are Euclidean, in mesh units, and never negative; penetration depth is a separate
+//   query (triangle_penetration).
 // - All inputs are in one common frame chosen by the caller.
 // - Degenerate (zero-area) triangles are not supported by the predicates; the hierarchy filters
 //   them out before any query (see Model).
@@ -84,6 +85,31 @@ struct TriangleDistance {
 };
 ANTCD_API TriangleDistance triangle_distance(const Vec3& a0, const Vec3& a1, const Vec3& a2,
                                              const Vec3& b0, const Vec3& b1, const Vec3& b2);
+
+/// Contact normal and signed depth of two closed triangles (see triangle_penetration).
+struct TrianglePenetration {
+  Vec3 normal = Vec3::UnitZ();  ///< unit, points from the second triangle (B) towards the first (A)
+  Scalar depth = 0;             ///< >= 0 when they intersect, -distance when apart
+};
+
+/// The one definition of a contact's normal n and depth d used throughout antcd.
+/// - Intersecting (or touching) triangles: d >= 0 is the length of the shortest translation that
+///   separates them, found by the separating-axis theorem over the candidate axes of two
+///   triangles: A's face normal, B's face normal and the 9 cross products of an edge of A with an
+///   edge of B (the face normals of the Minkowski difference A - B, so the minimum over them is
+///   the exact penetration depth). Moving A by d along n, or B by d along -n, leaves them touching;
+///   any more separates them; every translation shorter than d leaves them intersecting. Touching triangles have d = 0 with the axis along which they touch. Ties go to
+///   the first axis in the order above, and of its two directions to the one with
+///   n·(nB - nA) >= 0 (for coplanar faces of two solids resting on each other, n = B's outward
+///   normal). Edge pairs within about 1e-6 rad of parallel are skipped (their cross product has
+///   no reliable direction).
+/// - Triangles apart (distance dist > 0): n = (pa - pb) / dist from B's closest point to A's, and
+///   d = -dist.
+/// Computed in doubles (not exact): about 1e-15 x the triangles' size for well-shaped triangles.
+/// Whether the triangles intersect is the exact predicate triangles_intersect.
+ANTCD_API TrianglePenetration triangle_penetration(const Vec3& a0, const Vec3& a1, const Vec3& a2,
+                                                   const Vec3& b0, const Vec3& b1,
+                                                   const Vec3& b2);
 
 /// The query used by collision detection with threshold delta >= 0: true when the triangles
 /// intersect or their distance is <= delta. With delta == 0 this is exactly triangles_intersect.

@@ -117,6 +117,9 @@ struct SceneQuery {
   double frame_seconds = 0;
   /// Worker threads for the narrow phase (1 = the calling thread only).
   int threads = 1;
+  /// Exact method: CollisionRequest::volume, so two closed objects also collide when one lies
+  /// wholly inside the other (open ones keep surface semantics). Refused with other methods.
+  bool volume = false;
 };
 
 /// What the random methods carry from frame to frame, per object pair: the colony's pheromone,

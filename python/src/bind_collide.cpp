@@ -13,8 +13,12 @@ namespace antcd::python {
 
 namespace {
 
-CollisionRequest make_request(double delta, bool all_contacts, const py::handle max_contacts) {
+CollisionRequest make_request(double delta, bool all_contacts, const py::handle max_contacts,
+                              bool contact_normals, const py::handle manifold_points) {
   CollisionRequest request;
+  request.contact_normals = contact_normals;
+  request.manifold_points = static_cast<std::uint32_t>(
+      to_count(manifold_points, "manifold_points", 0, std::uint64_t{1} << 20));
   request.delta = to_non_negative(delta, "delta");
   request.all_contacts = all_contacts;
   request.max_contacts = static_cast<std::size_t>(
@@ -62,6 +66,28 @@ void bind_collide(py::module_& m) {
           },
           "float64[k]: triangle-triangle distance of each contact (0 when they intersect).")
       .def_property_readonly(
+          "normals",
+          [](const CollisionResult& r) {
+            return make_rows<double>(r.contacts.size(), 3, [&](std::size_t i, double* o) {
+              for (int k = 0; k < 3; ++k) o[k] = r.contacts[i].normal[k];
+            });
+          },
+          "float64[k, 3], world frame, with contact_normals=True (zeros otherwise): each contact's "
+          "unit normal, pointing from B towards A.")
+      .def_property_readonly(
+          "depths",
+          [](const CollisionResult& r) {
+            return make_vector<double>(r.contacts.size(), [&](std::size_t i) { return r.contacts[i].depth; });
+          },
+          "float64[k], with contact_normals=True (zeros otherwise): each triangle pair's "
+          "penetration depth (the shortest separating translation; -distance when apart).")
+      .def_property_readonly(
+          "regions",
+          [](const CollisionResult& r) {
+            return make_vector<std::uint32_t>(r.contacts.size(), [&](std::size_t i) { return r.contacts[i].region; });
+          },
+          "uint32[k], with manifold_points > 0: each kept contact's touching region.")
+      .def_property_readonly(
           "stats",
           [](const CollisionResult& r) {
             py::dict d;
@@ -81,10 +107,12 @@ void bind_collide(py::module_& m) {
   m.def(
       "collide",
       [](const Model& a, const py::handle pose_a, const Model& b, const py::handle pose_b,
-         double delta, bool all_contacts, const py::handle max_contacts) {
+         double delta, bool all_contacts, const py::handle max_contacts, bool contact_normals,
+         const py::handle manifold_points) {
         const Transform pa = to_transform(pose_a, "pose_a");
         const Transform pb = to_transform(pose_b, "pose_b");
-        const CollisionRequest request = make_request(delta, all_contacts, max_contacts);
+        const CollisionRequest request =
+            make_request(delta, all_contacts, max_contacts, contact_normals, manifold_points);
         CollisionResult result;
         {
           py::gil_scoped_release release;
@@ -94,6 +122,7 @@ void bind_collide(py::module_& m) {
       },
       py::arg("a"), py::arg("pose_a"), py::arg("b"), py::arg("pose_b"), py::kw_only(),
       py::arg("delta") = 0.0, py::arg("all_contacts") = false, py::arg("max_contacts") = 0,
+      py::arg("contact_normals") = false, py::arg("manifold_points") = 0,
       "Exact collision query between two posed models.\n\n"
       "pose_a, pose_b: 4x4 homogeneous matrices, (rotation 3x3, translation 3) pairs, or None "
       "(identity); rigid motions only (ValueError otherwise).\n"
@@ -101,6 +130,10 @@ void bind_collide(py::module_& m) {
       "A is within delta of some triangle of B (0: the surfaces share a point; touching counts).\n"
       "all_contacts: False stops at the first contact (boolean query); True reports every "
       "colliding triangle pair, up to max_contacts when that is > 0.\n"
+      "contact_normals: also give each contact its normal (unit, from B towards A) and depth "
+      "(result.normals, result.depths).\n"
+      "manifold_points: > 0 keeps at most this many contacts per touching region (implies "
+      "contact_normals; result.regions numbers the regions).\n"
       "Surfaces, not volumes: a model entirely inside another does not collide.\n"
       "The GIL is released while the query runs.");
 

@@ -142,3 +142,33 @@ def test_surfaces_not_volumes():
     touching[0, 3] = 1.0 + 1e-9
     assert not antcd.collide(inner, None, inner, touching).colliding
     assert antcd.collide(inner, None, inner, touching, delta=1e-6).colliding
+
+
+def test_normals_and_depths_equal_the_cli(models_dir, cli):
+    path_a, path_b = models_dir / "OBJ/spider.obj", models_dir / "OFF/Cube.off"
+    a, b = antcd.Model.load(path_a), antcd.Model.load(path_b)
+    rng = np.random.default_rng(15)
+    checked = 0
+    for q, t in _poses(a, b, rng, 6):
+        pose_b = quaternion_matrix(q, t)
+        r = antcd.collide(a, None, b, pose_b, all_contacts=True, contact_normals=True)
+        plain = antcd.collide(a, None, b, pose_b, all_contacts=True)
+        assert np.array_equal(plain.normals, np.zeros((len(plain), 3)))  # not asked for
+        assert np.array_equal(r.triangles_a, plain.triangles_a)
+        if not r:
+            continue
+        checked += 1
+        assert r.normals.shape == (len(r), 3) and r.depths.shape == (len(r),)
+        np.testing.assert_allclose(np.linalg.norm(r.normals, axis=1), 1.0, atol=1e-12)
+        assert np.all(r.depths >= 0)  # delta 0: every contact intersects
+        out = json.loads(run_cli(cli, "collide", str(path_a), str(path_b), "--pose-b",
+                                 _cli_pose(q, t), "--all", "--normals", "--json"))
+        assert [c["triangle_a"] for c in out["contacts"]] == r.triangles_a.tolist()
+        np.testing.assert_allclose([c["normal"] for c in out["contacts"]], r.normals, atol=1e-9)
+        np.testing.assert_allclose([c["depth"] for c in out["contacts"]], r.depths, atol=1e-9)
+        m = antcd.collide(a, None, b, pose_b, all_contacts=True, manifold_points=2)
+        counts = np.bincount(m.regions)
+        assert counts.min() >= 1 and counts.max() <= 2
+    assert checked >= 2
+    with pytest.raises(ValueError, match="manifold_points"):
+        antcd.collide(a, None, b, None, manifold_points=-1)

@@ -2,15 +2,30 @@
 #include <antcd/collide.hpp>
 
 #include "bvh/traverse.hpp"
+#include "exact/manifold.hpp"
 #include "exact/volume.hpp"
+#include "geometry/penetration.hpp"
 
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <numbers>
 #include <stdexcept>
 #include <string>
 
 namespace antcd {
+
+namespace {
+
+// Normal and depth of a pair reported only because it is within delta (distance > 0).
+geometry::TrianglePenetration apart(const Vec3& a0, const Vec3& a1, const Vec3& a2, const Vec3& b0,
+                                    const Vec3& b1, const Vec3& b2) {
+  const geometry::TriangleDistance td = geometry::triangle_distance(a0, a1, a2, b0, b1, b2);
+  if (!(td.distance > 0)) return geometry::detail::intersecting_penetration(a0, a1, a2, b0, b1, b2);
+  return geometry::detail::apart_penetration(td.pa, td.pb);
+}
+
+}  // namespace
 
 bool collide(const Model& a, const Transform& pose_a, const Model& b, const Transform& pose_b,
              const CollisionRequest& request, CollisionResult& result) {
@@ -18,7 +33,12 @@ bool collide(const Model& a, const Transform& pose_a, const Model& b, const Tran
     throw antcd::ArgumentError("collision threshold delta must be finite and >= 0, got " +
                                std::to_string(request.delta));
   }
+  if (!(request.manifold_angle >= 0 && request.manifold_angle <= std::numbers::pi)) {
+    throw antcd::ArgumentError("manifold_angle must be in [0, pi] radians, got " +
+                               std::to_string(request.manifold_angle));
+  }
   result.clear();
+  const bool normals = request.contact_normals || request.manifold_points > 0;
   const detail::PairFrame frame(a, pose_a, b, pose_b, request.delta);
   const auto verts_a = a.leaf_vertices();
   const auto verts_b = b.leaf_vertices();
@@ -86,7 +106,18 @@ bool collide(const Model& a, const Transform& pose_a, const Model& b, const Tran
         Scalar distance = 0;
         if (geometry::triangles_within(a0, a1, a2, *b0, *b1, *b2, delta, &point, &distance)) {
           result.colliding = true;
-          result.contacts.push_back({tris_a[ia], tris_b[jb], pose_a.apply(point), distance});
+          Contact& c = result.contacts.emplace_back();
+          c.triangle_a = tris_a[ia];
+          c.triangle_b = tris_b[jb];
+          c.point = pose_a.apply(point);
+          c.distance = distance;
+          if (normals) {
+            const geometry::TrianglePenetration pen =
+                distance > 0 ? apart(a0, a1, a2, *b0, *b1, *b2)
+                             : geometry::detail::intersecting_penetration(a0, a1, a2, *b0, *b1, *b2);
+            c.normal = pose_a.apply_vector(pen.normal);
+            c.depth = pen.depth;
+          }
           if (limit != 0 && result.contacts.size() >= limit) return true;
         }
       }
@@ -96,6 +127,10 @@ bool collide(const Model& a, const Transform& pose_a, const Model& b, const Tran
   // A query that stops at its first contact visits the nearer children first.
   result.traversal = limit == 1 ? detail::dual_traverse<true>(a, b, frame, on_leaf)
                                 : detail::dual_traverse<false>(a, b, frame, on_leaf);
+  if (request.manifold_points > 0) {
+    result.regions = detail::reduce_to_manifold(result.contacts, request.manifold_points,
+                                                std::cos(request.manifold_angle));
+  }
   if (request.volume) {
     if (!a.is_closed() || !b.is_closed()) {
       result.surface_only = true;

@@ -26,8 +26,9 @@ PairOutcome query_pair(const PairSide& a, const PairSide& b, const SceneQuery& q
   PairOutcome out;
   if (query.method == Method::Exact) {
     CollisionResult result;
-    out.colliding = collide(*a.model, a.pose, *b.model, b.pose,
-                            CollisionRequest{query.delta, false, 0}, result);
+    CollisionRequest request{query.delta, false, 0};
+    request.volume = query.volume;
+    out.colliding = collide(*a.model, a.pose, *b.model, b.pose, request, result);
   } else {
     out.colliding = any_leaf_pair_overlaps(*a.model, a.pose, *b.model, b.pose, query.delta);
   }

@@ -100,6 +100,10 @@ FrameResult Scene::run_frame(std::size_t frame, const SceneQuery& query,
     throw ArgumentError("delta must be finite and >= 0");
   }
   if (query.threads < 1) throw ArgumentError("threads must be at least 1");
+  if (query.volume && query.method != Method::Exact) {
+    throw ArgumentError("volume queries are for the exact method, not " +
+                        std::string(method_name(query.method)));
+  }
   if (query.method != Method::Exact && query.method != Method::SphereObb) {
     if (query.iterations < 1) throw ArgumentError("iterations must be at least 1");
     if (query.samples_per_side < 1 || query.samples_per_side > UINT32_MAX) {

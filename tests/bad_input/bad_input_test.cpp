@@ -42,6 +42,7 @@
 #include <thread>
 #include <vector>
 
+#include "support/cli_run.hpp"
 #include "support/mesh_files.hpp"
 #include "support/test_support.hpp"
 
@@ -51,16 +52,10 @@ namespace {
 namespace fs = std::filesystem;
 using test::binary_stl;
 using test::fresh_temp_dir;
+using test::read_all;
 using test::write_file;
 
 // ---- helpers ----
-
-std::string read_all(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 /// Checks the shape of an error message: it starts with "<source>: " (when `starts` is set) or
 /// names `source` somewhere, and is one line.
@@ -714,63 +709,11 @@ TEST(BadSceneFile, SceneWhoseMeshIsBad) {
 
 #ifdef ANTCD_CLI
 
-struct CliRun {
-  int exit_code = -1;  ///< the exit status, or -1 when killed by a signal
-  int signal = 0;
-  bool timed_out = false;
-  std::string out;
-  std::string err;
-};
+using test::CliRun;
 
 /// Runs `antcd args...` in `cwd` (stdin from /dev/null), killing it after `timeout_s`.
 CliRun run_cli(const std::vector<std::string>& args, const fs::path& cwd, double timeout_s = 120) {
-  const fs::path io = cwd.parent_path() / (cwd.filename().string() + "_io");
-  fs::create_directories(io);
-  const std::string out_path = (io / "stdout").string();
-  const std::string err_path = (io / "stderr").string();
-  std::vector<std::string> argv_store = {ANTCD_CLI};
-  argv_store.insert(argv_store.end(), args.begin(), args.end());
-  std::vector<char*> argv;
-  for (std::string& a : argv_store) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  const std::string dir = cwd.string();
-
-  const pid_t pid = ::fork();
-  if (pid == 0) {
-    // Child: only async-signal-safe calls until exec.
-    const int in = ::open("/dev/null", O_RDONLY);
-    const int out = ::open(out_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    const int err = ::open(err_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    if (in < 0 || out < 0 || err < 0 || ::chdir(dir.c_str()) != 0) ::_exit(126);
-    ::dup2(in, 0);
-    ::dup2(out, 1);
-    ::dup2(err, 2);
-    ::execv(argv[0], argv.data());
-    ::_exit(127);
-  }
-  CliRun r;
-  if (pid < 0) {
-    ADD_FAILURE() << "fork failed: " << std::strerror(errno);
-    return r;
-  }
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
-  int status = 0;
-  while (true) {
-    const pid_t done = ::waitpid(pid, &status, WNOHANG);
-    if (done == pid) break;
-    if (std::chrono::steady_clock::now() > deadline) {
-      ::kill(pid, SIGKILL);
-      ::waitpid(pid, &status, 0);
-      r.timed_out = true;
-      break;
-    }
-    std::this_thread::sleep_for(std::chrono::milliseconds(5));
-  }
-  if (WIFEXITED(status)) r.exit_code = WEXITSTATUS(status);
-  if (WIFSIGNALED(status)) r.signal = WTERMSIG(status);
-  r.out = read_all(out_path);
-  r.err = read_all(err_path);
-  return r;
+  return test::run_program(ANTCD_CLI, args, cwd, timeout_s);
 }
 
 std::string describe(const std::vector<std::string>& args) {

@@ -18,6 +18,9 @@ std::filesystem::path assimp_model(const std::string& relative);
 /// A fresh, empty folder under the build tree for the calling test.
 std::filesystem::path fresh_temp_dir(const std::string& name);
 
+/// The whole content of the file at `path` (binary-safe; empty when it cannot be read).
+std::string read_all(const std::filesystem::path& path);
+
 /// Writes `text` to `path` (binary-safe).
 void write_file(const std::filesystem::path& path, const std::string& text);
 
