@@ -38,7 +38,10 @@ CollisionResult as_result(std::vector<Contact> contacts) {
 // World::collide_model reports the query model as side A; the manager reports the world's object
 // as side A. Every per-side field of a contact is swapped here and nowhere else.
 void swap_sides(std::vector<Contact>& contacts) {
-  for (Contact& c : contacts) std::swap(c.triangle_a, c.triangle_b);
+  for (Contact& c : contacts) {
+    std::swap(c.triangle_a, c.triangle_b);
+    c.normal = -c.normal;  // from B towards A: the sides changed
+  }
 }
 
 // A posed model with its world-frame box (the root OBB's axis-aligned bounds, grown by a rounding
