@@ -304,6 +304,12 @@ void scene_findings(const Results& r, data& d) {
   d.set("maco_within_2x", maco.ms <= 2 * exact_ms);
   d.set("maco_pair_evals", num(maco.pair_evaluations(), 0));
   d.set("aco_pair_evals", num(aco.pair_evaluations(), 0));
+  const std::uint64_t low = r.plan.budgets.front();
+  const Tally& maco_low = r.random.at({"maco", low});
+  d.set("low_budget", std::to_string(low));
+  d.set("maco_low_evals", num(maco_low.pair_evaluations(), 0));
+  d.set("maco_low_vs_exact", num(maco_low.ms / exact_ms, 2));
+  d.set("maco_low_recall", num(maco_low.recall(), 3));
   // The smallest budget at which MACO (witness) finds 99 % of the colliding pairs.
   std::uint64_t enough = 0;
   for (const std::uint64_t b : r.plan.budgets) {
