@@ -22,7 +22,8 @@
 //   exh_ms  median time of the full exhaustive enumeration
 //   evals   median evaluations per search; pairs, colliding: the space
 // The Exhaustive rows' tN_ms are the times at which the row-by-row enumeration passed each mark.
-// The MACO-without-k / MACO-only-k rows (2000² pairs) are the ablation of the four improvements.
+// The MACO-without-k / MACO-only-k / MACO-corridor / MACO-greedy rows (2000² pairs) are the
+// ablation of the MACO switches (shared/maco_ablation.hpp).
 //
 // Cost/... rows: the price of one evaluation, apart from how good the search is. On the 5000²
 // space, under the paper-centroid verdict with a centroid threshold no pair meets (so no hit is
@@ -35,6 +36,8 @@
 //                 benchmark (interleaved): what the colony adds per evaluated candidate
 // Targets: exhaustive <= 1 ns per distance, colony overhead <= 10 ns.
 #include <antcd/random.hpp>
+
+#include "shared/maco_ablation.hpp"
 
 #include <benchmark/benchmark.h>
 
@@ -262,20 +265,11 @@ int main(int argc, char** argv) {
           ->Iterations(5);
     }
   }
-  // Ablation of the four MACO improvements (docs/random-detection.md), at 2000² pairs.
-  const std::pair<const char*, MacoSwitches> variants[] = {
-      {"MACO-without-1-exponents", {false, true, true, true}},
-      {"MACO-without-2-evaporation", {true, false, true, true}},
-      {"MACO-without-3-heuristic", {true, true, false, true}},
-      {"MACO-without-4-reward", {true, true, true, false}},
-      {"MACO-only-1-exponents", {true, false, false, false}},
-      {"MACO-only-2-evaporation", {false, true, false, false}},
-      {"MACO-only-3-heuristic", {false, false, true, false}},
-      {"MACO-only-4-reward", {false, false, false, true}},
-  };
-  for (const auto& [label, switches] : variants) {
-    benchmark::RegisterBenchmark((std::string(label) + "/samples:2000").c_str(), bm_search,
-                                 Method::Maco, 2000u, switches)
+  // Ablation of the MACO switches (shared/maco_ablation.hpp, the list `antcd bench paper` runs
+  // too), at 2000² pairs.
+  for (const shared::MacoVariant& v : shared::maco_ablation()) {
+    benchmark::RegisterBenchmark((std::string(v.label) + "/samples:2000").c_str(), bm_search,
+                                 Method::Maco, 2000u, v.switches)
         ->Unit(benchmark::kMillisecond)
         ->Iterations(5);
   }

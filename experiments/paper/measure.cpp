@@ -10,7 +10,10 @@
 #include "paper/plots.hpp"
 #include "paper/report.hpp"
 #include "paper/results.hpp"
+#include "paper/run_util.hpp"
+#include "paper/scene_figures.hpp"
 #include "paper/tables.hpp"
+#include "shared/maco_ablation.hpp"
 #include "shared/production_line.hpp"
 #include "shared/rng.hpp"
 
@@ -19,10 +22,6 @@
 #include <antcd/io.hpp>
 #include <antcd/random.hpp>
 #include <antcd/scene.hpp>
-
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <atomic>
@@ -44,39 +43,10 @@ namespace antcd::experiments {
 namespace {
 
 namespace fs = std::filesystem;
-using Clock = std::chrono::steady_clock;
 using namespace paper;
 using shared::GeneratedScene;
 using shared::ProductionLineOptions;
 using shared::SceneStats;
-
-/// The exact method's verdicts on one frame.
-struct FrameTruth {
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> candidates;
-  double time_ms = 0;
-};
-
-double ms_since(Clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
-
-/// Runs f(0) … f(count - 1) on up to `threads` oneTBB workers; rethrows the first exception.
-template <typename F>
-void parallel_for(std::size_t count, int threads, F&& f) {
-  if (threads <= 1 || count <= 1) {
-    for (std::size_t k = 0; k < count; ++k) f(k);
-    return;
-  }
-  // One task per index (runs are long and uneven); oneTBB rethrows the first exception.
-  tbb::task_arena arena(threads);
-  arena.execute([&] {
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, 1),
-                      [&](const tbb::blocked_range<std::size_t>& range) {
-                        for (std::size_t k = range.begin(); k != range.end(); ++k) f(k);
-                      });
-  });
-}
 
 }  // namespace
 
@@ -148,67 +118,113 @@ void run_paper_bench(const PaperBenchOptions& options, std::ostream& log) {
   log << "  measured pair: " << R.name_a << " - " << R.name_b << ", in contact in "
       << R.contact_frames << " frames" << std::endl;
 
-  // 3. The measured pair, re-tessellated (same layout, finer meshes).
-  stage("re-tessellating the measured pair with " + std::to_string(P.fine_vertices) +
-        " vertices per mesh");
-  ProductionLineOptions fine_line = line;
-  fine_line.vertices = P.fine_vertices;
-  const GeneratedScene fine = shared::generate_production_line(fine_line);
-  auto fine_object = [&](const std::string& name) -> const SceneObject& {
-    for (const SceneObject& o : fine.scene.objects) {
-      if (o.name == name) return o;
-    }
-    throw Error("bench paper: object '" + name + "' is missing from the re-tessellated scene");
-  };
-  auto fine_model = [&](const SceneObject& o) {
-    for (const auto& [file, mesh] : fine.meshes) {
-      if (file == o.mesh_text) return std::make_unique<Model>(mesh, BuildOptions{}, file);
-    }
-    throw Error("bench paper: mesh '" + o.mesh_text + "' is missing from the re-tessellated scene");
-  };
-  const SceneObject& fine_a = fine_object(R.name_a);
-  const SceneObject& fine_b = fine_object(R.name_b);
-  const std::unique_ptr<Model> model_a = fine_model(fine_a);
-  const std::unique_ptr<Model> model_b = fine_model(fine_b);
-  R.fine_triangles_a = model_a->mesh().triangles.size();
-  R.fine_triangles_b = model_b->mesh().triangles.size();
-  R.fine_delta = default_delta(*model_a, *model_b);
-
-  // Frames of the pair: evenly spread over its contact frames, kept when the fine meshes touch.
+  // 3. The measured pair, re-tessellated (same layout and motion, finer meshes) until each side
+  // has at least max(features) candidate triangles at delta = 0 in every measured frame, so the
+  // largest row samples a truly n x n space.
   struct PairFrame {
     std::size_t frame = 0;
     std::vector<std::pair<std::uint32_t, std::uint32_t>> contacts;  ///< sorted
   };
-  std::vector<PairFrame> pair_frames;
-  {
-    const std::vector<std::size_t>& frames = chosen->second;
-    std::set<std::size_t> used;
-    for (std::size_t k = 0; k < P.pair_frames; ++k) {
-      const std::size_t first = (2 * k + 1) * frames.size() / (2 * P.pair_frames);
-      for (std::size_t step = 0; step < frames.size(); ++step) {
-        const std::size_t f = frames[(first + step) % frames.size()];
-        if (used.count(f)) continue;
-        used.insert(f);
-        const CollisionResult c =
-            collide(*model_a, fine_a.pose(f), *model_b, fine_b.pose(f), {0.0, true, 0});
-        if (c.contacts.empty()) continue;
-        PairFrame pf;
-        pf.frame = f;
-        for (const Contact& x : c.contacts) pf.contacts.emplace_back(x.triangle_a, x.triangle_b);
-        std::sort(pf.contacts.begin(), pf.contacts.end());
-        pf.contacts.erase(std::unique(pf.contacts.begin(), pf.contacts.end()), pf.contacts.end());
-        pair_frames.push_back(std::move(pf));
-        break;
+  struct FinePair {
+    std::unique_ptr<GeneratedScene> generated;
+    const SceneObject* a = nullptr;
+    const SceneObject* b = nullptr;
+    std::unique_ptr<Model> model_a, model_b;
+    std::vector<PairFrame> frames;
+    std::size_t min_candidates_a = 0, min_candidates_b = 0;
+  };
+  auto make_fine_pair = [&](std::size_t vertices) {
+    FinePair fp;
+    ProductionLineOptions fine_line = line;
+    fine_line.vertices = vertices;
+    fp.generated = std::make_unique<GeneratedScene>(shared::generate_production_line(fine_line));
+    auto object = [&](const std::string& name) -> const SceneObject* {
+      for (const SceneObject& o : fp.generated->scene.objects) {
+        if (o.name == name) return &o;
       }
-      if (used.size() >= frames.size()) break;
+      throw Error("bench paper: object '" + name + "' is missing from the re-tessellated scene");
+    };
+    auto model = [&](const SceneObject& o) {
+      for (const auto& [file, mesh] : fp.generated->meshes) {
+        if (file == o.mesh_text) return std::make_unique<Model>(mesh, BuildOptions{}, file);
+      }
+      throw Error("bench paper: mesh '" + o.mesh_text +
+                  "' is missing from the re-tessellated scene");
+    };
+    fp.a = object(R.name_a);
+    fp.b = object(R.name_b);
+    fp.model_a = model(*fp.a);
+    fp.model_b = model(*fp.b);
+    // Frames: the pair's contact frames with the most candidate triangles at delta = 0 (the
+    // fewer of the two sides; ties: the earlier frame), kept when the fine meshes touch. The
+    // candidates are counted before sampling, so one sample per side is enough.
+    struct Ranked {
+      std::size_t frame, candidates_a, candidates_b;
+    };
+    std::vector<Ranked> ranked;
+    for (const std::size_t f : chosen->second) {
+      SamplingOptions one;
+      one.samples_per_side = 1;
+      const FeatureSpace sp =
+          build_feature_space(*fp.model_a, fp.a->pose(f), *fp.model_b, fp.b->pose(f), one, 0);
+      ranked.push_back({f, sp.candidates_a, sp.candidates_b});
     }
+    std::stable_sort(ranked.begin(), ranked.end(), [](const Ranked& x, const Ranked& y) {
+      return std::min(x.candidates_a, x.candidates_b) > std::min(y.candidates_a, y.candidates_b);
+    });
+    fp.min_candidates_a = fp.min_candidates_b = std::numeric_limits<std::size_t>::max();
+    for (const auto& [f, candidates_a, candidates_b] : ranked) {
+      if (fp.frames.size() >= P.pair_frames) break;
+      const CollisionResult c =
+          collide(*fp.model_a, fp.a->pose(f), *fp.model_b, fp.b->pose(f), {0.0, true, 0});
+      if (c.contacts.empty()) continue;
+      PairFrame pf;
+      pf.frame = f;
+      for (const Contact& x : c.contacts) pf.contacts.emplace_back(x.triangle_a, x.triangle_b);
+      std::sort(pf.contacts.begin(), pf.contacts.end());
+      pf.contacts.erase(std::unique(pf.contacts.begin(), pf.contacts.end()), pf.contacts.end());
+      fp.frames.push_back(std::move(pf));
+      fp.min_candidates_a = std::min(fp.min_candidates_a, candidates_a);
+      fp.min_candidates_b = std::min(fp.min_candidates_b, candidates_b);
+    }
+    std::sort(fp.frames.begin(), fp.frames.end(),
+              [](const PairFrame& x, const PairFrame& y) { return x.frame < y.frame; });
+    return fp;
+  };
+  const std::uint32_t needed = *std::max_element(P.features.begin(), P.features.end());
+  std::size_t vertices = P.fine_vertices;
+  FinePair fine;
+  for (;;) {
+    stage("re-tessellating the measured pair with " + std::to_string(vertices) +
+          " vertices per mesh");
+    fine = make_fine_pair(vertices);
+    R.fine_tried.push_back(vertices);
+    if (fine.frames.empty()) {
+      throw Error("bench paper: the re-tessellated pair " + R.name_a + " - " + R.name_b +
+                  " never touches");
+    }
+    const std::size_t fewest = std::min(fine.min_candidates_a, fine.min_candidates_b);
+    log << "  candidate triangles at delta = 0 (fewest over the frames): " << fine.min_candidates_a
+        << " and " << fine.min_candidates_b << std::endl;
+    if (fewest >= needed || vertices >= P.max_fine_vertices) break;
+    // Candidates grow about linearly with the vertex count (same contact area, denser mesh).
+    const double grow =
+        1.15 * static_cast<double>(needed) / static_cast<double>(std::max<std::size_t>(1, fewest));
+    vertices =
+        std::min(P.max_fine_vertices,
+                 static_cast<std::size_t>(static_cast<double>(vertices) * std::max(grow, 1.25)));
   }
-  if (pair_frames.empty()) {
-    throw Error("bench paper: the re-tessellated pair " + R.name_a + " - " + R.name_b +
-                " never touches");
-  }
-  std::sort(pair_frames.begin(), pair_frames.end(),
-            [](const PairFrame& x, const PairFrame& y) { return x.frame < y.frame; });
+  R.fine_vertices = vertices;
+  R.fine_candidates_a = fine.min_candidates_a;
+  R.fine_candidates_b = fine.min_candidates_b;
+  const SceneObject& fine_a = *fine.a;
+  const SceneObject& fine_b = *fine.b;
+  const Model* const model_a = fine.model_a.get();
+  const Model* const model_b = fine.model_b.get();
+  R.fine_triangles_a = model_a->mesh().triangles.size();
+  R.fine_triangles_b = model_b->mesh().triangles.size();
+  R.fine_delta = default_delta(*model_a, *model_b);
+  const std::vector<PairFrame>& pair_frames = fine.frames;
   for (const PairFrame& pf : pair_frames) R.pair_frames.push_back(pf.frame);
 
   auto build_space = [&](const PairFrame& pf, std::uint32_t n, std::uint64_t seed) {
@@ -231,15 +247,19 @@ void run_paper_bench(const PaperBenchOptions& options, std::ostream& log) {
         for (std::size_t s = 0; s < P.pair_seeds; ++s) specs.push_back({n, k, s});
       }
     }
+    const auto variants = shared::maco_ablation();
     stage("Tables 1-2: " + std::to_string(specs.size()) + " runs × " +
-          std::to_string(std::size(kTableMethods)) + " searches");
+          std::to_string(std::size(kTableMethods)) + " searches (+ " +
+          std::to_string(variants.size()) + " MACO variants at " + squared(P.ablation_features) +
+          ")");
     R.runs.resize(specs.size());
     std::atomic<std::size_t> done{0};
     std::mutex log_mutex;
     parallel_for(specs.size(), options.threads, [&](std::size_t idx) {
       const Spec& sp = specs[idx];
       const PairFrame& pf = pair_frames[sp.frame_index];
-      const std::uint64_t seed = shared::derive_seed(options.seed, 1, sp.n, pf.frame, sp.seed_index);
+      const std::uint64_t seed =
+          shared::derive_seed(options.seed, 1, sp.n, pf.frame, sp.seed_index);
       PairRun run;
       run.features = sp.n;
       run.frame = pf.frame;
@@ -257,10 +277,16 @@ void run_paper_bench(const PaperBenchOptions& options, std::ostream& log) {
       for (const auto& [ta, tb] : pf.contacts) {
         run.contacts_in_space += in_a.count(ta) && in_b.count(tb) ? 1 : 0;
       }
-      run.marks.assign(std::size(kTableMethods), std::vector<MarkResult>(4));
+      const bool ablation = sp.n == P.ablation_features;
+      const std::size_t searches = std::size(kTableMethods) + (ablation ? variants.size() : 0);
+      run.marks.assign(searches, std::vector<MarkResult>(4));
       if (run.truth > 0) {
-        for (std::size_t g = 0; g < std::size(kTableMethods); ++g) {
-          SearchRequest req = paper_request(kTableMethods[g], shared::derive_seed(seed, 2, g));
+        for (std::size_t g = 0; g < searches; ++g) {
+          const bool variant = g >= std::size(kTableMethods);
+          // Every variant runs with MACO's own seed: the switches alone differ.
+          SearchRequest req = paper_request(variant ? Method::Maco : kTableMethods[g],
+                                            shared::derive_seed(seed, 2, variant ? 0 : g));
+          if (variant) req.ant.maco = variants[g - std::size(kTableMethods)].switches;
           req.restarts = std::numeric_limits<std::uint32_t>::max();
           req.progress_marks.assign(std::begin(kRates), std::end(kRates));
           req.stop.target_share = kRates[3];
@@ -316,7 +342,8 @@ void run_paper_bench(const PaperBenchOptions& options, std::ostream& log) {
     parallel_for(specs.size(), options.threads, [&](std::size_t idx) {
       const Spec& sp = specs[idx];
       const PairFrame& pf = pair_frames[sp.frame_index];
-      const std::uint64_t seed = shared::derive_seed(options.seed, 1, sp.n, pf.frame, sp.seed_index);
+      const std::uint64_t seed =
+          shared::derive_seed(options.seed, 1, sp.n, pf.frame, sp.seed_index);
       const FeatureSpace space = build_space(pf, sp.n, seed);
       const std::uint64_t t = count_colliding(space);
       if (t == 0) return;
@@ -334,118 +361,7 @@ void run_paper_bench(const PaperBenchOptions& options, std::ostream& log) {
   }
 
   // 6. Figures 4-5: every candidate pair of sampled frames, every method and budget.
-  {
-    for (std::size_t k = 0; k < P.scene_frames && k < R.frames; ++k) {
-      R.scene_frames.push_back((2 * k + 1) * R.frames / (2 * P.scene_frames));
-    }
-    R.scene_frames.erase(std::unique(R.scene_frames.begin(), R.scene_frames.end()),
-                         R.scene_frames.end());
-    struct Task {
-      std::size_t frame;
-      std::uint32_t i, j;
-      bool truth;
-    };
-    std::vector<Task> tasks;
-    for (const std::size_t f : R.scene_frames) {
-      for (const auto& [i, j] : truth[f].candidates) {
-        const bool t =
-            std::binary_search(truth[f].pairs.begin(), truth[f].pairs.end(), std::make_pair(i, j));
-        tasks.push_back({f, i, j, t});
-      }
-    }
-    stage("Figures 4-5: " + std::to_string(R.scene_frames.size()) + " frames, " +
-          std::to_string(tasks.size()) + " candidate pairs × " +
-          std::to_string(std::size(kSceneMethods)) + " searches × " +
-          std::to_string(P.budgets.size()) + " budgets");
-    struct TaskResult {
-      Tally exact, sphere;
-      std::vector<Tally> random;  ///< [method * budgets + budget]
-      std::vector<Tally> sensitivity;
-      double delta = 0;
-    };
-    std::vector<TaskResult> results(tasks.size());
-    std::atomic<std::size_t> done{0};
-    std::mutex log_mutex;
-    parallel_for(tasks.size(), options.threads, [&](std::size_t idx) {
-      const Task& t = tasks[idx];
-      const Model& a = scene.model_of(t.i);
-      const Model& b = scene.model_of(t.j);
-      const Transform pa = scene.description().objects[t.i].pose(t.frame);
-      const Transform pb = scene.description().objects[t.j].pose(t.frame);
-      TaskResult& out = results[idx];
-      {
-        CollisionResult c;
-        const auto t0 = Clock::now();
-        const bool hit = collide(a, pa, b, pb, CollisionRequest{0.0, false, 0}, c);
-        out.exact.add(hit, t.truth, ms_since(t0));
-      }
-      {
-        const auto t0 = Clock::now();
-        const bool hit = any_leaf_pair_overlaps(a, pa, b, pb, 0.0);
-        out.sphere.add(hit, t.truth, ms_since(t0));
-      }
-      const std::uint64_t seed = shared::derive_seed(options.seed, 4, t.frame, t.i, t.j);
-      SamplingOptions sampling;
-      sampling.samples_per_side = P.scene_samples;
-      const auto t0 = Clock::now();
-      const FeatureSpace space = build_feature_space(a, pa, b, pb, sampling, seed);
-      const double build_ms = ms_since(t0);
-      out.delta = space.centroid_delta;
-      auto detect = [&](const FeatureSpace& sp, Method method, std::uint64_t budget, double base_ms,
-                        std::size_t salt, Verdict verdict = Verdict::Witness) {
-        SearchRequest req = paper_request(method, shared::derive_seed(seed, 5, salt));
-        req.verdict = verdict;
-        req.restarts = std::numeric_limits<std::uint32_t>::max();
-        req.stop.first_hit = true;
-        req.stop.max_evaluations = budget;
-        const auto s0 = Clock::now();
-        const SearchResult res = search(sp, req);
-        Tally tally;
-        tally.add(res.found, t.truth, base_ms + ms_since(s0));
-        return tally;
-      };
-      for (std::size_t g = 0; g < std::size(kSceneMethods); ++g) {
-        for (std::size_t q = 0; q < P.budgets.size(); ++q) {
-          out.random.push_back(detect(space, kSceneMethods[g], P.budgets[q], build_ms, g));
-        }
-      }
-      for (const double scale : P.delta_scales) {
-        // The paper-literal verdict with a smaller centroid threshold.
-        SamplingOptions small = sampling;
-        small.centroid_delta = space.centroid_delta * scale;
-        const auto s0 = Clock::now();
-        const FeatureSpace sp = build_feature_space(a, pa, b, pb, small, seed);
-        out.sensitivity.push_back(
-            detect(sp, Method::Maco, P.budgets.back(), ms_since(s0), 0, Verdict::PaperCentroid));
-      }
-      const std::size_t d = ++done;
-      const std::lock_guard<std::mutex> lock(log_mutex);
-      if (d % std::max<std::size_t>(1, tasks.size() / 10) == 0 || d == tasks.size()) {
-        log << "  " << d << "/" << tasks.size() << " pairs done (" << num(ms_since(start) / 1000, 1)
-            << " s)" << std::endl;
-      }
-    });
-    double delta_sum = 0;
-    for (const TaskResult& x : results) {
-      R.exact.merge(x.exact);
-      R.sphere_obb.merge(x.sphere);
-      delta_sum += x.delta;
-      for (std::size_t g = 0; g < std::size(kSceneMethods); ++g) {
-        for (std::size_t q = 0; q < P.budgets.size(); ++q) {
-          R.random[{method_key(kSceneMethods[g]), P.budgets[q]}].merge(
-              x.random[g * P.budgets.size() + q]);
-        }
-      }
-      for (std::size_t k = 0; k < P.delta_scales.size(); ++k) {
-        R.sensitivity[P.delta_scales[k]].merge(x.sensitivity[k]);
-      }
-    }
-    R.feature_delta_mean = results.empty() ? 0 : delta_sum / static_cast<double>(results.size());
-    // Budgets that no pair was run with still get (empty) series.
-    for (const Method g : kSceneMethods) {
-      for (const std::uint64_t b : P.budgets) R.random[{method_key(g), b}];
-    }
-  }
+  measure_scene_figures(scene, truth, R, log, start);
 
   // 6b. Figure 5's learned baselines: trained on generated scenes, run on the same frames.
   stage(learned_available()
@@ -463,10 +379,8 @@ void run_paper_bench(const PaperBenchOptions& options, std::ostream& log) {
   // 7. Files.
   stage("writing tables, plots and report.md");
   R.seconds = ms_since(start) / 1000;
-  const std::vector<std::string> fig4_methods = {"sphere-obb", "aco", "maco"};
-  std::vector<std::string> fig5_methods = {"maco", "pso", "ga"};
-  for (const auto& [name, tally] : R.learned) fig5_methods.push_back(name);
-  fig5_methods.push_back("exact");
+  const std::vector<std::string> fig4_methods = fig4_series(R);
+  const std::vector<std::string> fig5_methods = fig5_series(R);
   write_file_atomic(out / "table1.csv", table1_csv(R));
   write_file_atomic(out / "table1.md", table1_md(R));
   write_file_atomic(out / "table2.csv", table2_csv(R));
@@ -475,6 +389,7 @@ void run_paper_bench(const PaperBenchOptions& options, std::ostream& log) {
   write_file_atomic(out / "fig4.csv", scene_csv(R, fig4_methods));
   write_file_atomic(out / "fig5.csv", scene_csv(R, fig5_methods));
   write_file_atomic(out / "delta_sensitivity.csv", delta_sensitivity_csv(R));
+  write_file_atomic(out / "ablation.csv", ablation_csv(R));
   gnuplot.plot("table1", table_plot(R, true));
   gnuplot.plot("table2", table_plot(R, false));
   gnuplot.plot("fig3", fig3_plot(R));

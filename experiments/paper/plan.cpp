@@ -36,6 +36,7 @@ Plan make_plan(bool quick) {
     p.learned_scenes = 2;
     p.learned_frames = 60;
     p.learned_epochs = 15;
+    p.ablation_features = 1000;
   } else {
     p.features = {1000, 2000, 3000, 4000, 5000};
     p.pair_frames = 4;
@@ -52,6 +53,11 @@ Plan make_plan(bool quick) {
 }
 
 std::string method_key(Method m) { return std::string(method_name(m)); }
+
+std::string series_key(const SceneSeriesSpec& spec) {
+  return method_key(spec.method) +
+         (spec.verdict == Verdict::PaperCentroid ? " (paper centroid)" : "");
+}
 
 SearchRequest paper_request(Method method, std::uint64_t seed) {
   SearchRequest r;

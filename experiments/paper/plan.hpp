@@ -18,16 +18,16 @@ inline constexpr std::uint32_t kPaperFeatures[] = {1000, 2000, 3000, 4000, 5000}
 inline constexpr double kRates[] = {0.2, 0.4, 0.6, 0.8};
 /// Table 1: duration (ms) at detection rate 20/40/60/80 %, one row per feature count.
 inline constexpr double kPaperTable1[5][4] = {{5.1, 8.4, 10.6, 13.4},
-                                       {7.0, 11.1, 12.9, 16.4},
-                                       {9.2, 13.4, 16.1, 20.8},
-                                       {12.3, 15.6, 18.5, 22.0},
-                                       {14.1, 17.2, 20.5, 27.3}};
+                                              {7.0, 11.1, 12.9, 16.4},
+                                              {9.2, 13.4, 16.1, 20.8},
+                                              {12.3, 15.6, 18.5, 22.0},
+                                              {14.1, 17.2, 20.5, 27.3}};
 /// Table 2: A/B in percent.
 inline constexpr double kPaperTable2[5][4] = {{7.3, 15.2, 22.1, 30.2},
-                                       {10.0, 21.2, 34.3, 45.6},
-                                       {13.3, 27.8, 39.6, 51.2},
-                                       {16.2, 35.9, 55.1, 62.7},
-                                       {20.0, 44.1, 65.4, 85.3}};
+                                              {10.0, 21.2, 34.3, 45.6},
+                                              {13.3, 27.8, 39.6, 51.2},
+                                              {16.2, 35.9, 55.1, 62.7},
+                                              {20.0, 44.1, 65.4, 85.3}};
 /// Figure 3 (text): the colony size with the highest detection rate per feature count.
 inline constexpr std::uint32_t kPaperBestAnts[5] = {40, 50, 50, 60, 60};
 
@@ -50,7 +50,14 @@ struct Plan {
   std::size_t fig3_seeds = 0;
   std::size_t scene_frames = 0;        ///< frames sampled for Figures 4-5
   std::vector<std::uint64_t> budgets;  ///< evaluation budgets per pair (Figures 4-5)
-  std::size_t fine_vertices = 3000;    ///< tessellation of the measured pair
+  /// First tessellation tried for the measured pair (vertices per mesh); it is refined until
+  /// each side of the pair has at least max(features) candidate triangles at delta = 0 (so the
+  /// largest row's space is truly n x n), up to max_fine_vertices.
+  std::size_t fine_vertices = 3000;
+  std::size_t max_fine_vertices = 120000;
+  /// The ablation of MACO's switches (shared/maco_ablation.hpp) runs on the Table 1 spaces of
+  /// this feature count.
+  std::uint32_t ablation_features = 2000;
   std::uint32_t scene_samples = 5000;  ///< features per side in Figures 4-5 (paper: 5000)
   std::vector<double> delta_scales;    ///< centroid-threshold sensitivity (Figure 4 note)
   // Figure 5's learned baselines (box-dnn, box-lstm): their generated training scenes.
@@ -66,7 +73,22 @@ Plan make_plan(bool quick);
 /// Tables 1-2 measure every search, MACO first; Figures 4-5 the heuristic ones.
 inline constexpr Method kTableMethods[] = {Method::Maco, Method::Aco, Method::Pso, Method::Ga,
                                            Method::Exhaustive};
-inline constexpr Method kSceneMethods[] = {Method::Maco, Method::Aco, Method::Pso, Method::Ga};
+/// Index of the exhaustive scan in kTableMethods.
+inline constexpr std::size_t kExhaustiveIndex = 4;
+
+/// One series of Figures 4-5: a search with a verdict mode (antcd/random.hpp, Verdict).
+struct SceneSeriesSpec {
+  Method method;
+  Verdict verdict;
+};
+/// Every search with the default (witness) verdict; the colonies also with the paper's centroid
+/// verdict, where the two modes differ.
+inline constexpr SceneSeriesSpec kSceneSpecs[] = {
+    {Method::Maco, Verdict::Witness},       {Method::Aco, Verdict::Witness},
+    {Method::Pso, Verdict::Witness},        {Method::Ga, Verdict::Witness},
+    {Method::Maco, Verdict::PaperCentroid}, {Method::Aco, Verdict::PaperCentroid}};
+/// The name of a series in files: "maco", …, "maco (paper centroid)".
+std::string series_key(const SceneSeriesSpec& spec);
 
 /// The method's name in files ("maco", …, antcd/method.hpp).
 std::string method_key(Method m);

@@ -32,7 +32,16 @@ std::string datablock(const std::string& name, const std::vector<std::vector<dou
   return s.str();
 }
 
-const char* kColors[] = {"#1f77b4", "#d62728", "#2ca02c", "#ff7f0e", "#9467bd", "#8c564b"};
+const char* kColors[] = {"#1f77b4", "#d62728", "#2ca02c", "#ff7f0e",
+                         "#9467bd", "#8c564b", "#e377c2", "#17becf"};
+
+constexpr const char* kCentroid = " (paper centroid)";
+
+/// "maco (paper centroid)" → "maco": a search keeps its colour in both verdict modes.
+std::string base_name(const std::string& method) {
+  const std::size_t at = method.find(kCentroid);
+  return at == std::string::npos ? method : method.substr(0, at);
+}
 
 }  // namespace
 
@@ -98,7 +107,12 @@ std::string scene_plot(const Results& r, const std::string& title,
   std::ostringstream s;
   std::map<std::string, std::string> color;
   for (std::size_t k = 0; k < methods.size(); ++k) {
-    color[methods[k]] = kColors[k % std::size(kColors)];
+    const std::string base = base_name(methods[k]);
+    if (color.count(base) == 0) {
+      const std::size_t next = color.size();
+      color[base] = kColors[next % std::size(kColors)];
+    }
+    color[methods[k]] = color[base];
     std::vector<std::vector<double>> rows;
     for (const SceneSeries& x : scene_series(r, {methods[k]})) {
       rows.push_back({x.tally.pair_ms(), x.tally.recall(), x.tally.accuracy()});
@@ -112,17 +126,19 @@ std::string scene_plot(const Results& r, const std::string& title,
        "set yrange [0:1.05]\nset key bottom right\n";
   for (int panel = 0; panel < 2; ++panel) {
     s << "set title '"
-      << (panel == 0 ? "recall: colliding pairs detected"
-                     : "accuracy: candidate pairs classified as exact does")
+      << (panel == 0 ? "recall: colliding object pairs detected"
+                     : "accuracy: candidate pairs decided as exact does (vs the paper)")
       << "'\n";
     s << "set ylabel '" << (panel == 0 ? "recall" : "accuracy") << "'\n";
     s << "plot ";
     for (std::size_t k = 0; k < methods.size(); ++k) {
-      const bool single = methods[k] == "exact" || methods[k] == "sphere-obb" ||
-                          r.learned.count(methods[k]) != 0;
+      const bool single =
+          methods[k] == "exact" || methods[k] == "sphere-obb" || r.learned.count(methods[k]) != 0;
       s << (k ? ", \\\n     " : "") << "$m" << k << " using 1:" << (panel == 0 ? 2 : 3) << " with "
-        << (single ? "points pt 7 ps 2" : "linespoints lw 2 pt 7") << " lc rgb '"
-        << color[methods[k]] << "' title '" << methods[k] << "'";
+        << (single                                ? "points pt 7 ps 2"
+            : methods[k] != base_name(methods[k]) ? "linespoints lw 2 dt 2 pt 6"
+                                                  : "linespoints lw 2 pt 7")
+        << " lc rgb '" << color[methods[k]] << "' title '" << methods[k] << "'";
     }
     if (panel == 1) {
       for (const auto& [m, v] : paper) {

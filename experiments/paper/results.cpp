@@ -14,7 +14,7 @@ TableCell table_cell(const Results& r, std::size_t method, std::uint32_t feature
   TableCell c;
   std::vector<double> ms, ev, build, sa, sb, ca, cb, a, b, ab, cov;
   for (const PairRun& run : r.runs) {
-    if (run.features != features || run.truth == 0) continue;
+    if (run.features != features || run.truth == 0 || method >= run.marks.size()) continue;
     const MarkResult& m = run.marks[method][rate];
     ++c.runs;
     ms.push_back(m.ms);
@@ -47,12 +47,38 @@ TableCell table_cell(const Results& r, std::size_t method, std::uint32_t feature
   return c;
 }
 
+double ns_per_evaluation(const Results& r, std::size_t method) {
+  std::vector<double> ns;
+  for (const PairRun& run : r.runs) {
+    if (method >= run.marks.size()) continue;
+    for (std::size_t k = run.marks[method].size(); k-- > 0;) {
+      const MarkResult& m = run.marks[method][k];
+      if (m.reached && m.evaluations > 0) {
+        ns.push_back(1e6 * m.ms / m.evaluations);
+        break;
+      }
+    }
+  }
+  return median(ns);
+}
+
 double fig3_mean(const Results& r, std::uint32_t n, std::uint32_t m) {
   std::vector<double> rate;
   for (const Fig3Run& f : r.fig3) {
     if (f.features == n && f.ants == m) rate.push_back(f.rate);
   }
   return mean(rate);
+}
+
+std::vector<std::string> fig4_series(const Results&) {
+  return {"sphere-obb", "aco", "maco", "aco (paper centroid)", "maco (paper centroid)", "exact"};
+}
+
+std::vector<std::string> fig5_series(const Results& r) {
+  std::vector<std::string> v = {"maco", "maco (paper centroid)", "pso", "ga"};
+  for (const auto& [name, tally] : r.learned) v.push_back(name);
+  v.push_back("exact");
+  return v;
 }
 
 std::vector<SceneSeries> scene_series(const Results& r, const std::vector<std::string>& methods) {

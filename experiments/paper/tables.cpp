@@ -1,6 +1,7 @@
 #include "paper/tables.hpp"
 
 #include "paper/format.hpp"
+#include "shared/maco_ablation.hpp"
 #include "shared/statistics.hpp"
 
 #include <sstream>
@@ -46,32 +47,39 @@ std::string table2_csv(const Results& r) {
   return s.str();
 }
 
+std::string space_label(const TableCell& c, std::uint32_t n) {
+  if (c.space_a == n && c.space_b == n) return std::to_string(n) + " × " + std::to_string(n);
+  return squared(n) + " asked: " + cell(c.space_a, 0) + " × " + cell(c.space_b, 0);
+}
+
 std::string table1_md(const Results& r) {
   std::ostringstream s;
   s << "### Table 1 — time for Sphere-OBB-MACO to find 20/40/60/80 % of the colliding feature "
-       "pairs (ms)\n\n";
+       "pairs (ms, evaluations in brackets)\n\n";
   s << "Ours: median over " << r.plan.pair_frames * r.plan.pair_seeds << " runs ("
     << r.plan.pair_frames << " frames × " << r.plan.pair_seeds
-    << " seeds) of the search's wall time when it had found the share; sampling is excluded (its "
-       "median is the last column). n/r: the median run did not get there within "
+    << " seeds) of the search's wall time when it had found the share, and of the fitness "
+       "evaluations it had spent; sampling is excluded (its median is the last column). n/r: the "
+       "median run did not get there within "
     << r.plan.table_cap
-    << " evaluations. Space: median size of the sampled feature space, a × b (a side with fewer "
-       "candidate triangles than requested keeps them all). Paper: its Table 1.\n\n";
-  s << "| feature pairs | space | 20 %: ours | paper | 40 %: ours | paper | 60 %: ours | paper | "
+    << " evaluations. Space: the median sampled feature space, a × b features (it reads n × n "
+       "when both sides had at least n candidate triangles). Paper: its Table 1.\n\n";
+  s << "| feature pairs (space) | 20 %: ours | paper | 40 %: ours | paper | 60 %: ours | paper | "
        "80 %: ours | paper | reached 80 % | sampling ms |\n";
-  s << "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n";
+  s << "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n";
   for (const std::uint32_t n : r.plan.features) {
     const TableCell first = table_cell(r, 0, n, 0);
-    s << "| " << squared(n) << " | " << cell(first.space_a, 0) << " × " << cell(first.space_b, 0);
+    s << "| " << space_label(first, n);
     TableCell last;
     for (std::size_t k = 0; k < 4; ++k) {
       const TableCell c = table_cell(r, 0, n, k);
-      s << " | " << cell(c.ms, 1) << " | " << cell(paper_table1(n, k), 1);
+      s << " | " << cell(c.ms, 1) << " (" << cell(c.evaluations, 0) << ") | "
+        << cell(paper_table1(n, k), 1);
       last = c;
     }
     s << " | " << ratio_text(last.reached, last.runs) << " | " << cell(last.build_ms, 1) << " |\n";
   }
-  s << "\nThe same measurement for every search of the library (median ms to find 80 %; median "
+  s << "\nEvery search of the library on the same spaces (median ms to find 80 %; median "
        "evaluations in brackets). Exhaustive is the row-by-row scan of the whole space, the "
        "reference every heuristic search must beat:\n\n";
   s << "| feature pairs |";
@@ -80,12 +88,89 @@ std::string table1_md(const Results& r) {
   for (std::size_t g = 0; g < std::size(kTableMethods); ++g) s << " ---: |";
   s << '\n';
   for (const std::uint32_t n : r.plan.features) {
-    s << "| " << squared(n) << " |";
+    s << "| " << space_label(table_cell(r, 0, n, 0), n) << " |";
     for (std::size_t g = 0; g < std::size(kTableMethods); ++g) {
       const TableCell c = table_cell(r, g, n, 3);
       s << ' ' << cell(c.ms, 1) << " (" << cell(c.evaluations, 0) << ") |";
     }
     s << '\n';
+  }
+  return s.str();
+}
+
+std::string maco_aco_md(const Results& r) {
+  std::ostringstream s;
+  s << "| feature pairs |";
+  for (std::size_t k = 0; k < 4; ++k) {
+    s << ' ' << num(100 * kRates[k], 0) << " %: maco | aco | aco / maco |";
+  }
+  s << "\n| --- |";
+  for (std::size_t k = 0; k < 4; ++k) s << " ---: | ---: | ---: |";
+  s << '\n';
+  for (const std::uint32_t n : r.plan.features) {
+    s << "| " << space_label(table_cell(r, 0, n, 0), n) << " |";
+    for (std::size_t k = 0; k < 4; ++k) {
+      const TableCell m = table_cell(r, 0, n, k);
+      const TableCell a = table_cell(r, 1, n, k);
+      s << ' ' << cell(m.evaluations, 0) << " | " << cell(a.evaluations, 0) << " | "
+        << cell(a.evaluations / m.evaluations, 2) << " |";
+    }
+    s << '\n';
+  }
+  return s.str();
+}
+
+std::string ablation_csv(const Results& r) {
+  std::ostringstream s;
+  s << "variant,features,target_rate,runs,reached,median_ms,median_evaluations,"
+       "evaluations_vs_maco\n";
+  const std::uint32_t n = r.plan.ablation_features;
+  const auto variants = shared::maco_ablation();
+  for (std::size_t v = 0; v <= variants.size(); ++v) {
+    const std::size_t g = v == 0 ? 0 : std::size(kTableMethods) + v - 1;
+    for (std::size_t k = 0; k < 4; ++k) {
+      const TableCell c = table_cell(r, g, n, k);
+      const TableCell base = table_cell(r, 0, n, k);
+      s << (v == 0 ? std::string("MACO") : std::string(variants[v - 1].label)) << ',' << n << ','
+        << num(kRates[k], 1) << ',' << c.runs << ',' << c.reached << ',' << num(c.ms, 3) << ','
+        << num(c.evaluations, 0) << ',' << num(c.evaluations / base.evaluations, 3) << '\n';
+    }
+  }
+  return s.str();
+}
+
+std::string ablation_md(const Results& r) {
+  std::ostringstream s;
+  const std::uint32_t n = r.plan.ablation_features;
+  s << "| variant at " << squared(n)
+    << " | 20 % | 40 % | 60 % | 80 % | 80 %: ms | 80 %: evaluations / MACO's | reached 80 % |\n"
+       "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n";
+  const auto variants = shared::maco_ablation();
+  const TableCell base = table_cell(r, 0, n, 3);
+  for (std::size_t v = 0; v <= variants.size(); ++v) {
+    const std::size_t g = v == 0 ? 0 : std::size(kTableMethods) + v - 1;
+    s << "| "
+      << (v == 0 ? std::string("MACO (all four, defaults)") : std::string(variants[v - 1].what));
+    for (std::size_t k = 0; k < 4; ++k) s << " | " << cell(table_cell(r, g, n, k).evaluations, 0);
+    const TableCell c = table_cell(r, g, n, 3);
+    s << " | " << cell(c.ms, 1) << " | " << cell(c.evaluations / base.evaluations, 2) << " | "
+      << ratio_text(c.reached, c.runs) << " |\n";
+  }
+  // The classic colony (all four off) for reference.
+  s << "| ACO (all four off, fixed ρ)";
+  for (std::size_t k = 0; k < 4; ++k) s << " | " << cell(table_cell(r, 1, n, k).evaluations, 0);
+  const TableCell aco = table_cell(r, 1, n, 3);
+  s << " | " << cell(aco.ms, 1) << " | " << cell(aco.evaluations / base.evaluations, 2) << " | "
+    << ratio_text(aco.reached, aco.runs) << " |\n";
+  return s.str();
+}
+
+std::string cost_md(const Results& r) {
+  std::ostringstream s;
+  s << "| search | ns / evaluation |\n| --- | ---: |\n";
+  for (std::size_t g = 0; g < std::size(kTableMethods); ++g) {
+    s << "| " << method_key(kTableMethods[g]) << " | " << cell(ns_per_evaluation(r, g), 1)
+      << " |\n";
   }
   return s.str();
 }
@@ -135,12 +220,13 @@ std::string fig3_csv(const Results& r) {
 std::string scene_csv(const Results& r, const std::vector<std::string>& methods) {
   std::ostringstream s;
   s << "method,budget_evaluations,frames,candidate_pairs,colliding_pairs,mean_pair_ms,"
-       "mean_frame_ms,recall,precision,accuracy\n";
+       "mean_frame_ms,time_vs_exact,mean_pair_evaluations,recall,precision,accuracy\n";
   const double frames = static_cast<double>(r.scene_frames.size());
   for (const SceneSeries& x : scene_series(r, methods)) {
     const Tally& t = x.tally;
     s << x.method << ',' << x.budget << ',' << r.scene_frames.size() << ',' << t.total() << ','
       << (t.tp + t.fn) << ',' << num(t.pair_ms(), 4) << ',' << num(t.ms / frames, 3) << ','
+      << num(t.ms / r.exact.ms, 3) << ',' << num(t.pair_evaluations(), 1) << ','
       << num(t.recall(), 4) << ',' << num(t.precision(), 4) << ',' << num(t.accuracy(), 4) << '\n';
   }
   return s.str();
@@ -148,13 +234,16 @@ std::string scene_csv(const Results& r, const std::vector<std::string>& methods)
 
 std::string scene_md(const Results& r, const std::vector<std::string>& methods) {
   std::ostringstream s;
-  s << "| method | budget (evaluations / pair) | mean ms / pair | recall | precision | accuracy "
-       "|\n| --- | ---: | ---: | ---: | ---: | ---: |\n";
+  s << "| method | budget (evaluations / pair) | mean ms / pair | × exact's time | mean "
+       "evaluations / pair | recall | precision | accuracy |\n"
+       "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n";
   for (const SceneSeries& x : scene_series(r, methods)) {
     const Tally& t = x.tally;
-    s << "| " << x.method << " | " << (x.budget == 0 ? std::string("-") : std::to_string(x.budget))
-      << " | " << num(t.pair_ms(), 3) << " | " << num(t.recall(), 3) << " | "
-      << num(t.precision(), 3) << " | " << num(t.accuracy(), 3) << " |\n";
+    const bool random = x.budget != 0;
+    s << "| " << x.method << " | " << (random ? std::to_string(x.budget) : std::string("-"))
+      << " | " << num(t.pair_ms(), 4) << " | " << num(t.ms / r.exact.ms, 2) << " | "
+      << (random ? num(t.pair_evaluations(), 0) : std::string("-")) << " | " << num(t.recall(), 3)
+      << " | " << num(t.precision(), 3) << " | " << num(t.accuracy(), 3) << " |\n";
   }
   return s.str();
 }
@@ -194,20 +283,19 @@ std::string delta_sensitivity_csv(const Results& r) {
   const Plan& p = r.plan;
   std::ostringstream s;
   s << "method,delta_scale,budget_evaluations,mean_pair_ms,recall,precision,accuracy\n";
-  const Tally& base = r.random.at({"maco", p.budgets.back()});
+  const Tally& base = r.random.at({"maco (paper centroid)", p.budgets.back()});
   s << "maco,1," << p.budgets.back() << ',' << num(base.pair_ms(), 4) << ','
     << num(base.recall(), 4) << ',' << num(base.precision(), 4) << ',' << num(base.accuracy(), 4)
     << '\n';
   for (const auto& [scale, t] : r.sensitivity) {
     s << "maco," << num(scale, 2) << ',' << p.budgets.back() << ',' << num(t.pair_ms(), 4) << ','
-      << num(t.recall(), 4) << ',' << num(t.precision(), 4) << ',' << num(t.accuracy(), 4)
-      << '\n';
+      << num(t.recall(), 4) << ',' << num(t.precision(), 4) << ',' << num(t.accuracy(), 4) << '\n';
   }
   return s.str();
 }
 
 std::string delta_sensitivity_md(const Results& r) {
-  const Tally& top = r.random.at({"maco", r.plan.budgets.back()});
+  const Tally& top = r.random.at({"maco (paper centroid)", r.plan.budgets.back()});
   std::ostringstream s;
   s << "| δc scale | mean ms / pair | recall | precision | accuracy |\n"
        "| ---: | ---: | ---: | ---: | ---: |\n";

@@ -1,6 +1,6 @@
 // `antcd bench paper --quick`: every promised file is written, well formed and in range.
-#include "paper/learned.hpp"
 #include "paper/paper_bench.hpp"
+#include "paper/learned.hpp"
 
 #include <gtest/gtest.h>
 #include <antcd/io.hpp>
@@ -73,9 +73,10 @@ void expect_fraction(const std::map<std::string, std::string>& row, const std::s
 }
 
 void check_files(const fs::path& out, const std::string& log) {
-  for (const char* name : {"table1.md", "table1.csv", "table1.png", "table2.md", "table2.csv",
-                           "table2.png", "fig3.csv", "fig3.png", "fig4.csv", "fig4.png", "fig5.csv",
-                           "fig5.png", "report.md", "delta_sensitivity.csv", "scene/scene.json"}) {
+  for (const char* name :
+       {"table1.md", "table1.csv", "table1.png", "table2.md", "table2.csv", "table2.png",
+        "fig3.csv", "fig3.png", "fig4.csv", "fig4.png", "fig5.csv", "fig5.png", "report.md",
+        "delta_sensitivity.csv", "ablation.csv", "scene/scene.json"}) {
     const fs::path path = out / name;
     ASSERT_TRUE(fs::is_regular_file(path)) << path;
     EXPECT_GT(fs::file_size(path), 0u) << path;
@@ -108,9 +109,12 @@ void check_table1(const fs::path& out) {
     EXPECT_TRUE(rate == 0.2 || rate == 0.4 || rate == 0.6 || rate == 0.8) << rate;
     const double features = value(row, "features");
     EXPECT_TRUE(features == 1000 || features == 2000) << features;
-    EXPECT_GT(value(row, "space_a"), 0);
-    EXPECT_LE(value(row, "space_a"), features);
-    EXPECT_LE(value(row, "space_b"), features);
+    // The measured pair is re-tessellated until both sides have n candidate triangles: every
+    // row's space is truly n x n.
+    EXPECT_EQ(value(row, "space_a"), features);
+    EXPECT_EQ(value(row, "space_b"), features);
+    EXPECT_GE(value(row, "candidates_a"), features);
+    EXPECT_GE(value(row, "candidates_b"), features);
     EXPECT_GT(value(row, "runs"), 0);
     EXPECT_LE(value(row, "reached"), value(row, "runs"));
     EXPECT_GT(value(row, "median_build_ms"), 0);
@@ -155,6 +159,28 @@ void check_table2(const fs::path& out) {
   }
 }
 
+void check_ablation(const fs::path& out) {
+  const Csv csv = read_csv(out / "ablation.csv");
+  EXPECT_EQ(csv.header,
+            "variant,features,target_rate,runs,reached,median_ms,median_evaluations,"
+            "evaluations_vs_maco");
+  ASSERT_EQ(csv.rows.size(), 44u);  // MACO + 10 variants, 4 rates each
+  std::map<std::string, int> seen;
+  for (const auto& row : csv.rows) {
+    ++seen[row.at("variant")];
+    EXPECT_EQ(value(row, "features"), 1000);  // the quick plan's ablation size
+    EXPECT_GT(value(row, "runs"), 0);
+    EXPECT_LE(value(row, "reached"), value(row, "runs"));
+    if (row.at("variant") == "MACO" && !empty_field(row, "evaluations_vs_maco")) {
+      EXPECT_EQ(value(row, "evaluations_vs_maco"), 1.0);
+    }
+  }
+  for (const char* v : {"MACO", "MACO-without-1-exponents", "MACO-only-4-reward",
+                        "MACO-corridor-eq12", "MACO-greedy-route"}) {
+    EXPECT_EQ(seen[v], 4) << v;
+  }
+}
+
 void check_fig3(const fs::path& out) {
   const Csv csv = read_csv(out / "fig3.csv");
   EXPECT_EQ(csv.header, "features,ants,runs,mean_rate,median_rate,mean_ms,mean_evaluations");
@@ -173,7 +199,7 @@ void check_scene_csv(const fs::path& path, std::size_t rows,
   const Csv csv = read_csv(path);
   EXPECT_EQ(csv.header,
             "method,budget_evaluations,frames,candidate_pairs,colliding_pairs,mean_pair_ms,"
-            "mean_frame_ms,recall,precision,accuracy");
+            "mean_frame_ms,time_vs_exact,mean_pair_evaluations,recall,precision,accuracy");
   ASSERT_EQ(csv.rows.size(), rows) << path;
   std::map<std::string, int> seen;
   for (const auto& row : csv.rows) {
@@ -192,16 +218,27 @@ void check_scene_csv(const fs::path& path, std::size_t rows,
     if (row.at("method") == "sphere-obb") {
       EXPECT_EQ(value(row, "recall"), 1.0);
     }
+    // The witness verdict: every reported pair is a confirmed contact.
+    const std::string& m = row.at("method");
+    if (m == "maco" || m == "aco" || m == "pso" || m == "ga") {
+      EXPECT_EQ(value(row, "precision"), 1.0) << m;
+      EXPECT_GT(value(row, "mean_pair_evaluations"), 0) << m;
+    }
+    EXPECT_GT(value(row, "time_vs_exact"), 0);
   }
   for (const std::string& m : methods) EXPECT_GT(seen[m], 0) << m;
 }
 
 void check_fig4_fig5(const fs::path& out) {
-  check_scene_csv(out / "fig4.csv", 7, {"sphere-obb", "aco", "maco"});    // 1 + 2 x 3 budgets
+  // sphere-obb + exact + (aco, maco) x (witness, paper centroid) x 3 budgets
+  check_scene_csv(
+      out / "fig4.csv", 14,
+      {"sphere-obb", "aco", "maco", "aco (paper centroid)", "maco (paper centroid)", "exact"});
   if (paper::learned_available()) {  // + box-dnn and box-lstm, one row each
-    check_scene_csv(out / "fig5.csv", 12, {"maco", "pso", "ga", "box-dnn", "box-lstm", "exact"});
-  } else {
-    check_scene_csv(out / "fig5.csv", 10, {"maco", "pso", "ga", "exact"});  // 3 x 3 budgets + 1
+    check_scene_csv(out / "fig5.csv", 15,
+                    {"maco", "maco (paper centroid)", "pso", "ga", "box-dnn", "box-lstm", "exact"});
+  } else {  // 4 series x 3 budgets + exact
+    check_scene_csv(out / "fig5.csv", 13, {"maco", "maco (paper centroid)", "pso", "ga", "exact"});
   }
 }
 
@@ -209,14 +246,25 @@ void check_report(const fs::path& out) {
   const std::string report = read_file(out / "report.md");
   for (const char* text :
        {"Table 1", "Table 2", "Figure 3", "Figure 4", "Figure 5", "table1.png", "table2.png",
-        "fig3.png", "fig4.png", "fig5.png", "paper", "LSTM", "quick"}) {
+        "fig3.png", "fig4.png", "fig5.png", "paper", "LSTM", "quick",
+        // the definitions, quoted; the threads; the new measurements
+        "\"Detection Rate 20%\"", "sphere-OBB) could only reach 0.65", "Threads: 2", "--threads 1",
+        "ns / evaluation", "aco / maco", "Ablation of MACO's switches",
+        "without (1) adaptive exponents", "maco (paper centroid)", "× exact's time", "1000 × 1000",
+        "2000 × 2000"}) {
     EXPECT_NE(report.find(text), std::string::npos) << text;
   }
   // The learned baselines' training is reported apart from their detection.
   EXPECT_EQ(report.find("| box-dnn | 2 × 60 |") != std::string::npos, paper::learned_available());
   const std::string table1 = read_file(out / "table1.md");
-  EXPECT_NE(table1.find("1000²"), std::string::npos);
-  EXPECT_NE(table1.find("2000²"), std::string::npos);
+  EXPECT_NE(table1.find("| 1000 × 1000 |"), std::string::npos);
+  EXPECT_NE(table1.find("| 2000 × 2000 |"), std::string::npos);
+  EXPECT_EQ(table1.find("asked"), std::string::npos) << "a quick row is not n x n";
+  // No stale claims from the method as it was.
+  for (const char* stale : {"preliminary detection at the centroid threshold",
+                            "report many pairs that do not touch", "507/197"}) {
+    EXPECT_EQ(report.find(stale), std::string::npos) << stale;
+  }
   const std::string table2 = read_file(out / "table2.md");
   EXPECT_NE(table2.find("A/B"), std::string::npos);
 }
@@ -247,6 +295,10 @@ TEST(PaperBench, QuickModeWritesEveryFileWellFormed) {
   {
     SCOPED_TRACE("table2.csv");
     check_table2(out);
+  }
+  {
+    SCOPED_TRACE("ablation.csv");
+    check_ablation(out);
   }
   {
     SCOPED_TRACE("fig3.csv");
