@@ -1,7 +1,9 @@
 // antcd/bvh.hpp — the hybrid Sphere-OBB bounding-volume hierarchy (paper, section 2).
 //
-// A Model is a mesh plus its hierarchy, built once and immutable afterwards. Every member function
-// is const and a Model may be queried from any number of threads at once.
+// A Model is a mesh plus its hierarchy. Every query is const and a Model may be queried from any
+// number of threads at once. The one mutation is refit() (moved vertices, same triangles): it must
+// not run while any query reads the same Model (a Model shared through a World or between threads
+// is to be refitted only when no query is in flight, or replaced by a fresh one).
 //
 // Tree layout: nodes in depth-first order in one flat array. Node 0 is the root. For an internal
 // node at index i the left child is i + 1 and the right child is `right`. A leaf owns the
@@ -13,10 +15,16 @@
 #include <antcd/mesh.hpp>
 
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <vector>
 
 namespace antcd {
+
+namespace detail {
+struct ModelCache;
+struct ModelCacheAccess;
+}  // namespace detail
 
 struct BuildOptions {
   /// Largest number of triangles in a leaf (>= 1).
@@ -70,7 +78,19 @@ class ANTCD_API Model {
   /// it bounds a solid, and volume queries (CollisionRequest::volume) apply to it.
   [[nodiscard]] bool is_closed() const { return closed_; }
 
+  /// New positions for the mesh's vertices (same count and order, same triangles: a deforming
+  /// mesh), model frame. Keeps the tree's topology and recomputes its volumes bottom-up in O(n):
+  /// every box keeps its axes and gets the extents that hold its triangles (a leaf: from its
+  /// vertices; an internal node: from its children's boxes, so possibly looser than a fresh fit);
+  /// spheres are recomputed likewise. Every query answers afterwards exactly as on a Model built
+  /// from the moved mesh (only traversal costs may differ). A mutation: not concurrent with queries
+  /// on this Model. Throws ArgumentError (naming the model) for a wrong vertex count, a non-finite
+  /// vertex (naming its index), or a triangle of zero area at build time that has an area now (it
+  /// is not in the tree: build a new Model). On a throw the Model is unchanged.
+  void refit(std::span<const Vec3> new_vertices);
+
  private:
+  friend struct detail::ModelCacheAccess;
   Mesh mesh_;
   std::string source_;
   BuildOptions options_;
@@ -79,6 +99,9 @@ class ANTCD_API Model {
   std::vector<Vec3> leaf_vertices_;
   BvhStats stats_;
   bool closed_ = false;
+  /// Data derived on first use by point queries (antcd/points.hpp), built once under a once-flag
+  /// so that concurrent const queries stay safe.
+  std::shared_ptr<detail::ModelCache> cache_;
 };
 
 /// Counters of one traversal, for tests and tuning.

@@ -3,6 +3,7 @@
 // then its triangles are cut in two (split.cpp) until at most leaf_size remain.
 #include <antcd/bvh.hpp>
 
+#include "bvh/model_cache.hpp"
 #include "bvh/split.hpp"
 #include "geometry/obb_fit.hpp"
 
@@ -72,7 +73,10 @@ class Builder {
 }  // namespace
 
 Model::Model(Mesh mesh, const BuildOptions& options, std::string source)
-    : mesh_(std::move(mesh)), source_(std::move(source)), options_(options) {
+    : mesh_(std::move(mesh)),
+      source_(std::move(source)),
+      options_(options),
+      cache_(std::make_shared<detail::ModelCache>()) {
   const auto start = std::chrono::steady_clock::now();
   if (options_.leaf_size == 0) {
     throw antcd::ArgumentError(source_ + ": leaf size must be at least 1");

@@ -1,0 +1,21 @@
+// Private: per-model data that some queries derive on first use (built once, then read-only).
+#pragma once
+
+#include <antcd/bvh.hpp>
+
+#include <memory>
+#include <mutex>
+
+namespace antcd::detail {
+
+/// Type-erased so that the hierarchy layer does not depend on the layers that fill it.
+struct ModelCache {
+  std::once_flag point_index_once;
+  std::shared_ptr<const void> point_index;
+};
+
+struct ModelCacheAccess {
+  static ModelCache& cache(const Model& model) { return *model.cache_; }
+};
+
+}  // namespace antcd::detail

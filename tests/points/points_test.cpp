@@ -1,0 +1,204 @@
+// Point queries: contains() and signed_distance() against brute force over all triangles (distance)
+// and the brute-force winding number (inside/outside), on generated solids at random poses.
+#include <antcd/points.hpp>
+
+#include <gtest/gtest.h>
+
+#include <tbb/global_control.h>
+
+#include <cmath>
+#include <numbers>
+#include <random>
+#include <vector>
+
+#include "support/test_support.hpp"
+
+namespace antcd {
+namespace {
+
+/// Closest distance over every non-degenerate triangle of the posed mesh (world frame).
+Scalar brute_distance(const Mesh& mesh, const Transform& pose, const Vec3& p) {
+  Scalar best = std::numeric_limits<Scalar>::infinity();
+  for (const auto& t : mesh.triangles) {
+    const Vec3 a = pose.apply(mesh.vertices[t[0]]);
+    const Vec3 b = pose.apply(mesh.vertices[t[1]]);
+    const Vec3 c = pose.apply(mesh.vertices[t[2]]);
+    if (geometry::is_degenerate_triangle(a, b, c)) continue;
+    best = std::min(best, std::sqrt(geometry::point_triangle_distance_squared(p, a, b, c)));
+  }
+  return best;
+}
+
+/// Winding number over every triangle of the posed mesh, no hierarchy (world frame).
+bool brute_inside(const Mesh& mesh, const Transform& pose, const Vec3& p) {
+  Scalar total = 0;
+  for (const auto& t : mesh.triangles) {
+    total += geometry::solid_angle(p, pose.apply(mesh.vertices[t[0]]),
+                                   pose.apply(mesh.vertices[t[1]]), pose.apply(mesh.vertices[t[2]]));
+  }
+  return std::abs(total) > 2 * std::numbers::pi;
+}
+
+std::vector<Vec3> random_points(std::mt19937_64& rng, const Aabb& box, Scalar margin, int n) {
+  std::vector<Vec3> points;
+  std::uniform_real_distribution<Scalar> u(0, 1);
+  const Vec3 lo = box.min - Vec3::Constant(margin);
+  const Vec3 size = box.max - box.min + Vec3::Constant(2 * margin);
+  for (int i = 0; i < n; ++i) {
+    points.push_back(lo + Vec3(u(rng), u(rng), u(rng)).cwiseProduct(size));
+  }
+  return points;
+}
+
+std::vector<Mesh> solids() {
+  return {make_torus(1.0, 0.35, 40, 20), make_box(Vec3(0.8, 0.5, 0.3), 3),
+          make_sphere(0.7, 24, 12),
+          merge({make_cylinder(0.3, 1.0, 16), transformed(make_sphere(0.4, 12, 6),
+                                                          Transform::from_axis_angle(
+                                                              Vec3::UnitY(), 0, Vec3(1.5, 0, 0)))}),
+          // Overlapping pieces (winding number 2 where they overlap): signs from the winding number.
+          merge({make_box(Vec3(0.5, 0.5, 0.5), 2),
+                 transformed(make_sphere(0.6, 20, 10),
+                             Transform::from_axis_angle(Vec3::UnitZ(), 0, Vec3(0.6, 0.2, 0)))})};
+}
+
+TEST(Points, MatchBruteForceDistanceAndWindingNumberAtRandomPoses) {
+  std::mt19937_64 rng(11);
+  for (const Mesh& mesh : solids()) {
+    const Model model(mesh, {}, "solid");
+    ASSERT_TRUE(model.is_closed());
+    const Transform pose = test::random_pose(rng, 2.0);
+    const Mesh posed = transformed(mesh, pose);
+    Aabb box = posed.bounds();
+    const std::vector<Vec3> points = random_points(rng, box, 0.3, 400);
+    const std::vector<std::uint8_t> in = contains(model, pose, points);
+    const SignedDistanceResult sd = signed_distance(model, pose, points);
+    ASSERT_TRUE(sd.is_signed);
+    ASSERT_EQ(in.size(), points.size());
+    ASSERT_EQ(sd.points.size(), points.size());
+    int inside = 0;
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      const bool truth = brute_inside(mesh, pose, points[i]);
+      EXPECT_EQ(in[i] != 0, truth) << "point " << i;
+      const PointDistance& d = sd.points[i];
+      const Scalar brute = brute_distance(mesh, pose, points[i]);
+      EXPECT_NEAR(std::abs(d.distance), brute, 1e-12) << "point " << i;
+      EXPECT_EQ(d.distance < 0, truth) << "point " << i;
+      // The closest point lies on the reported triangle and at the reported distance.
+      const auto& t = mesh.triangles[d.triangle];
+      const Vec3 a = pose.apply(mesh.vertices[t[0]]), b = pose.apply(mesh.vertices[t[1]]),
+                 c = pose.apply(mesh.vertices[t[2]]);
+      EXPECT_LT(std::sqrt(geometry::point_triangle_distance_squared(d.closest, a, b, c)), 1e-12);
+      EXPECT_NEAR((points[i] - d.closest).norm(), std::abs(d.distance), 1e-12);
+      inside += truth ? 1 : 0;
+    }
+    EXPECT_GT(inside, 5);
+    EXPECT_LT(inside, 395);
+  }
+}
+
+TEST(Points, VerticesEdgesAndNearSurfacePointsGetTheRightSign) {
+  // Points just off vertices and edge midpoints, along and against the outward direction: the
+  // pseudo-normal cases (closest feature an edge or a vertex).
+  const Mesh mesh = make_box(Vec3(1, 1, 1), 1);
+  const Model model(mesh, {}, "box");
+  std::vector<Vec3> points;
+  std::vector<bool> expect_inside;
+  for (const Vec3& v : mesh.vertices) {
+    points.push_back(v * 1.01);
+    expect_inside.push_back(false);
+    points.push_back(v * 0.99);
+    expect_inside.push_back(true);
+  }
+  for (const auto& t : mesh.triangles) {
+    for (int i = 0; i < 3; ++i) {
+      const Vec3 mid = 0.5 * (mesh.vertices[t[i]] + mesh.vertices[t[(i + 1) % 3]]);
+      points.push_back(mid * 1.001);
+      expect_inside.push_back(false);
+      points.push_back(mid * 0.999);
+      expect_inside.push_back(true);
+    }
+  }
+  const std::vector<std::uint8_t> in = contains(model, Transform::identity(), points);
+  const SignedDistanceResult sd = signed_distance(model, Transform::identity(), points);
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    EXPECT_EQ(in[i] != 0, expect_inside[i]) << "point " << i;
+    EXPECT_EQ(sd.points[i].distance < 0, expect_inside[i]) << "point " << i;
+  }
+  // On the surface: distance 0.
+  const SignedDistanceResult on =
+      signed_distance(model, Transform::identity(), std::vector<Vec3>{Vec3(1, 0.2, 0.3)});
+  EXPECT_EQ(on.points[0].distance, 0);
+}
+
+TEST(Points, InwardFacingSolidCountsAsInsideToo) {
+  Mesh flipped = make_sphere(1.0, 16, 8);
+  for (auto& t : flipped.triangles) std::swap(t[1], t[2]);
+  const Model model(flipped, {}, "flipped");
+  ASSERT_TRUE(model.is_closed());
+  const std::vector<Vec3> points{Vec3(0, 0, 0), Vec3(0.5, 0.1, 0), Vec3(2, 0, 0), Vec3(0, 1.5, 0)};
+  EXPECT_EQ(contains(model, Transform::identity(), points),
+            (std::vector<std::uint8_t>{1, 1, 0, 0}));
+  const SignedDistanceResult sd = signed_distance(model, Transform::identity(), points);
+  EXPECT_LT(sd.points[0].distance, 0);
+  EXPECT_LT(sd.points[1].distance, 0);
+  EXPECT_GT(sd.points[2].distance, 0);
+  EXPECT_GT(sd.points[3].distance, 0);
+}
+
+TEST(Points, OpenModelGivesUnsignedDistancesAndNoContainment) {
+  Mesh open = make_box(Vec3(1, 1, 1), 1);
+  open.triangles.pop_back();
+  const Model model(open, {}, "open box");
+  ASSERT_FALSE(model.is_closed());
+  const std::vector<Vec3> points{Vec3(0, 0, 0), Vec3(3, 0, 0)};
+  const SignedDistanceResult sd = signed_distance(model, Transform::identity(), points);
+  EXPECT_FALSE(sd.is_signed);
+  EXPECT_NEAR(sd.points[0].distance, 1.0, 1e-15);
+  EXPECT_NEAR(sd.points[1].distance, 2.0, 1e-15);
+  try {
+    (void)contains(model, Transform::identity(), points);
+    FAIL() << "contains on an open model must throw";
+  } catch (const ArgumentError& e) {
+    EXPECT_NE(std::string(e.what()).find("open box"), std::string::npos) << e.what();
+  }
+}
+
+TEST(Points, NonFinitePointIsAnArgumentErrorNamingIt) {
+  const Model model(make_sphere(1.0, 8, 4), {}, "sphere");
+  const std::vector<Vec3> points{Vec3(0, 0, 0), Vec3(std::nan(""), 0, 0)};
+  for (int which = 0; which < 2; ++which) {
+    try {
+      if (which == 0) (void)contains(model, Transform::identity(), points);
+      else (void)signed_distance(model, Transform::identity(), points);
+      FAIL() << "must throw";
+    } catch (const ArgumentError& e) {
+      EXPECT_NE(std::string(e.what()).find("point 1"), std::string::npos) << e.what();
+    }
+  }
+  EXPECT_TRUE(contains(model, Transform::identity(), std::vector<Vec3>{}).empty());
+}
+
+TEST(Points, SameAnswersAtOneThreadAndConcurrently) {
+  const Model model(make_torus(1.0, 0.35, 40, 20), {}, "torus");
+  std::mt19937_64 rng(3);
+  const std::vector<Vec3> points = random_points(rng, model.mesh().bounds(), 0.2, 3000);
+  SignedDistanceResult one;
+  std::vector<std::uint8_t> in_one;
+  {
+    tbb::global_control single(tbb::global_control::max_allowed_parallelism, 1);
+    one = signed_distance(model, Transform::identity(), points);
+    in_one = contains(model, Transform::identity(), points);
+  }
+  const Model fresh(make_torus(1.0, 0.35, 40, 20), {}, "torus");  // first use from many threads
+  const SignedDistanceResult many = signed_distance(fresh, Transform::identity(), points);
+  EXPECT_EQ(contains(fresh, Transform::identity(), points), in_one);
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    ASSERT_EQ(one.points[i].distance, many.points[i].distance);
+    ASSERT_EQ(one.points[i].triangle, many.points[i].triangle);
+    ASSERT_EQ(one.points[i].closest, many.points[i].closest);
+  }
+}
+
+}  // namespace
+}  // namespace antcd
