@@ -179,7 +179,8 @@ TEST(Points, NonFinitePointIsAnArgumentErrorNamingIt) {
   EXPECT_TRUE(contains(model, Transform::identity(), std::vector<Vec3>{}).empty());
 }
 
-TEST(Points, SameAnswersAtOneThreadAndConcurrently) {
+// Named Concurrency.* so that scripts/sanitize.sh runs it under ThreadSanitizer.
+TEST(Concurrency, PointQueriesMatchOneThreadAndBuildFirstUseDataOnce) {
   const Model model(make_torus(1.0, 0.35, 40, 20), {}, "torus");
   std::mt19937_64 rng(3);
   const std::vector<Vec3> points = random_points(rng, model.mesh().bounds(), 0.2, 3000);
