@@ -16,6 +16,7 @@
 
 #include <tbb/global_control.h>
 
+#include <cmath>
 #include <random>
 #include <vector>
 
@@ -112,6 +113,39 @@ void BM_CgalInside(benchmark::State& state) {
   state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * kPoints));
 }
 
+// Refit against rebuild for a deforming mesh (the same 100k-triangle torus, vertices moved).
+std::vector<antcd::Vec3> moved_vertices(const antcd::Mesh& mesh) {
+  std::vector<antcd::Vec3> out;
+  for (const antcd::Vec3& v : mesh.vertices) {
+    out.emplace_back(v.x() * (1 + 0.1 * std::sin(3 * v.z())), v.y(), v.z() + 0.05 * v.x());
+  }
+  return out;
+}
+
+void BM_Refit(benchmark::State& state) {
+  Fixture& f = fixture();
+  antcd::Model model(f.mesh, {}, "torus");
+  const std::vector<antcd::Vec3> moved = moved_vertices(f.mesh);
+  bool flip = false;
+  for (auto _ : state) {
+    model.refit(flip ? f.mesh.vertices : moved);
+    flip = !flip;
+    benchmark::DoNotOptimize(model.root());
+  }
+}
+
+void BM_Rebuild(benchmark::State& state) {
+  Fixture& f = fixture();
+  antcd::Mesh moved = f.mesh;
+  moved.vertices = moved_vertices(f.mesh);
+  for (auto _ : state) {
+    const antcd::Model model(moved, {}, "torus");
+    benchmark::DoNotOptimize(model.root());
+  }
+}
+
+BENCHMARK(BM_Refit)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Rebuild)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_AntcdSignedDistance)->Unit(benchmark::kMillisecond)->MinTime(1.0);
 BENCHMARK(BM_CgalSignedDistance)->Unit(benchmark::kMillisecond)->MinTime(1.0);
 BENCHMARK(BM_AntcdContains)->Unit(benchmark::kMillisecond)->MinTime(1.0);

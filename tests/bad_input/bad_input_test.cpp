@@ -766,6 +766,26 @@ class Cli : public ::testing::Test {
   fs::path work_;
 };
 
+TEST_F(Cli, PointsBadInputs) {
+  write_file(work_ / "points.csv", "x,y,z\n0.1,0.1,0.1\n5,5,5\n");
+  write_file(work_ / "short.csv", "0,0,0\n1,2\n");
+  write_file(work_ / "nan.csv", "0,0,0\nnan,0,0\n");
+  write_file(work_ / "empty.csv", "# nothing\n");
+  const CliRun ok = run_cli({"points", "tet.obj", "points.csv"}, work_);
+  EXPECT_EQ(ok.exit_code, 0) << ok.err;
+  EXPECT_EQ(std::count(ok.out.begin(), ok.out.end(), '\n'), 3) << ok.out;  // header + 2 points
+  const CliRun random = run_cli({"points", "tet.obj", "--random", "7", "--json"}, work_);
+  EXPECT_EQ(random.exit_code, 0) << random.err;
+  expect_usage_failure({"points", "tet.obj", "short.csv"}, "short.csv:2");
+  expect_usage_failure({"points", "tet.obj", "nan.csv"}, "nan.csv:2");
+  expect_usage_failure({"points", "tet.obj", "empty.csv"}, "empty.csv");
+  expect_usage_failure({"points", "tet.obj", "missing.csv"}, "missing.csv");
+  expect_usage_failure({"points", "tet.obj"}, "--random");
+  expect_usage_failure({"points", "tet.obj", "points.csv", "--random", "3"}, "--random");
+  expect_usage_failure({"points", "tet.obj", "--random", "3", "--pose", "1,2"}, "--pose");
+  expect_usage_failure({"points", "nan.obj", "--random", "3"}, "nan.obj");
+}
+
 TEST_F(Cli, ValidInputsSucceed) {
   // The fixture's inputs are good: each failure below is due to the one bad value.
   const CliRun info = run_cli({"info", "tet.obj"}, work_);
