@@ -176,8 +176,8 @@ int run_demo(const DemoOptions& o) {
       o.maco_step == 1 ? "" : " (every --maco-step-th)", static_cast<unsigned long long>(evaluations));
   if (ab_frames > 0) {
     std::printf(
-        "maco A/B (share of the sampled feature spaces' colliding centroid pairs found in N\n"
-        "iterations, %zu evenly spaced frames): %.4f (%llu of %llu)\n",
+        "maco A/B (share of the sampled feature spaces' colliding feature pairs, each confirmed by\n"
+        "the exact test, found in N iterations, %zu evenly spaced frames): %.4f (%llu of %llu)\n",
         ab_frames,
         truth_features > 0 ? static_cast<double>(hits) / static_cast<double>(truth_features) : 1.0,
         static_cast<unsigned long long>(hits), static_cast<unsigned long long>(truth_features));
