@@ -7,22 +7,18 @@
 #include <bit>
 #include <cstdint>
 
-/// On x86-64 with GCC or Clang, a function marked ANTCD_VECTOR_CLONES is compiled twice, for the
+/// With GCC on x86-64 Linux, a function marked ANTCD_VECTOR_CLONES is compiled twice, for the
 /// baseline (SSE2) and for AVX2, and the loader picks the clone the CPU runs (ifunc). Only for
 /// loops the compiler vectorises; -ffp-contract=off keeps both clones' arithmetic identical (no
 /// FMA), so results do not depend on the CPU.
 /// Not under ThreadSanitizer: the loader runs ifunc resolvers while relocating, before the TSan
 /// runtime is initialised, and GCC instruments the generated resolver, so every executable linking
 /// the library would crash at startup (seen as a SIGSEGV in elf_machine_lazy_rel).
-#if defined(__SANITIZE_THREAD__)
-#define ANTCD_NO_CLONES_UNDER_SANITIZER 1
-#elif defined(__has_feature)
-#if __has_feature(thread_sanitizer)
-#define ANTCD_NO_CLONES_UNDER_SANITIZER 1
-#endif
-#endif
-#if defined(__x86_64__) && defined(__GNUC__) && defined(__linux__) && !defined(ANTCD_NO_CLONES) && \
-    !defined(ANTCD_NO_CLONES_UNDER_SANITIZER)
+/// Not with Clang either: Clang 14 rejects the attribute on a member function defined after its
+/// declaration ("cannot become a multiversioned function after first usage"); Clang builds get the
+/// baseline.
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && defined(__linux__) && \
+    !defined(ANTCD_NO_CLONES) && !defined(__SANITIZE_THREAD__)
 #define ANTCD_VECTOR_CLONES __attribute__((target_clones("avx2", "default")))
 #else
 #define ANTCD_VECTOR_CLONES
