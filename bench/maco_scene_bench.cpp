@@ -4,11 +4,13 @@
 // the same layout and motion with real third-party meshes from Debian's assimp-testmodels in
 // place of the generated equipment (skipped when /usr/share/assimp/models is absent).
 //
-// Each benchmark iteration runs every frame of the scene twice, interleaved: the exact method on
-// one copy of the scene, then MACO (witness verdict, the library defaults, one SceneMemory carried
-// from frame to frame) on another copy (two copies, so that neither finds the other's poses
-// already in its world). Interleaving puts both under the same machine load, so the ratio means
-// something on a shared machine; the absolute times do not.
+// Each benchmark iteration runs every frame of the scene three times, interleaved: the exact
+// method on one copy of the scene, then MACO (witness verdict, the library defaults, one
+// SceneMemory carried from frame to frame) on another copy, then MACO with
+// scan_covered_spaces = false (the colony searches even where its budget covers every cell of the
+// overlapping leaf pairs) on a third (separate copies, so that none finds another's poses already
+// in its world). Interleaving puts all under the same machine load, so the ratios mean something
+// on a shared machine; the absolute times do not.
 //
 // Counters (medians over the iterations):
 //   exact_ms, maco_ms   mean time per frame (pose update, broad phase, narrow phase)
@@ -16,6 +18,7 @@
 //   recall, precision   MACO's colliding object pairs against exact's, over all frames
 //   undecided           pair-frames MACO left without a witness when its budget ran out
 //   evals_per_frame     fitness evaluations per frame
+//   colony_ratio, colony_recall, colony_undecided   the same for MACO without the leaf-pair scan
 #include <antcd/scene.hpp>
 
 #include <benchmark/benchmark.h>
@@ -70,32 +73,47 @@ void bm_scene(benchmark::State& state, bool real_meshes) {
   const shared::GeneratedScene generated = production_line(meshes);
   const Scene exact_scene = shared::make_scene(generated);
   const Scene maco_scene = shared::make_scene(generated);
+  const Scene colony_scene = shared::make_scene(generated);
   const std::size_t frames = exact_scene.description().frames;
   SceneQuery exact;
   SceneQuery maco;
   maco.method = Method::Maco;
+  SceneQuery colony = maco;
+  colony.scan_covered_spaces = false;
 
-  std::vector<double> exact_ms, maco_ms, ratios;
-  double recall = 1, precision = 1, undecided = 0, evals = 0;
+  std::vector<double> exact_ms, maco_ms, ratios, colony_ratios;
+  double recall = 1, precision = 1, undecided = 0, evals = 0, colony_recall = 1,
+         colony_precision = 1, colony_undecided = 0;
   for (auto _ : state) {
-    SceneMemory memory;
-    double te = 0, tm = 0;
+    SceneMemory memory, colony_memory;
+    double te = 0, tm = 0, tc = 0;
     std::uint64_t truth = 0, reported = 0, agreed = 0, left = 0, evaluations = 0;
+    std::uint64_t c_reported = 0, c_agreed = 0, c_left = 0;
     for (std::size_t f = 0; f < frames; ++f) {
       const FrameResult e = exact_scene.run_frame(f, exact);
       const FrameResult m = maco_scene.run_frame(f, maco, &memory);
+      const FrameResult c = colony_scene.run_frame(f, colony, &colony_memory);
       te += e.time_ms;
       tm += m.time_ms;
+      tc += c.time_ms;
       const std::set<std::pair<std::uint32_t, std::uint32_t>> t(e.pairs.begin(), e.pairs.end());
       truth += t.size();
       reported += m.pairs.size();
       for (const auto& p : m.pairs) agreed += t.count(p);
       left += m.undecided.size();
+      c_reported += c.pairs.size();
+      for (const auto& p : c.pairs) c_agreed += t.count(p);
+      c_left += c.undecided.size();
       evaluations += m.evaluations;
     }
     exact_ms.push_back(te / static_cast<double>(frames));
     maco_ms.push_back(tm / static_cast<double>(frames));
     ratios.push_back(tm / te);
+    colony_ratios.push_back(tc / te);
+    colony_recall = truth == 0 ? 1 : static_cast<double>(c_agreed) / static_cast<double>(truth);
+    colony_precision =
+        c_reported == 0 ? 1 : static_cast<double>(c_agreed) / static_cast<double>(c_reported);
+    colony_undecided = static_cast<double>(c_left);
     recall = truth == 0 ? 1 : static_cast<double>(agreed) / static_cast<double>(truth);
     precision = reported == 0 ? 1 : static_cast<double>(agreed) / static_cast<double>(reported);
     undecided = static_cast<double>(left);
@@ -108,6 +126,10 @@ void bm_scene(benchmark::State& state, bool real_meshes) {
   state.counters["precision"] = precision;
   state.counters["undecided"] = undecided;
   state.counters["evals_per_frame"] = evals;
+  state.counters["colony_ratio"] = median(colony_ratios);
+  state.counters["colony_recall"] = colony_recall;
+  state.counters["colony_precision"] = colony_precision;
+  state.counters["colony_undecided"] = colony_undecided;
 }
 
 }  // namespace

@@ -82,6 +82,7 @@ RunResult run_scene(const Scene& scene, const SceneQuery& query, const std::stri
   if (random) {
     out.verdict = std::string(to_string(query.verdict));
     out.memory = memory;
+    out.leaf_scan = query.scan_covered_spaces;
   }
   SceneMemory colonies;
   for (std::size_t f = 0; f < frames; f += frame_step) {
@@ -141,6 +142,7 @@ std::string to_json(const RunResult& result) {
   if (!result.verdict.empty()) {
     root["verdict"] = result.verdict;
     root["memory"] = result.memory;
+    root["leaf_scan"] = result.leaf_scan;
   }
   if (result.volume) root["volume"] = true;
   root["build_ms"] = result.build_ms;
@@ -186,6 +188,9 @@ RunResult parse_run_result(std::string_view text, const std::string& source) {
   if (root.contains("verdict") && root["verdict"].is_string())
     out.verdict = root["verdict"].get<std::string>();
   if (root.contains("memory") && root["memory"].is_boolean()) out.memory = root["memory"].get<bool>();
+  if (root.contains("leaf_scan") && root["leaf_scan"].is_boolean()) {
+    out.leaf_scan = root["leaf_scan"].get<bool>();
+  }
   if (root.contains("volume") && root["volume"].is_boolean()) out.volume = root["volume"].get<bool>();
   out.build_ms = number(root, "build_ms", source, "");
   out.total_ms = number(root, "total_ms", source, "");

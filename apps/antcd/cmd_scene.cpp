@@ -35,6 +35,7 @@ struct RunOptions {
   std::uint64_t frame_evaluations = 0;
   double frame_seconds = 0;
   bool no_memory = false;
+  bool colony_only = false;
   bool report_distance = false;
   bool volume = false;
   std::string out;
@@ -64,6 +65,9 @@ int run_run(const RunOptions& o) {
   }
   SceneQuery query;
   if (!learned) query.method = parse_method(o.method);
+  if (o.colony_only && (learned || (query.method != Method::Aco && query.method != Method::Maco))) {
+    throw UsageError("--colony-only is for --method aco or maco, not " + o.method);
+  }
   query.delta = o.delta;
   query.feature_delta = o.feature_delta;
   query.seed = o.seed;
@@ -79,6 +83,7 @@ int run_run(const RunOptions& o) {
     throw UsageError(std::string("--verdict: ") + e.what());
   }
   query.frame_evaluations = o.frame_evaluations;
+  query.scan_covered_spaces = !o.colony_only;
   query.frame_seconds = o.frame_seconds;
   query.volume = o.volume;
   const Scene scene(load_scene(o.scene));
@@ -231,6 +236,10 @@ void add_scene_commands(CLI::App& app, int& code) {
   cmd->add_flag("--no-memory", run->no_memory,
                 "Random methods: search each frame afresh instead of carrying the colonies' "
                 "pheromone and witnesses from frame to frame");
+  cmd->add_flag("--colony-only", run->colony_only,
+                "aco / maco: let the colony search even when its budget covers every cell of the "
+                "overlapping leaf pairs (by default those cells are scanned instead: complete and "
+                "cheaper)");
   cmd->add_flag("--report-distance", run->report_distance,
                 "Also write each colliding pair's exact surface distance (\"distances\", in the "
                 "order of \"pairs\")");

@@ -67,6 +67,8 @@ SearchRequest paper_request(Method method, std::uint64_t seed) {
   r.ant.alpha = 1;
   r.ant.beta = 1;
   r.ant.n = 50;
+  // The paper's colony alone: no leaf-pair scan when a budget covers the cells that can collide.
+  r.ant.scan_covered_spaces = false;
   r.pso.particles = 60;
   r.ga.population = 60;
   r.seed = seed;

@@ -132,6 +132,9 @@ struct ANTCD_API FeatureSpace {
   std::size_t candidates_b = 0;
 
   [[nodiscard]] std::uint64_t cells() const { return std::uint64_t{a.size()} * b.size(); }
+  /// Cells (i, j) whose features lie in an overlapping leaf pair (`overlaps`): the only ones that
+  /// can hold a triangle pair within delta. At most cells().
+  [[nodiscard]] std::uint64_t leaf_pair_cells() const;
   [[nodiscard]] bool empty() const { return a.size() == 0 || b.size() == 0; }
   /// Fitness f(i, j) of Eq. 6: distance between the two centroids (float arithmetic).
   [[nodiscard]] float distance(std::uint32_t i, std::uint32_t j) const;
@@ -218,6 +221,15 @@ struct AntParams {
   std::uint32_t pheromone_resolution = 64;
   AntStart start = AntStart::LeafPairs;
   MacoSwitches maco;
+  /// A colony never evaluates more candidates than there are cells that can collide: when a
+  /// first-hit search (StopCriteria::first_hit, no target share or progress marks) has an
+  /// evaluation limit above FeatureSpace::leaf_pair_cells() (plus the memory's witnesses), those
+  /// cells are scanned instead, leaf pair by leaf pair (SearchResult::scanned). Every triangle
+  /// pair within delta lies in an overlapping leaf pair, so the scan tests once each cell the
+  /// colony could usefully visit, and it is complete. The memory's witnesses are tested first and
+  /// kept as for a colony; the pheromone is left as it was. false: the colony always runs (the
+  /// paper's method; ablations and reproduction).
+  bool scan_covered_spaces = true;
 };
 
 struct PsoParams {
@@ -276,7 +288,7 @@ struct ColonyMemory {
   /// pose-independent, like FeatureSide::position), most recent first.
   std::vector<std::pair<std::uint32_t, std::uint32_t>> witnesses;
   /// The last query of this pair (a scene frame) ended without a witness while its leaves
-  /// overlapped (undecided). Its contact, if one appears, is new, so the next query traverses the
+  /// overlapped (undecided, or proven separate by a complete scan: a near miss). Its contact, if one appears, is new, so the next query traverses the
   /// whole hierarchy at once instead of trying the nearest leaf pairs first.
   bool undecided = false;
   /// Largest number of witnesses kept.
@@ -334,10 +346,15 @@ struct SearchResult {
   FeaturePair best;
   std::uint64_t evaluations = 0;     ///< fitness (centroid distance) evaluations, repeats included
   std::uint64_t witness_tests = 0;   ///< exact triangle tests run (Verdict::Witness)
-  std::uint32_t iterations = 0;  ///< iterations begun, over all runs (Exhaustive: rows visited)
+  std::uint32_t iterations = 0;  ///< iterations begun, over all runs (Exhaustive: rows visited;
+                                 ///< a leaf-pair scan: leaf pairs visited)
   std::uint32_t runs = 0;        ///< runs begun (1 + restarts used)
   std::vector<ProgressMark> progress;  ///< one per SearchRequest::progress_marks, same order
   StopReason stop = StopReason::EmptySpace;
+  /// The search enumerated the cells that can collide: Exhaustive and Grid (the whole space), or a
+  /// colony whose budget covered the overlapping leaf pairs' cells (AntParams::scan_covered_spaces).
+  /// With stop == Iterations, every such cell was tested.
+  bool scanned = false;
   Verdict verdict = Verdict::Witness;
   Scalar centroid_delta = 0;  ///< the centroid threshold used (PaperCentroid)
 };
@@ -385,11 +402,18 @@ struct DetectResult {
   /// No leaf pair at delta: separate without a search.
   bool no_leaf_pair = false;
   /// The search stopped on a budget (evaluations or time) without a witness: "separate" is then
-  /// a guess, not a proof.
+  /// a guess, not a proof. false when proves_separate() holds.
   bool budget_exhausted = false;
   std::size_t leaf_pairs = 0;
   SearchResult search;
 };
+
+/// Whether `result`, a Verdict::Witness search of `space` without a witness, proves the pair
+/// separate at the space's delta: the space came from a preliminary detection that ran to the end
+/// and kept every candidate triangle (no sampling), and the search tested every cell (an
+/// exhaustive or grid search that ran out its rows, or a colony that scanned a covered space).
+/// Every triangle pair within delta lies in two overlapping leaves and so in that space.
+ANTCD_API bool proves_separate(const FeatureSpace& space, const SearchResult& result);
 
 /// What confirm_witnesses did.
 struct WitnessCheck {

@@ -97,16 +97,20 @@ struct SceneQuery {
   /// Implies search_all.
   bool count_feature_truth = false;
   /// Random methods without a frame budget: each pair's search gets this many evaluations per
-  /// leaf pair of its preliminary detection (0 = only the N iterations bound it). A pair whose
-  /// leaves overlap but whose surfaces do not meet then costs about as many centroid distances as
-  /// collide() tests triangle pairs. Less trades recall for time (docs/random-detection.md).
+  /// leaf pair of its preliminary detection (0 = only the N iterations bound it). When that
+  /// budget covers every cell of the overlapping leaf pairs, the colonies scan those cells instead
+  /// (AntParams::scan_covered_spaces, on by default): complete, so a pair without a witness is
+  /// then proven separate, not undecided. Less trades recall for time (docs/random-detection.md).
   std::uint64_t evaluations_per_leaf_pair = 32;
   /// Random methods with a SceneMemory: positions around each remembered witness scanned before
   /// any traversal (confirm_witnesses, random.hpp); 0 = the witnesses alone.
   std::uint32_t witness_neighbourhood = 4;
   /// Random methods: leaf pairs of the first, partial preliminary detection (nearest first; 0 =
   /// all at once). Without a witness there, the pair's space is rebuilt with every leaf pair.
-  std::uint32_t first_leaf_pairs = 32;
+  std::uint32_t first_leaf_pairs = 8;
+  /// Random methods (colonies): AntParams::scan_covered_spaces. false: the colony searches even
+  /// when its budget covers every cell that can collide (the paper's method alone).
+  bool scan_covered_spaces = true;
   /// Random methods, anytime query: fitness evaluations shared by all candidate pairs of the
   /// frame (0 = off). The budget is split equally over the pairs still undecided, in rounds; a
   /// pair without a witness when it runs out is reported in FrameResult::undecided.
@@ -153,7 +157,8 @@ struct FrameResult {
   std::uint64_t feature_truth = 0;
   /// Random methods: candidate pairs whose search ran out of budget without a witness. They are
   /// not in `pairs` ("separate" is a guess for them, not a proof); every other candidate pair is
-  /// decided (a witness confirmed, or no leaf pair at delta).
+  /// decided (a witness confirmed, no leaf pair at delta, or every triangle pair of the
+  /// overlapping leaves scanned without a witness: proves_separate in random.hpp).
   std::vector<std::pair<std::uint32_t, std::uint32_t>> undecided;
   /// Random methods: fitness evaluations spent over the frame.
   std::uint64_t evaluations = 0;

@@ -22,5 +22,8 @@ void run_ga(const FeatureSpace& space, const SearchRequest& request, std::uint64
             Recorder& rec);
 void run_exhaustive(const FeatureSpace& space, Recorder& rec);
 void run_grid(const FeatureSpace& space, Recorder& rec);
+/// Every cell of every overlapping leaf pair (FeatureSpace::overlaps), one leaf pair an
+/// iteration: the complete search of the cells that can collide.
+void run_leaf_pair_scan(const FeatureSpace& space, Recorder& rec);
 
 }  // namespace antcd::detail

@@ -108,6 +108,23 @@ void run_exhaustive(const FeatureSpace& space, Recorder& rec) {
   }
 }
 
+void run_leaf_pair_scan(const FeatureSpace& space, Recorder& rec) {
+  const FeatureSide& a = space.a;
+  const FeatureSide& b = space.b;
+  std::uint32_t iteration = 0;
+  // A feature belongs to one leaf, so no cell is visited twice.
+  for (const auto& [la, lb] : space.overlaps) {
+    if (!rec.begin_iteration(++iteration)) return;
+    for (std::uint32_t p = a.leaf_start[la]; p < a.leaf_start[la + 1]; ++p) {
+      const std::uint32_t i = a.leaf_features[p];
+      for (std::uint32_t q = b.leaf_start[lb]; q < b.leaf_start[lb + 1]; ++q) {
+        rec.evaluate(i, b.leaf_features[q]);
+        if (rec.stopped()) return;
+      }
+    }
+  }
+}
+
 void run_grid(const FeatureSpace& space, Recorder& rec) {
   const std::uint32_t na = space.a.size();
   const std::uint32_t nb = space.b.size();

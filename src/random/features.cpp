@@ -262,6 +262,15 @@ FeatureSpace build_feature_space(const Model& a, const Transform& pose_a, const 
   return space;
 }
 
+std::uint64_t FeatureSpace::leaf_pair_cells() const {
+  std::uint64_t total = 0;
+  for (const auto& [la, lb] : overlaps) {
+    total += std::uint64_t{a.leaf_start[la + 1] - a.leaf_start[la]} *
+             (b.leaf_start[lb + 1] - b.leaf_start[lb]);
+  }
+  return total;
+}
+
 namespace detail {
 
 bool witness_test(const FeatureSpace& space, std::uint32_t i, std::uint32_t j) {

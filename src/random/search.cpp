@@ -166,11 +166,22 @@ SearchResult search(const FeatureSpace& space, const SearchRequest& request,
   ColonyMemory scratch;
   ColonyMemory& mem = memory != nullptr && colony ? *memory : scratch;
   // Temporal coherence: last search's witnesses first.
-  for (const auto& [i, j] : witness_cells(space, mem)) {
+  const auto remembered = witness_cells(space, mem);
+  // A budget that covers the space (and the witnesses' evaluations): the complete scan is the
+  // cheaper search.
+  const bool covered = colony && request.ant.scan_covered_spaces && request.stop.first_hit &&
+                       !needs_truth && request.stop.max_evaluations > 0 &&
+                       space.leaf_pair_cells() + remembered.size() < request.stop.max_evaluations;
+  result.scanned =
+      covered || request.method == Method::Exhaustive || request.method == Method::Grid;
+  for (const auto& [i, j] : remembered) {
     rec.evaluate(i, j);
     if (rec.stopped()) break;
   }
-  if (request.method == Method::Exhaustive) {
+  if (covered) {
+    rec.begin_run();
+    if (!rec.stopped()) detail::run_leaf_pair_scan(space, rec);
+  } else if (request.method == Method::Exhaustive) {
     rec.begin_run();
     if (!rec.stopped()) detail::run_exhaustive(space, rec);
   } else if (request.method == Method::Grid) {
@@ -268,6 +279,12 @@ WitnessCheck confirm_witnesses(const Model& a, const Transform& pose_a, const Mo
   return check;
 }
 
+bool proves_separate(const FeatureSpace& space, const SearchResult& result) {
+  return !result.found && result.verdict == Verdict::Witness && result.scanned &&
+         result.stop == StopReason::Iterations && space.complete &&
+         space.candidates_a == space.a.size() && space.candidates_b == space.b.size();
+}
+
 DetectResult random_detect(const Model& a, const Transform& pose_a, const Model& b,
                            const Transform& pose_b, const DetectRequest& request,
                            ColonyMemory* memory) {
@@ -330,9 +347,10 @@ DetectResult random_detect(const Model& a, const Transform& pose_a, const Model&
   out.search.evaluations += pre_evaluations;
   out.search.witness_tests += pre_tests;
   out.colliding = out.search.found;
-  out.budget_exhausted = !out.colliding && (out.search.stop == StopReason::Evaluations ||
-                                            out.search.stop == StopReason::Time ||
-                                            out.search.stop == StopReason::Iterations);
+  out.budget_exhausted = !out.colliding && !proves_separate(space, found) &&
+                         (out.search.stop == StopReason::Evaluations ||
+                          out.search.stop == StopReason::Time ||
+                          out.search.stop == StopReason::Iterations);
   return out;
 }
 

@@ -51,6 +51,7 @@ void random_frame(const std::vector<std::pair<PairSide, PairSide>>& pairs,
   base.verdict = query.verdict;
   base.iterations = query.iterations;
   base.ant.ants = query.agents;
+  base.ant.scan_covered_spaces = query.scan_covered_spaces;
   base.pso.particles = query.agents;
   base.ga.population = query.agents;
   base.stop.first_hit = !all;
@@ -163,9 +164,11 @@ void random_frame(const std::vector<std::pair<PairSide, PairSide>>& pairs,
       out[k].evaluations += found.evaluations;
       out[k].feature_hits += found.hits.size();
       if (found.found) out[k].colliding = true;
+      // Decided: a witness, or a complete scan of every overlapping leaf pair's triangles.
+      const bool decided = found.found || proves_separate(spaces[k], found);
       // A verdict needs one witness; collecting them all (search_all) takes one round.
-      if (found.found || all || !frame_budget) pending[k] = 0;
-      if (!found.found && !frame_budget) out[k].undecided = true;
+      if (decided || all || !frame_budget) pending[k] = 0;
+      if (!decided && !frame_budget) out[k].undecided = true;
     });
     for (const std::size_t k : todo) left -= std::min(left, spent[k]);
   }
@@ -173,7 +176,11 @@ void random_frame(const std::vector<std::pair<PairSide, PairSide>>& pairs,
     if (pending[k] != 0 || (all && frame_budget && !out[k].colliding && spaces[k].leaf_pairs > 0)) {
       out[k].undecided = true;
     }
-    if (!memory.empty() && memory[k] != nullptr) memory[k]->undecided = out[k].undecided;
+    // The hint for the next frame: leaves overlapped and no witness (undecided, or proven
+    // separate by a scan); either way a near miss, whose next contact is a new one.
+    if (!memory.empty() && memory[k] != nullptr) {
+      memory[k]->undecided = !out[k].colliding && spaces[k].leaf_pairs > 0;
+    }
   }
 }
 

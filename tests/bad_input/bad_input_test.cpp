@@ -837,6 +837,8 @@ TEST_F(Cli, UnknownMethod) {
                        "--verdict");
   expect_usage_failure({"run", "scene.json", "--method", "maco", "--frame-seconds", "-1"},
                        "--frame-seconds");
+  expect_usage_failure({"run", "scene.json", "--method", "exact", "--colony-only"},
+                       "--colony-only");
 }
 
 TEST_F(Cli, UnknownCommandOrOption) {

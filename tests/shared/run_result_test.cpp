@@ -73,5 +73,31 @@ TEST(RunScene, FrameBudgetLeavesUndecidedPairsThatSurviveTheJsonRoundTrip) {
   }
 }
 
+// With the leaf-pair scan (the default), every pair is decided: a witness, or a complete scan of
+// the overlapping leaves' triangle pairs; the verdicts are exact's. The colony alone
+// (scan_covered_spaces = false) stays precise but may leave pairs undecided. The JSON says which.
+TEST(RunScene, LeafScanDecidesEveryPairAndTheJsonSaysSo) {
+  const Scene scene = small_line();
+  const RunResult truth = run_scene(scene, SceneQuery{}, "line");
+  SceneQuery maco;
+  maco.method = Method::Maco;
+  const RunResult scanned = run_scene(scene, maco, "line");
+  maco.scan_covered_spaces = false;
+  const RunResult colony = run_scene(scene, maco, "line");
+  EXPECT_TRUE(scanned.leaf_scan);
+  EXPECT_FALSE(colony.leaf_scan);
+  std::size_t colliding = 0;
+  for (std::size_t f = 0; f < truth.frames.size(); ++f) {
+    EXPECT_EQ(scanned.frames[f].pairs, truth.frames[f].pairs) << "frame " << f;
+    EXPECT_TRUE(scanned.frames[f].undecided.empty()) << "frame " << f;
+    const std::set<NamePair> t(truth.frames[f].pairs.begin(), truth.frames[f].pairs.end());
+    for (const NamePair& p : colony.frames[f].pairs) EXPECT_EQ(t.count(p), 1u) << "frame " << f;
+    colliding += truth.frames[f].pairs.size();
+  }
+  ASSERT_GT(colliding, 0u);
+  EXPECT_TRUE(parse_run_result(to_json(scanned), "scanned").leaf_scan);
+  EXPECT_FALSE(parse_run_result(to_json(colony), "colony").leaf_scan);
+}
+
 }  // namespace
 }  // namespace antcd::shared
