@@ -2,7 +2,9 @@
 // updated incrementally (a leaf moves only when its object leaves its fattened box).
 #include <antcd/world.hpp>
 
+#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
 
 #include <algorithm>
 #include <cmath>
@@ -15,6 +17,9 @@
 namespace antcd {
 
 namespace {
+
+// Batches of poses at least this long are checked and fitted by oneTBB tasks.
+constexpr std::size_t kParallelBatch = 2048;
 
 std::string describe(ObjectId id) {
   return "(slot " + std::to_string(id.slot) + ", generation " + std::to_string(id.generation) + ")";
@@ -77,10 +82,10 @@ const World::Impl::Object& World::Impl::get(ObjectId id, const char* function,
   return objects[id.slot];
 }
 
-Aabb World::Impl::fattened(const Object& o) const {
-  // At least the rounding allowance, so that the tree box always contains the box grown by it
-  // (candidate_pairs relies on that).
-  return grown(o.box, settings.fat_fraction * o.model->root().sphere.radius + o.tolerance);
+Aabb World::Impl::fattened(std::uint32_t slot) const {
+  const Bounds& b = bounds[slot];
+  return grown(b.box, settings.fat_fraction * objects[slot].model->root().sphere.radius +
+                          2 * b.tolerance);
 }
 
 World::World(const WorldOptions& options) : impl_(std::make_unique<Impl>()) {
@@ -108,15 +113,20 @@ ObjectId World::add(std::shared_ptr<const Model> model, const Transform& pose,
     if (w.objects.size() >= UINT32_MAX - 1) throw ArgumentError("World::add: too many objects (2^32 - 2)");
     slot = static_cast<std::uint32_t>(w.objects.size());
     w.objects.emplace_back();
+    w.bounds.emplace_back();
   }
   Impl::Object& o = w.objects[slot];
   o.model = std::move(model);
   o.pose = pose;
   o.options = std::move(options);
-  o.box = posed_box(*o.model, o.pose, o.tolerance);
   o.ignored.clear();
   o.alive = true;
-  o.leaf = w.tree.insert(w.fattened(o), slot);
+  Impl::Bounds& b = w.bounds[slot];
+  b.box = posed_box(*o.model, o.pose, b.tolerance);
+  b.group = o.options.group;
+  b.mask = o.options.mask;
+  b.has_ignored = false;
+  w.tree.insert(slot, w.fattened(slot));
   ++w.live;
   return {slot, o.generation};
 }
@@ -127,9 +137,11 @@ void World::remove(ObjectId id) {
   for (const std::uint32_t other : o.ignored) {
     auto& list = w.objects[other].ignored;
     list.erase(std::lower_bound(list.begin(), list.end(), id.slot));
+    w.bounds[other].has_ignored = !list.empty();
   }
-  w.tree.remove(o.leaf);
+  w.tree.remove(id.slot);
   o = Impl::Object{};
+  w.bounds[id.slot] = Impl::Bounds{};
   o.generation = id.generation + 1;  // the old id never matches again
   if (o.generation != 0) w.free_slots.push_back(id.slot);  // a wrapped slot is retired
   --w.live;
@@ -150,36 +162,101 @@ void World::set_poses(std::span<const ObjectId> ids, std::span<const Transform> 
     throw ArgumentError("World::set_poses: " + std::to_string(ids.size()) + " ids but " +
                                 std::to_string(poses.size()) + " poses");
   }
-  for (std::size_t k = 0; k < ids.size(); ++k) {
-    if (!contains(ids[k])) {
-      w.get(ids[k], "World::set_poses", ("ids[" + std::to_string(k) + "]").c_str());
-    }
+  // Every argument is checked before anything changes: in parallel on a large batch, then the first
+  // bad one (if any) again, on this thread, for its message.
+  const auto bad = [&](std::size_t k) {
     Scalar err = 0;
-    if (pose_problem(poses[k], err) != nullptr) {
-      check_pose(poses[k], "World::set_poses",
-                 "poses[" + std::to_string(k) + "] of " + object_label(w.objects[ids[k].slot], ids[k]));
-    }
-  }
-  // Boxes in parallel (independent), then the tree sequentially in argument order (a repeated id
-  // ends with its last pose).
-  std::vector<Aabb> boxes(ids.size());
-  std::vector<Scalar> tolerances(ids.size());
-  const auto fit = [&](std::size_t k) {
-    boxes[k] = posed_box(*w.objects[ids[k].slot].model, poses[k], tolerances[k]);
+    return !contains(ids[k]) || pose_problem(poses[k], err) != nullptr;
   };
-  if (ids.size() < 2048) {
+  std::size_t first_bad = ids.size();
+  if (ids.size() < kParallelBatch) {
+    for (std::size_t k = 0; k < ids.size() && first_bad == ids.size(); ++k) {
+      if (bad(k)) first_bad = k;
+    }
+  } else {
+    first_bad = tbb::parallel_reduce(
+        tbb::blocked_range<std::size_t>(0, ids.size()), ids.size(),
+        [&](const tbb::blocked_range<std::size_t>& r, std::size_t found) {
+          for (std::size_t k = r.begin(); k != r.end() && k < found; ++k) {
+            if (bad(k)) return k;
+          }
+          return found;
+        },
+        [](std::size_t x, std::size_t y) { return std::min(x, y); });
+  }
+  if (first_bad < ids.size()) {
+    const std::size_t k = first_bad;
+    w.get(ids[k], "World::set_poses", ("ids[" + std::to_string(k) + "]").c_str());
+    check_pose(poses[k], "World::set_poses",
+               "poses[" + std::to_string(k) + "] of " + object_label(w.objects[ids[k].slot], ids[k]));
+  }
+  // Boxes in parallel (independent): an id given more than once ends with its last pose, so only
+  // its last occurrence is fitted. Then the tree, sequentially in argument order.
+  for (std::size_t k = 0; k < ids.size(); ++k) w.objects[ids[k].slot].last_set = k;
+  const auto fit = [&](std::size_t k) {
+    const std::uint32_t slot = ids[k].slot;
+    Impl::Object& o = w.objects[slot];
+    if (o.last_set != k) return;
+    o.pose = poses[k];
+    Impl::Bounds& b = w.bounds[slot];
+    b.box = posed_box(*o.model, o.pose, b.tolerance);
+    o.escaped = !detail::box_contains(w.tree.box(slot), grown(b.box, 2 * b.tolerance));
+  };
+  if (ids.size() < kParallelBatch) {
     for (std::size_t k = 0; k < ids.size(); ++k) fit(k);
   } else {
     tbb::parallel_for(std::size_t{0}, ids.size(), fit);
   }
-  for (std::size_t k = 0; k < ids.size(); ++k) {
-    Impl::Object& o = w.objects[ids[k].slot];
-    o.pose = poses[k];
-    o.box = boxes[k];
-    o.tolerance = tolerances[k];
-    if (!detail::box_contains(w.tree.box(o.leaf), grown(o.box, o.tolerance))) {
-      w.tree.move(o.leaf, w.fattened(o));
+  std::size_t escaped = 0;
+  for (const ObjectId id : ids) escaped += w.objects[id.slot].escaped;
+  // Few leaves to move: one removal and insertion each (O(log n)), with the fattened box so that
+  // small motions after this one need no update. Many (a frame of a moving world, where most
+  // objects move every frame): new leaf boxes and one O(n) refit, which rebuilds when the tree got
+  // loose. Fattening would then buy nothing (the refit costs O(n) anyway) and only let more pairs
+  // through the broad phase, so the leaves of every object moved get their unfattened boxes (grown
+  // by the rounding margin the queries rely on, see fattened()).
+  // An object that jumped (its new box does not even meet its old one: a teleport, a respawn) is
+  // taken out and reinserted where it now is instead: refitting would stretch every box on its old
+  // path across the jump.
+  const bool refit = escaped > std::max<std::size_t>(64, w.live / 16);
+  if (!refit) {
+    for (const ObjectId id : ids) {
+      Impl::Object& o = w.objects[id.slot];
+      if (o.escaped) w.tree.move(id.slot, w.fattened(id.slot));
+      o.escaped = false;
     }
+    return;
+  }
+  for (const ObjectId id : ids) {
+    Impl::Object& o = w.objects[id.slot];
+    if (!o.escaped || !w.tree.contains(id.slot)) continue;
+    const Impl::Bounds& b = w.bounds[id.slot];
+    if (!detail::boxes_overlap(w.tree.box(id.slot), b.box)) {
+      w.tree.remove(id.slot);
+      o.jumped = true;
+    }
+  }
+  // New leaf boxes (distinct leaves: each object at its last occurrence only), then the refit.
+  const auto set_leaf = [&](std::size_t k) {
+    const std::uint32_t slot = ids[k].slot;
+    if (w.objects[slot].last_set != k || !w.tree.contains(slot)) return;
+    const Impl::Bounds& b = w.bounds[slot];
+    w.tree.set_box(slot, grown(b.box, 2 * b.tolerance));
+  };
+  if (ids.size() < kParallelBatch) {
+    for (std::size_t k = 0; k < ids.size(); ++k) set_leaf(k);
+  } else {
+    tbb::parallel_for(std::size_t{0}, ids.size(), set_leaf);
+  }
+  w.tree.refit();
+  for (const ObjectId id : ids) {
+    Impl::Object& o = w.objects[id.slot];
+    if (o.jumped) {
+      const Impl::Bounds& b = w.bounds[id.slot];
+      w.tree.insert(id.slot, grown(b.box, 2 * b.tolerance));
+    }
+    o.jumped = false;
+    o.escaped = false;
   }
 }
 
@@ -187,6 +264,8 @@ void World::set_filter(ObjectId id, std::uint32_t group, std::uint32_t mask) {
   Impl::Object& o = impl_->get(id, "World::set_filter", "id");
   o.options.group = group;
   o.options.mask = mask;
+  impl_->bounds[id.slot].group = group;
+  impl_->bounds[id.slot].mask = mask;
 }
 
 void World::ignore_pair(ObjectId a, ObjectId b, bool ignored) {
@@ -205,6 +284,8 @@ void World::ignore_pair(ObjectId a, ObjectId b, bool ignored) {
   };
   set(oa.ignored, b.slot);
   set(ob.ignored, a.slot);
+  w.bounds[a.slot].has_ignored = !oa.ignored.empty();
+  w.bounds[b.slot].has_ignored = !ob.ignored.empty();
 }
 
 std::size_t World::size() const { return impl_->live; }
@@ -239,14 +320,15 @@ bool World::pair_ignored(ObjectId a, ObjectId b) const {
 }
 
 bool World::may_collide(ObjectId a, ObjectId b) const {
-  const Impl::Object& oa = impl_->get(a, "World::may_collide", "a");
-  const Impl::Object& ob = impl_->get(b, "World::may_collide", "b");
-  return a.slot != b.slot && impl_->admits(oa, b.slot, ob);
+  impl_->get(a, "World::may_collide", "a");
+  impl_->get(b, "World::may_collide", "b");
+  return a.slot != b.slot && impl_->admits(a.slot, b.slot);
 }
 
 std::size_t World::memory_bytes() const {
   const Impl& w = *impl_;
   std::size_t bytes = sizeof(Impl) + w.objects.capacity() * sizeof(Impl::Object) +
+                      w.bounds.capacity() * sizeof(Impl::Bounds) +
                       w.free_slots.capacity() * sizeof(std::uint32_t) + w.tree.memory_bytes();
   for (const Impl::Object& o : w.objects) {
     bytes += o.ignored.capacity() * sizeof(std::uint32_t);

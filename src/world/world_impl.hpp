@@ -19,19 +19,32 @@ struct World::Impl {
     std::shared_ptr<const Model> model;
     Transform pose;
     ObjectOptions options;
+    /// Slots of the objects this one must not be paired with, sorted.
+    std::vector<std::uint32_t> ignored;
+    std::uint32_t generation = 0;
+    bool alive = false;
+    // Scratch of set_poses (a mutation): the last index of this object in its arguments, whether
+    // its new box left the tree's box, and whether it jumped (left the tree until reinserted).
+    bool escaped = false;
+    bool jumped = false;
+    std::size_t last_set = 0;
+  };
+
+  /// What the all-pairs traversal reads of each object, kept apart from the rest (a frame of a
+  /// large world touches it for every broad-phase pair, the rest only for pairs that pass it).
+  struct Bounds {
     /// World box containing every triangle of the posed mesh (rounding included).
     Aabb box;
     /// Absolute rounding allowance of this object's world-frame volumes.
     Scalar tolerance = 0;
-    /// Slots of the objects this one must not be paired with, sorted.
-    std::vector<std::uint32_t> ignored;
-    std::int32_t leaf = detail::AabbTree::kNull;
-    std::uint32_t generation = 0;
-    bool alive = false;
+    std::uint32_t group = 0;  ///< copies of the object's options.group and options.mask
+    std::uint32_t mask = 0;
+    bool has_ignored = false;  ///< whether the object's ignored list is non-empty
   };
 
   WorldOptions settings;
   std::vector<Object> objects;
+  std::vector<Bounds> bounds;  ///< by slot, like objects
   std::vector<std::uint32_t> free_slots;
   detail::AabbTree tree;
   std::size_t live = 0;
@@ -46,19 +59,22 @@ struct World::Impl {
   }
 
   /// The filter between two live objects: groups, masks, ignored pairs.
-  [[nodiscard]] bool admits(const Object& a, std::uint32_t slot_b, const Object& b) const {
-    if ((a.options.group & b.options.mask) == 0 || (b.options.group & a.options.mask) == 0) {
-      return false;
-    }
-    return a.ignored.empty() ||
-           !std::binary_search(a.ignored.begin(), a.ignored.end(), slot_b);
+  [[nodiscard]] bool admits(std::uint32_t a, std::uint32_t b) const {
+    const Bounds& ba = bounds[a];
+    const Bounds& bb = bounds[b];
+    if ((ba.group & bb.mask) == 0 || (bb.group & ba.mask) == 0) return false;
+    if (!ba.has_ignored) return true;
+    const std::vector<std::uint32_t>& list = objects[a].ignored;
+    return !std::binary_search(list.begin(), list.end(), b);
   }
-  static bool admits(const QueryFilter& f, const Object& b) {
-    return (f.group & b.options.mask) != 0 && (b.options.group & f.mask) != 0;
+  static bool admits(const QueryFilter& f, const Bounds& b) {
+    return (f.group & b.mask) != 0 && (b.group & f.mask) != 0;
   }
 
-  /// The fattened box the tree stores for an object.
-  [[nodiscard]] Aabb fattened(const Object& o) const;
+  /// The fattened box the tree stores for an object: grown by at least twice the rounding
+  /// allowance, so that the tree's box of an object always contains grown(box, 2 * tolerance)
+  /// (the queries' tree traversals rely on that margin).
+  [[nodiscard]] Aabb fattened(std::uint32_t slot) const;
 };
 
 /// World box of a posed model (from its root sphere and root box, whichever is tighter per axis),
