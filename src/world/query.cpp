@@ -24,7 +24,7 @@ using Bounds = World::Impl::Bounds;
 using SlotPair = std::pair<std::uint32_t, std::uint32_t>;
 
 // Below these sizes a query stays on the calling thread: handing work to oneTBB costs more.
-constexpr std::size_t kParallelObjects = 256;
+constexpr std::size_t kParallelObjects = 64;
 constexpr std::size_t kParallelPairs = 64;
 // Broad-phase tasks per query: enough to balance a few threads, each still thousands of node visits
 // on a large world.
@@ -85,6 +85,21 @@ void for_each_pair(std::size_t m, Test&& test) {
 // mesh lies inside (boxes contain their meshes with a rounding allowance).
 Scalar exact_growth(const Bounds& b, Scalar delta) { return delta * (1 + 1e-12) + b.tolerance; }
 
+// Whether the posed root spheres are farther apart than delta by more than collide()'s own
+// rounding allowance (bvh/traverse.hpp: 1e-9 of a scale these magnitudes bound): collide() would
+// then reject the pair at its first test, so skipping it changes no answer. Most pairs whose boxes
+// overlap on a large world are rejected here, before collide() sets up the pair.
+bool spheres_apart(const Object& a, const Object& b, Scalar delta) {
+  const Sphere& sa = a.model->root().sphere;
+  const Sphere& sb = b.model->root().sphere;
+  const Vec3 ca = a.pose.apply(sa.center);
+  const Vec3 cb = b.pose.apply(sb.center);
+  const Scalar scale = sa.radius + sb.radius + 2 * (sa.center.norm() + sb.center.norm()) +
+                       ca.norm() + cb.norm();
+  const Scalar reach = sa.radius + sb.radius + delta + 1e-8 * scale;
+  return (ca - cb).squaredNorm() > reach * reach;
+}
+
 Obb posed_obb(const Object& o) {
   Obb b = o.model->root().obb;
   b.axes = o.pose.rotation * b.axes;
@@ -142,6 +157,7 @@ std::vector<PairContacts> World::collide_all(const CollisionRequest& request) co
   for_each_pair(candidates.size(), [&](std::size_t k) {
     const Object& a = w.objects[candidates[k].first];
     const Object& b = w.objects[candidates[k].second];
+    if (spheres_apart(a, b, delta)) return;
     CollisionResult r;
     if (collide(*a.model, a.pose, *b.model, b.pose, request, r)) {
       hit[k] = 1;
