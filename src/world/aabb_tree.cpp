@@ -11,6 +11,7 @@
 #include <tbb/parallel_invoke.h>
 
 #include <algorithm>
+#include <bit>
 #include <cassert>
 #include <cmath>
 #include <limits>
@@ -20,17 +21,16 @@ namespace antcd::detail {
 
 namespace {
 
-// The largest float <= x, and the smallest float >= x (boxes rounded outward). Finite x only.
+// The largest float <= x, and the smallest float >= x (boxes rounded outward). Finite x only:
+// one step of the float's bit pattern (its magnitude grows by one unit in the last place).
 float down(Scalar x) {
   const auto f = static_cast<float>(x);
   if (static_cast<Scalar>(f) <= x) return f;
-  return std::nextafter(f, -std::numeric_limits<float>::infinity());
+  return f > 0 ? std::bit_cast<float>(std::bit_cast<std::uint32_t>(f) - 1)
+               : (f == 0 ? -std::numeric_limits<float>::denorm_min()
+                         : std::bit_cast<float>(std::bit_cast<std::uint32_t>(f) + 1));
 }
-float up(Scalar x) {
-  const auto f = static_cast<float>(x);
-  if (static_cast<Scalar>(f) >= x) return f;
-  return std::nextafter(f, std::numeric_limits<float>::infinity());
-}
+float up(Scalar x) { return -down(-x); }
 
 }  // namespace
 

@@ -210,7 +210,7 @@ class AabbTree {
     }
     return true;
   }
-  static bool near(const Node& a, const Node& b, Scalar gap) {
+  [[gnu::always_inline]] static bool near(const Node& a, const Node& b, Scalar gap) {
     if (gap == 0) {  // exact in single precision
       return a.lo[0] <= b.hi[0] && b.lo[0] <= a.hi[0] && a.lo[1] <= b.hi[1] &&
              b.lo[1] <= a.hi[1] && a.lo[2] <= b.hi[2] && b.lo[2] <= a.hi[2];

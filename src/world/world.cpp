@@ -74,8 +74,7 @@ Aabb posed_box(const Model& model, const Transform& pose, Scalar& tolerance) {
 
 const World::Impl::Object& World::Impl::get(ObjectId id, const char* function,
                                             const char* argument) const {
-  if (id.slot >= objects.size() || !objects[id.slot].alive ||
-      objects[id.slot].generation != id.generation) {
+  if (!contains(id)) {
     throw ArgumentError(std::string(function) + ": " + argument + " " + describe(id) +
                                 " is not an object of this world (removed, or never added)");
   }
@@ -114,13 +113,16 @@ ObjectId World::add(std::shared_ptr<const Model> model, const Transform& pose,
     slot = static_cast<std::uint32_t>(w.objects.size());
     w.objects.emplace_back();
     w.bounds.emplace_back();
+    w.handles.push_back(0);
+    w.last_set.push_back(0);
+    w.flags.push_back(0);
   }
   Impl::Object& o = w.objects[slot];
   o.model = std::move(model);
   o.pose = pose;
   o.options = std::move(options);
   o.ignored.clear();
-  o.alive = true;
+  w.handles[slot] |= 1;
   Impl::Bounds& b = w.bounds[slot];
   b.box = posed_box(*o.model, o.pose, b.tolerance);
   b.group = o.options.group;
@@ -128,7 +130,7 @@ ObjectId World::add(std::shared_ptr<const Model> model, const Transform& pose,
   b.has_ignored = false;
   w.tree.insert(slot, w.fattened(slot));
   ++w.live;
-  return {slot, o.generation};
+  return w.id_of(slot);
 }
 
 void World::remove(ObjectId id) {
@@ -142,8 +144,9 @@ void World::remove(ObjectId id) {
   w.tree.remove(id.slot);
   o = Impl::Object{};
   w.bounds[id.slot] = Impl::Bounds{};
-  o.generation = id.generation + 1;  // the old id never matches again
-  if (o.generation != 0) w.free_slots.push_back(id.slot);  // a wrapped slot is retired
+  const std::uint32_t next = id.generation + 1;  // the old id never matches again
+  w.handles[id.slot] = std::uint64_t{next} << 1;
+  if (next != 0) w.free_slots.push_back(id.slot);  // a wrapped slot is retired
   --w.live;
 }
 
@@ -166,7 +169,7 @@ void World::set_poses(std::span<const ObjectId> ids, std::span<const Transform> 
   // bad one (if any) again, on this thread, for its message.
   const auto bad = [&](std::size_t k) {
     Scalar err = 0;
-    return !contains(ids[k]) || pose_problem(poses[k], err) != nullptr;
+    return !w.contains(ids[k]) || pose_problem(poses[k], err) != nullptr;
   };
   std::size_t first_bad = ids.size();
   if (ids.size() < kParallelBatch) {
@@ -191,16 +194,24 @@ void World::set_poses(std::span<const ObjectId> ids, std::span<const Transform> 
                "poses[" + std::to_string(k) + "] of " + object_label(w.objects[ids[k].slot], ids[k]));
   }
   // Boxes in parallel (independent): an id given more than once ends with its last pose, so only
-  // its last occurrence is fitted. Then the tree, sequentially in argument order.
-  for (std::size_t k = 0; k < ids.size(); ++k) w.objects[ids[k].slot].last_set = k;
+  // its last occurrence is fitted. An object whose new box left its leaf's box gets the new box
+  // (grown by the rounding margin the queries rely on, see fattened()) in its leaf at once; its
+  // ancestors are fixed below, by a move or by the refit.
+  for (std::size_t k = 0; k < ids.size(); ++k) w.last_set[ids[k].slot] = k;
   const auto fit = [&](std::size_t k) {
     const std::uint32_t slot = ids[k].slot;
+    if (w.last_set[slot] != k) return;
     Impl::Object& o = w.objects[slot];
-    if (o.last_set != k) return;
     o.pose = poses[k];
     Impl::Bounds& b = w.bounds[slot];
     b.box = posed_box(*o.model, o.pose, b.tolerance);
-    o.escaped = !detail::box_contains(w.tree.box(slot), grown(b.box, 2 * b.tolerance));
+    const Aabb leaf = w.tree.box(slot);
+    const Aabb tight = grown(b.box, 2 * b.tolerance);
+    if (detail::box_contains(leaf, tight)) return;
+    // Jumped: the new box does not even meet the old one (a teleport, a respawn).
+    w.flags[slot] = detail::boxes_overlap(leaf, b.box) ? Impl::kEscaped
+                                                        : Impl::kEscaped | Impl::kJumped;
+    w.tree.set_box(slot, tight);
   };
   if (ids.size() < kParallelBatch) {
     for (std::size_t k = 0; k < ids.size(); ++k) fit(k);
@@ -208,55 +219,36 @@ void World::set_poses(std::span<const ObjectId> ids, std::span<const Transform> 
     tbb::parallel_for(std::size_t{0}, ids.size(), fit);
   }
   std::size_t escaped = 0;
-  for (const ObjectId id : ids) escaped += w.objects[id.slot].escaped;
-  // Few leaves to move: one removal and insertion each (O(log n)), with the fattened box so that
+  for (const ObjectId id : ids) escaped += w.flags[id.slot] != 0;
+  // Few leaves to update: one removal and insertion each (O(log n)), with the fattened box so that
   // small motions after this one need no update. Many (a frame of a moving world, where most
-  // objects move every frame): new leaf boxes and one O(n) refit, which rebuilds when the tree got
-  // loose. Fattening would then buy nothing (the refit costs O(n) anyway) and only let more pairs
-  // through the broad phase, so the leaves of every object moved get their unfattened boxes (grown
-  // by the rounding margin the queries rely on, see fattened()).
-  // An object that jumped (its new box does not even meet its old one: a teleport, a respawn) is
-  // taken out and reinserted where it now is instead: refitting would stretch every box on its old
-  // path across the jump.
+  // objects move every frame): one O(n) refit of the new leaf boxes, which rebuilds when the tree
+  // got loose; fattening would then buy nothing (the refit costs O(n) anyway) and only let more
+  // pairs through the broad phase, so those leaves keep their unfattened boxes. Objects that jumped
+  // are taken out before the refit and reinserted after it: refitting would stretch every box on
+  // their old path across the jump.
   const bool refit = escaped > std::max<std::size_t>(64, w.live / 16);
   if (!refit) {
     for (const ObjectId id : ids) {
-      Impl::Object& o = w.objects[id.slot];
-      if (o.escaped) w.tree.move(id.slot, w.fattened(id.slot));
-      o.escaped = false;
+      if (w.flags[id.slot] == 0) continue;
+      w.flags[id.slot] = 0;
+      w.tree.move(id.slot, w.fattened(id.slot));
     }
     return;
   }
   for (const ObjectId id : ids) {
-    Impl::Object& o = w.objects[id.slot];
-    if (!o.escaped || !w.tree.contains(id.slot)) continue;
-    const Impl::Bounds& b = w.bounds[id.slot];
-    if (!detail::boxes_overlap(w.tree.box(id.slot), b.box)) {
+    if ((w.flags[id.slot] & Impl::kJumped) != 0 && w.tree.contains(id.slot)) {
       w.tree.remove(id.slot);
-      o.jumped = true;
     }
-  }
-  // New leaf boxes (distinct leaves: each object at its last occurrence only), then the refit.
-  const auto set_leaf = [&](std::size_t k) {
-    const std::uint32_t slot = ids[k].slot;
-    if (w.objects[slot].last_set != k || !w.tree.contains(slot)) return;
-    const Impl::Bounds& b = w.bounds[slot];
-    w.tree.set_box(slot, grown(b.box, 2 * b.tolerance));
-  };
-  if (ids.size() < kParallelBatch) {
-    for (std::size_t k = 0; k < ids.size(); ++k) set_leaf(k);
-  } else {
-    tbb::parallel_for(std::size_t{0}, ids.size(), set_leaf);
   }
   w.tree.refit();
   for (const ObjectId id : ids) {
-    Impl::Object& o = w.objects[id.slot];
-    if (o.jumped) {
+    const std::uint8_t f = w.flags[id.slot];
+    w.flags[id.slot] = 0;
+    if ((f & Impl::kJumped) != 0) {
       const Impl::Bounds& b = w.bounds[id.slot];
       w.tree.insert(id.slot, grown(b.box, 2 * b.tolerance));
     }
-    o.jumped = false;
-    o.escaped = false;
   }
 }
 
@@ -291,15 +283,14 @@ void World::ignore_pair(ObjectId a, ObjectId b, bool ignored) {
 std::size_t World::size() const { return impl_->live; }
 
 bool World::contains(ObjectId id) const {
-  return id.slot < impl_->objects.size() && impl_->objects[id.slot].alive &&
-         impl_->objects[id.slot].generation == id.generation;
+  return impl_->contains(id);
 }
 
 std::vector<ObjectId> World::objects() const {
   std::vector<ObjectId> out;
   out.reserve(impl_->live);
   for (std::uint32_t s = 0; s < impl_->objects.size(); ++s) {
-    if (impl_->objects[s].alive) out.push_back(impl_->id_of(s));
+    if (impl_->alive(s)) out.push_back(impl_->id_of(s));
   }
   return out;
 }

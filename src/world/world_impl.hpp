@@ -21,13 +21,6 @@ struct World::Impl {
     ObjectOptions options;
     /// Slots of the objects this one must not be paired with, sorted.
     std::vector<std::uint32_t> ignored;
-    std::uint32_t generation = 0;
-    bool alive = false;
-    // Scratch of set_poses (a mutation): the last index of this object in its arguments, whether
-    // its new box left the tree's box, and whether it jumped (left the tree until reinserted).
-    bool escaped = false;
-    bool jumped = false;
-    std::size_t last_set = 0;
   };
 
   /// What the all-pairs traversal reads of each object, kept apart from the rest (a frame of a
@@ -45,6 +38,14 @@ struct World::Impl {
   WorldOptions settings;
   std::vector<Object> objects;
   std::vector<Bounds> bounds;  ///< by slot, like objects
+  /// By slot: generation << 1 | alive. Dense, so that checking a batch of ids is cheap.
+  std::vector<std::uint64_t> handles;
+  // Scratch of set_poses (a mutation), by slot: the last index of the object in its arguments, and
+  // flags (kEscaped: its new box left the tree's box; kJumped: it left the tree until reinserted).
+  std::vector<std::size_t> last_set;
+  std::vector<std::uint8_t> flags;
+  static constexpr std::uint8_t kEscaped = 1;
+  static constexpr std::uint8_t kJumped = 2;
   std::vector<std::uint32_t> free_slots;
   detail::AabbTree tree;
   std::size_t live = 0;
@@ -54,9 +55,15 @@ struct World::Impl {
   Object& get(ObjectId id, const char* function, const char* argument) {
     return const_cast<Object&>(std::as_const(*this).get(id, function, argument));
   }
-  [[nodiscard]] ObjectId id_of(std::uint32_t slot) const {
-    return {slot, objects[slot].generation};
+  [[nodiscard]] std::uint32_t generation(std::uint32_t slot) const {
+    return static_cast<std::uint32_t>(handles[slot] >> 1);
   }
+  [[nodiscard]] bool alive(std::uint32_t slot) const { return (handles[slot] & 1) != 0; }
+  [[nodiscard]] bool contains(ObjectId id) const {
+    return id.slot < handles.size() &&
+           handles[id.slot] == ((std::uint64_t{id.generation} << 1) | 1);
+  }
+  [[nodiscard]] ObjectId id_of(std::uint32_t slot) const { return {slot, generation(slot)}; }
 
   /// The filter between two live objects: groups, masks, ignored pairs.
   [[nodiscard]] bool admits(std::uint32_t a, std::uint32_t b) const {
