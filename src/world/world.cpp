@@ -1,5 +1,5 @@
 // The World's objects: adding, removing, moving and filtering them, with the broad-phase tree
-// updated incrementally (a leaf moves only when its object leaves its fattened box).
+// kept up to date (a leaf changes only when its object leaves its box; see set_poses).
 #include <antcd/world.hpp>
 
 #include <tbb/blocked_range.h>
@@ -320,6 +320,8 @@ std::size_t World::memory_bytes() const {
   const Impl& w = *impl_;
   std::size_t bytes = sizeof(Impl) + w.objects.capacity() * sizeof(Impl::Object) +
                       w.bounds.capacity() * sizeof(Impl::Bounds) +
+                      w.handles.capacity() * sizeof(std::uint64_t) +
+                      w.last_set.capacity() * sizeof(std::size_t) + w.flags.capacity() +
                       w.free_slots.capacity() * sizeof(std::uint32_t) + w.tree.memory_bytes();
   for (const Impl::Object& o : w.objects) {
     bytes += o.ignored.capacity() * sizeof(std::uint32_t);
