@@ -1,10 +1,11 @@
 // antcd::World against FCL's DynamicAABBTreeCollisionManager, in one binary (Google Benchmark).
 //
-// world_frame/<engine>/<objects>: a world of N small moving meshes (boxes and spheres of 12 and 64
+// world_frame_<engine>/<objects>[/<threads>]: a world of N small moving meshes (boxes and spheres of 12 and 64
 // triangles, radius about 0.5, density 1 object per 8 volume units so that a few percent of them
 // touch). One iteration = one frame: every object gets its next pose (a drift and a spin, the
 // same sequence for both engines), then every pair is queried exactly (boolean).
-//   antcd: World::set_poses + World::collide_all.
+//   antcd: World::set_poses + World::collide_all, in oneTBB's default arena (threads 0: every
+//          core) or in an arena of 1 thread (FCL's manager is single-threaded).
 //   FCL:   setTransform + computeAABB per object, manager.update(), manager.collide() with a
 //          callback that runs fcl::collide (BVHModel<OBBRSS>, boolean) on each broad-phase pair.
 // Counters: colliding pairs and broad-phase pairs per frame, heap bytes of the engine's world
@@ -15,6 +16,8 @@
 //
 // dense_threads/<threads>: a dense world of tumbling real meshes (assimp test models when
 // installed, else generated tori), World::collide_all inside a oneTBB arena of 1 or 2 threads.
+// world_interleaved/<objects>: both engines frame by frame in turn (see there).
+// parallel_control/<threads>: the machine's own two-thread ratio in the same run (see there).
 //
 // The numbers only mean something in one run on an otherwise idle machine; quote ratios of the two
 // engines measured in the same run.
@@ -28,9 +31,12 @@
 #include <fcl/narrowphase/collision.h>
 #include <fcl/narrowphase/collision_object.h>
 #include <malloc.h>
+#include <time.h>
+#include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
@@ -124,6 +130,9 @@ std::vector<IndexPairs>& expected_pairs(std::size_t n) {
 
 void world_frame_antcd(benchmark::State& state) {
   const auto n = static_cast<std::size_t>(state.range(0));
+  // 0: oneTBB's default arena (every core); otherwise an arena of that many threads.
+  const int threads = static_cast<int>(state.range(1));
+  tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
   std::vector<std::shared_ptr<const Model>> models;
   for (const Mesh& m : small_meshes()) models.push_back(std::make_shared<const Model>(m));
   const Motion motion(n, side_for(n), 42);
@@ -146,22 +155,27 @@ void world_frame_antcd(benchmark::State& state) {
   for (auto _ : state) {
     ++frame;
     for (std::size_t i = 0; i < n; ++i) poses[i] = motion.pose(i, frame);
-    world.set_poses(ids, poses);
-    const std::vector<PairContacts> pairs = world.collide_all();
+    const std::vector<PairContacts> pairs = arena.execute([&] {
+      world.set_poses(ids, poses);
+      return world.collide_all();
+    });
     benchmark::DoNotOptimize(pairs.data());
     colliding += pairs.size();
-    if (expected.size() < frame) {
-      state.PauseTiming();
-      IndexPairs found;
-      for (const PairContacts& p : pairs) {
-        const std::uint32_t a = index_of_slot[p.a.slot];
-        const std::uint32_t b = index_of_slot[p.b.slot];
-        found.emplace_back(std::min(a, b), std::max(a, b));
-      }
-      std::sort(found.begin(), found.end());
-      expected.push_back(std::move(found));
-      state.ResumeTiming();
+    state.PauseTiming();
+    IndexPairs found;
+    for (const PairContacts& p : pairs) {
+      const std::uint32_t a = index_of_slot[p.a.slot];
+      const std::uint32_t b = index_of_slot[p.b.slot];
+      found.emplace_back(std::min(a, b), std::max(a, b));
     }
+    std::sort(found.begin(), found.end());
+    if (expected.size() < frame) {
+      expected.push_back(std::move(found));
+    } else if (found != expected[frame - 1]) {  // another thread count must find the same pairs
+      state.SkipWithError("antcd's pairs differ from its first run's at this frame");
+      break;
+    }
+    state.ResumeTiming();
   }
   candidates = world.candidate_pairs(0).size();  // after the timed loop
   state.counters["colliding_per_frame"] =
@@ -277,6 +291,96 @@ void world_frame_fcl(benchmark::State& state) {
   state.counters["world_heap_MB"] = static_cast<double>(bytes) / 1e6;
 }
 
+// ---- both engines frame by frame in turn ----
+
+double thread_seconds() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v.empty() ? 0 : v[v.size() / 2];
+}
+
+// world_interleaved/<objects>: one frame of antcd (in an arena of one thread, so that all of its
+// work runs on this thread) then the same frame of FCL, in turn, on the same motion: a change of
+// the machine's load hits both engines alike, which separate rows on a shared machine do not
+// guarantee. Counters: per-frame medians of each engine's wall time and of this thread's CPU time,
+// and their ratios antcd / FCL; the colliding pairs of every frame must agree.
+void world_interleaved(benchmark::State& state) {
+  const auto n = static_cast<std::size_t>(state.range(0));
+  const Motion motion(n, side_for(n), 42);
+  std::vector<std::shared_ptr<const Model>> models;
+  for (const Mesh& m : small_meshes()) models.push_back(std::make_shared<const Model>(m));
+  std::vector<std::shared_ptr<fcl::BVHModel<fcl::OBBRSSd>>> fcl_models;
+  for (const Mesh& m : small_meshes()) fcl_models.push_back(fcl_model(m));
+  World world;
+  std::vector<ObjectId> ids;
+  std::vector<std::unique_ptr<fcl::CollisionObjectd>> objects;
+  std::vector<fcl::CollisionObjectd*> raw;
+  for (std::size_t i = 0; i < n; ++i) {
+    ids.push_back(world.add(models[i % 2], motion.pose(i, 0)));
+    objects.push_back(
+        std::make_unique<fcl::CollisionObjectd>(fcl_models[i % 2], to_fcl(motion.pose(i, 0))));
+    objects.back()->computeAABB();
+    objects.back()->setUserData(reinterpret_cast<void*>(static_cast<std::uintptr_t>(i)));
+    raw.push_back(objects.back().get());
+  }
+  auto manager = std::make_unique<fcl::DynamicAABBTreeCollisionManagerd>();
+  manager->registerObjects(raw);
+  manager->setup();
+  tbb::task_arena one(1);
+  std::vector<Transform> poses(n);
+  std::vector<double> antcd_wall, antcd_cpu, fcl_wall, fcl_cpu;
+  std::size_t frame = 0;
+  for (auto _ : state) {
+    ++frame;
+    const auto w0 = std::chrono::steady_clock::now();
+    const double c0 = thread_seconds();
+    for (std::size_t i = 0; i < n; ++i) poses[i] = motion.pose(i, frame);
+    const std::vector<PairContacts> pairs = one.execute([&] {
+      world.set_poses(ids, poses);
+      return world.collide_all();
+    });
+    const auto w1 = std::chrono::steady_clock::now();
+    const double c1 = thread_seconds();
+    for (std::size_t i = 0; i < n; ++i) {
+      objects[i]->setTransform(to_fcl(motion.pose(i, frame)));
+      objects[i]->computeAABB();
+    }
+    manager->update();
+    FclData data;
+    manager->collide(&data, fcl_callback);
+    const auto w2 = std::chrono::steady_clock::now();
+    const double c2 = thread_seconds();
+    antcd_wall.push_back(std::chrono::duration<double>(w1 - w0).count());
+    fcl_wall.push_back(std::chrono::duration<double>(w2 - w1).count());
+    antcd_cpu.push_back(c1 - c0);
+    fcl_cpu.push_back(c2 - c1);
+    state.PauseTiming();
+    IndexPairs mine;
+    for (const PairContacts& p : pairs) {  // ids were handed out in order: slot = index
+      mine.emplace_back(p.a.slot, p.b.slot);
+    }
+    std::sort(data.pairs.begin(), data.pairs.end());
+    const std::string difference = first_difference(data.pairs, mine, motion, frame);
+    state.ResumeTiming();
+    if (!difference.empty()) {
+      std::cerr << "world_interleaved/" << n << ": " << difference << "\n";
+      state.SkipWithError("FCL and antcd disagree on the colliding pairs of a frame (see stderr)");
+      break;
+    }
+  }
+  state.counters["antcd_wall_ms"] = 1e3 * median(antcd_wall);
+  state.counters["fcl_wall_ms"] = 1e3 * median(fcl_wall);
+  state.counters["antcd_cpu_ms"] = 1e3 * median(antcd_cpu);
+  state.counters["fcl_cpu_ms"] = 1e3 * median(fcl_cpu);
+  state.counters["ratio_wall"] = median(antcd_wall) / median(fcl_wall);
+  state.counters["ratio_cpu"] = median(antcd_cpu) / median(fcl_cpu);
+}
+
 // ---- two-thread scaling on a dense world of real meshes ----
 
 std::vector<std::shared_ptr<const Model>> dense_models() {
@@ -293,6 +397,25 @@ std::vector<std::shared_ptr<const Model>> dense_models() {
   }
   if (out.empty()) out.push_back(std::make_shared<const Model>(make_torus(0.8, 0.2, 96, 48)));
   return out;
+}
+
+// The machine's own two-thread ratio in the same run: a loop of independent arithmetic of about
+// the same length and task count as dense_threads, no memory traffic, no serial part. On a machine
+// shared with other work (Linux groups a session's threads into one scheduling entity), this
+// ratio falls towards 1 whatever the program does; dense_threads can only be judged against it.
+void parallel_control(benchmark::State& state) {
+  tbb::task_arena arena(static_cast<int>(state.range(0)));
+  std::vector<double> out(256);
+  for (auto _ : state) {
+    arena.execute([&] {
+      tbb::parallel_for(std::size_t{0}, out.size(), [&](std::size_t i) {
+        double s = 0;
+        for (int k = 0; k < 3000; ++k) s += std::sqrt(static_cast<double>(k + i));
+        out[i] = s;
+      });
+    });
+    benchmark::DoNotOptimize(out.data());
+  }
 }
 
 void dense_threads(benchmark::State& state) {
@@ -317,8 +440,10 @@ void dense_threads(benchmark::State& state) {
 
 }  // namespace
 
-BENCHMARK(world_frame_antcd)->Arg(10000)->Arg(100000)->Unit(benchmark::kMillisecond)->Iterations(8)->Repetitions(3)->ReportAggregatesOnly(true);
+BENCHMARK(world_frame_antcd)->Args({10000, 0})->Args({100000, 0})->Args({10000, 1})->Args({100000, 1})->Unit(benchmark::kMillisecond)->Iterations(8)->Repetitions(3)->ReportAggregatesOnly(true);
 BENCHMARK(world_frame_fcl)->Arg(10000)->Arg(100000)->Unit(benchmark::kMillisecond)->Iterations(8)->Repetitions(3)->ReportAggregatesOnly(true);
+BENCHMARK(world_interleaved)->Arg(10000)->Arg(100000)->Unit(benchmark::kMillisecond)->Iterations(15);
 BENCHMARK(dense_threads)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->MinTime(1.0)->Repetitions(3)->ReportAggregatesOnly(true)->UseRealTime();
+BENCHMARK(parallel_control)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->MinTime(1.0)->Repetitions(3)->ReportAggregatesOnly(true)->UseRealTime();
 
 BENCHMARK_MAIN();

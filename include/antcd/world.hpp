@@ -25,9 +25,10 @@
 // - Errors: an invalid argument (an unknown or removed ObjectId, a non-finite or non-rigid pose, a
 //   negative or non-finite distance, a zero ray direction, a null model) throws ArgumentError
 //   (error.hpp) whose message names the function, the argument and the object.
-// - Broad phase: a dynamic AABB tree over fattened world boxes (docs/design.md): moving an object
-//   within its fattened box costs only the box computation; leaving it costs one removal and one
-//   insertion (O(log n)). Queries never modify the tree.
+// - Broad phase: a dynamic AABB tree (docs/design.md). Moving an object within its leaf's box
+//   costs only the box computation; when few objects leave their boxes, each costs one removal and
+//   one insertion (O(log n)) with a fattened box; when many do (a frame of a moving world), one
+//   O(n) refit. All-pairs queries traverse the tree against itself. Queries never modify it.
 #pragma once
 
 #include <antcd/collide.hpp>

@@ -5,10 +5,13 @@
 // each choice causes (the usual cost model of bounding-volume trees: the chance that a random query
 // box overlaps a node grows with its area). On the way back up, nodes whose children's heights
 // differ by more than one are rotated (as in an AVL tree), so the height stays O(log n) whatever
-// the insertion order. Every n/2 changes the tree is rebuilt top-down (aabb_tree.hpp says why).
+// the insertion order. Rebuilds and refits: aabb_tree.hpp.
 #include "world/aabb_tree.hpp"
 
+#include <tbb/parallel_invoke.h>
+
 #include <algorithm>
+#include <bit>
 #include <cassert>
 #include <cmath>
 #include <limits>
@@ -18,19 +21,39 @@ namespace antcd::detail {
 
 namespace {
 
-Aabb merged(const Aabb& a, const Aabb& b) {
-  Aabb out;
-  out.min = a.min.cwiseMin(b.min);
-  out.max = a.max.cwiseMax(b.max);
-  return out;
+// The largest float <= x, and the smallest float >= x (boxes rounded outward). Finite x only:
+// one step of the float's bit pattern (its magnitude grows by one unit in the last place).
+float down(Scalar x) {
+  const auto f = static_cast<float>(x);
+  if (static_cast<Scalar>(f) <= x) return f;
+  return f > 0 ? std::bit_cast<float>(std::bit_cast<std::uint32_t>(f) - 1)
+               : (f == 0 ? -std::numeric_limits<float>::denorm_min()
+                         : std::bit_cast<float>(std::bit_cast<std::uint32_t>(f) + 1));
 }
-
-Scalar area(const Aabb& b) {
-  const Vec3 e = b.max - b.min;
-  return 2 * (e.x() * e.y() + e.y() * e.z() + e.z() * e.x());
-}
+float up(Scalar x) { return -down(-x); }
 
 }  // namespace
+
+void AabbTree::set_node_box(Node& n, const Aabb& b) {
+  for (int k = 0; k < 3; ++k) {
+    n.lo[k] = down(b.min[k]);
+    n.hi[k] = up(b.max[k]);
+  }
+}
+
+void AabbTree::merge_into(Node& n, const Node& a, const Node& b) {
+  for (int k = 0; k < 3; ++k) {
+    n.lo[k] = std::min(a.lo[k], b.lo[k]);
+    n.hi[k] = std::max(a.hi[k], b.hi[k]);
+  }
+}
+
+Scalar AabbTree::area(const Node& n) {
+  const Scalar x = static_cast<Scalar>(n.hi[0]) - n.lo[0];
+  const Scalar y = static_cast<Scalar>(n.hi[1]) - n.lo[1];
+  const Scalar z = static_cast<Scalar>(n.hi[2]) - n.lo[2];
+  return 2 * (x * y + y * z + z * x);
+}
 
 bool AabbTree::ray_hits_box(const Aabb& b, const Vec3& o, const Vec3& inv, Scalar s_max) {
   // Slab test. The box is widened by a relative allowance so that rounding in the divisions never
@@ -65,36 +88,49 @@ std::int32_t AabbTree::allocate() {
     const std::int32_t i = free_.back();
     free_.pop_back();
     nodes_[i] = Node{};
+    parent_[i] = kNull;
+    height_[i] = 0;
     return i;
   }
   nodes_.emplace_back();
+  parent_.push_back(kNull);
+  height_.push_back(0);
   return static_cast<std::int32_t>(nodes_.size() - 1);
 }
 
 void AabbTree::release(std::int32_t i) { free_.push_back(i); }
 
-std::int32_t AabbTree::insert(const Aabb& box, std::uint32_t object) {
+void AabbTree::insert(std::uint32_t object, const Aabb& box) {
+  assert(!contains(object));
+  if (leaf_of_.size() <= object) leaf_of_.resize(std::size_t{object} + 1, kNull);
   const std::int32_t leaf = allocate();
-  nodes_[leaf].box = box;
-  nodes_[leaf].object = object;
+  set_node_box(nodes_[leaf], box);
+  nodes_[leaf].child2 = static_cast<std::int32_t>(object);
+  leaf_of_[object] = leaf;
   insert_leaf(leaf);
   ++leaves_;
   changed();
-  return leaf;
 }
 
-void AabbTree::remove(std::int32_t leaf) {
+void AabbTree::remove(std::uint32_t object) {
+  const std::int32_t leaf = leaf_of_[object];
   remove_leaf(leaf);
   release(leaf);
+  leaf_of_[object] = kNull;
   --leaves_;
   changed();
 }
 
-void AabbTree::move(std::int32_t leaf, const Aabb& box) {
+void AabbTree::move(std::uint32_t object, const Aabb& box) {
+  const std::int32_t leaf = leaf_of_[object];
   remove_leaf(leaf);
-  nodes_[leaf].box = box;
+  set_node_box(nodes_[leaf], box);
   insert_leaf(leaf);
   changed();
+}
+
+void AabbTree::set_box(std::uint32_t object, const Aabb& box) {
+  set_node_box(nodes_[leaf_of_[object]], box);
 }
 
 void AabbTree::changed() {
@@ -102,94 +138,190 @@ void AabbTree::changed() {
   if (++changes_ >= std::max(kMinChanges, leaves_ / 2)) rebuild();
 }
 
-void AabbTree::rebuild() {
-  changes_ = 0;
-  if (root_ == kNull) return;
-  std::vector<std::int32_t> leaves;
-  leaves.reserve(leaves_);
-  std::vector<std::int32_t> stack{root_};
-  while (!stack.empty()) {
-    const std::int32_t i = stack.back();
-    stack.pop_back();
-    if (nodes_[i].child1 == kNull) {
-      leaves.push_back(i);
-      continue;
-    }
-    stack.push_back(nodes_[i].child1);
-    stack.push_back(nodes_[i].child2);
-    release(i);
+Scalar AabbTree::refit_subtree(std::int32_t i) {
+  Node& n = nodes_[i];
+  if (n.child1 == kNull) return 0;
+  Scalar below1 = 0;
+  Scalar below2 = 0;
+  if (height_[i] > kParallelHeight) {  // disjoint subtrees: in parallel, same sums in any case
+    tbb::parallel_invoke([&] { below1 = refit_subtree(n.child1); },
+                         [&] { below2 = refit_subtree(n.child2); });
+  } else {
+    below1 = refit_subtree(n.child1);
+    below2 = refit_subtree(n.child2);
   }
-  root_ = build(leaves.data(), leaves.data() + leaves.size());
-  nodes_[root_].parent = kNull;
+  merge_into(n, nodes_[n.child1], nodes_[n.child2]);
+  return below1 + below2 + area(n);
 }
 
-// The subtree over leaves [first, last): split at the median of the leaves' centres along the axis
-// where those centres spread most. Depth ceil(log2 n); recursion depth the same.
-std::int32_t AabbTree::build(std::int32_t* first, std::int32_t* last) {
-  const std::ptrdiff_t count = last - first;
-  if (count == 1) return *first;
-  Vec3 lo = Vec3::Constant(std::numeric_limits<Scalar>::infinity());
-  Vec3 hi = -lo;
-  for (const std::int32_t* p = first; p != last; ++p) {
-    const Vec3 c = nodes_[*p].box.min + nodes_[*p].box.max;  // twice the centre
-    lo = lo.cwiseMin(c);
-    hi = hi.cwiseMax(c);
+void AabbTree::refit() {
+  if (root_ == kNull) return;
+  const Scalar sum = refit_subtree(root_);
+  const Scalar root_area = area(nodes_[root_]);
+  // Loose: the boxes' total area (the expected cost of a query) grew by half since the rebuild.
+  if (root_area > 0 && sum / root_area > 1.5 * built_area_ && leaves_ >= 64) rebuild();
+}
+
+namespace {
+
+struct BuildItem {
+  float centre[3];  // twice the box centre
+  std::uint32_t object;
+};
+
+}  // namespace
+
+void AabbTree::rebuild() {
+  changes_ = 0;
+  if (root_ == kNull) {
+    built_area_ = 0;
+    return;
   }
-  int axis = 0;
-  (hi - lo).maxCoeff(&axis);
-  std::int32_t* mid = first + count / 2;
-  std::nth_element(first, mid, last, [&](std::int32_t a, std::int32_t b) {
-    const Scalar ca = nodes_[a].box.min[axis] + nodes_[a].box.max[axis];
-    const Scalar cb = nodes_[b].box.min[axis] + nodes_[b].box.max[axis];
-    return ca != cb ? ca < cb : a < b;  // ties by index: the same tree for the same input
-  });
-  const std::int32_t child1 = build(first, mid);
-  const std::int32_t child2 = build(mid, last);
-  const std::int32_t parent = allocate();
-  Node& n = nodes_[parent];
-  n.child1 = child1;
-  n.child2 = child2;
-  n.box = merged(nodes_[child1].box, nodes_[child2].box);
-  n.height = 1 + std::max(nodes_[child1].height, nodes_[child2].height);
-  nodes_[child1].parent = parent;
-  nodes_[child2].parent = parent;
-  return parent;
+  std::vector<BuildItem> items;
+  items.reserve(leaves_);
+  for (std::size_t object = 0; object < leaf_of_.size(); ++object) {
+    const std::int32_t leaf = leaf_of_[object];
+    if (leaf == kNull) continue;
+    const Node& n = nodes_[leaf];
+    items.push_back({{n.lo[0] + n.hi[0], n.lo[1] + n.hi[1], n.lo[2] + n.hi[2]},
+                     static_cast<std::uint32_t>(object)});
+  }
+  std::vector<Node> next(2 * items.size() - 1);
+  parent_.assign(next.size(), kNull);
+  height_.assign(next.size(), 0);
+  free_.clear();
+  // The subtree over items [first, last) at position `at` (depth-first order: the left subtree
+  // follows at + 1, the right one after the left's 2m - 1 nodes), split at the median of the
+  // centres along the axis where they spread most. Depth ceil(log2 n); recursion depth the same.
+  const auto build = [&](auto&& self, BuildItem* first, BuildItem* last, std::int32_t at,
+                         std::int32_t parent) -> void {
+    parent_[at] = parent;
+    const std::ptrdiff_t count = last - first;
+    if (count == 1) {
+      next[at] = nodes_[leaf_of_[first->object]];
+      leaf_of_[first->object] = at;
+      return;
+    }
+    float lo[3] = {first->centre[0], first->centre[1], first->centre[2]};
+    float hi[3] = {lo[0], lo[1], lo[2]};
+    for (const BuildItem* p = first + 1; p != last; ++p) {
+      for (int k = 0; k < 3; ++k) {
+        lo[k] = std::min(lo[k], p->centre[k]);
+        hi[k] = std::max(hi[k], p->centre[k]);
+      }
+    }
+    int axis = 0;
+    for (int k = 1; k < 3; ++k) {
+      if (hi[k] - lo[k] > hi[axis] - lo[axis]) axis = k;
+    }
+    BuildItem* mid = first + count / 2;
+    std::nth_element(first, mid, last, [axis](const BuildItem& a, const BuildItem& b) {
+      // Ties by object: the same tree for the same input.
+      return a.centre[axis] != b.centre[axis] ? a.centre[axis] < b.centre[axis]
+                                              : a.object < b.object;
+    });
+    const auto left = at + 1;
+    const auto right = at + 2 * static_cast<std::int32_t>(count / 2);
+    if (count > kParallelBuild) {  // disjoint ranges and node positions: the same tree in parallel
+      tbb::parallel_invoke([&] { self(self, first, mid, left, at); },
+                           [&] { self(self, mid, last, right, at); });
+    } else {
+      self(self, first, mid, left, at);
+      self(self, mid, last, right, at);
+    }
+    Node& n = next[at];
+    n.child1 = left;
+    n.child2 = right;
+    merge_into(n, next[left], next[right]);
+    height_[at] = 1 + std::max(height_[left], height_[right]);
+  };
+  build(build, items.data(), items.data() + items.size(), 0, kNull);
+  nodes_ = std::move(next);
+  root_ = 0;
+  built_area_ = relative_area();
 }
 
 Scalar AabbTree::relative_area() const {
   if (root_ == kNull || nodes_[root_].child1 == kNull) return 0;
   Scalar sum = 0;
-  std::vector<std::int32_t> stack{root_};
+  Stack<std::int32_t> stack;
+  stack.push(root_);
   while (!stack.empty()) {
-    const Node& n = nodes_[stack.back()];
-    stack.pop_back();
+    const Node& n = nodes_[stack.pop()];
     if (n.child1 == kNull) continue;
-    sum += area(n.box);
-    stack.push_back(n.child1);
-    stack.push_back(n.child2);
+    sum += area(n);
+    stack.push(n.child1);
+    stack.push(n.child2);
   }
-  return sum / area(nodes_[root_].box);
+  const Scalar root_area = area(nodes_[root_]);
+  return root_area > 0 ? sum / root_area : 0;
+}
+
+std::vector<AabbTree::PairTask> AabbTree::pair_tasks(Scalar gap, std::size_t target) const {
+  std::vector<PairTask> tasks;
+  if (root_ == kNull) return tasks;
+  tasks.push_back(all_pairs());
+  // Expand every task one level per round (a subtree into its two subtrees and their cross pairs,
+  // a cross pair into the two halves of its larger side), dropping cross pairs that are too far
+  // apart, until there are enough tasks or nothing is left to expand.
+  std::vector<PairTask> next;
+  for (int round = 0; round < 24 && tasks.size() < target; ++round) {
+    next.clear();
+    bool expanded = false;
+    for (const PairTask t : tasks) {
+      const Node& a = nodes_[t.a];
+      const Node& b = nodes_[t.b];
+      if (t.a == t.b) {
+        if (a.child1 == kNull) continue;  // one leaf: no pairs
+        next.push_back({a.child1, a.child1});
+        next.push_back({a.child2, a.child2});
+        next.push_back({a.child1, a.child2});
+        expanded = true;
+        continue;
+      }
+      if (!near(a, b, gap)) continue;
+      const bool a_leaf = a.child1 == kNull;
+      const bool b_leaf = b.child1 == kNull;
+      if (a_leaf && b_leaf) {
+        next.push_back(t);
+      } else if (b_leaf || (!a_leaf && span(a) >= span(b))) {
+        next.push_back({a.child1, t.b});
+        next.push_back({a.child2, t.b});
+        expanded = true;
+      } else {
+        next.push_back({t.a, b.child1});
+        next.push_back({t.a, b.child2});
+        expanded = true;
+      }
+    }
+    tasks.swap(next);
+    if (!expanded) break;
+  }
+  return tasks;
 }
 
 void AabbTree::insert_leaf(std::int32_t leaf) {
   if (root_ == kNull) {
     root_ = leaf;
-    nodes_[leaf].parent = kNull;
+    parent_[leaf] = kNull;
     return;
   }
-  const Aabb box = nodes_[leaf].box;
+  Node box = nodes_[leaf];
   std::int32_t index = root_;
   while (nodes_[index].child1 != kNull) {
     const Node& n = nodes_[index];
-    const Scalar here = area(n.box);
-    const Scalar combined = area(merged(n.box, box));
+    Node m;
+    merge_into(m, n, box);
+    const Scalar here = area(n);
+    const Scalar combined = area(m);
     // Cost of making the leaf this node's sibling, and the minimum cost pushed down to children.
     const Scalar sibling_cost = 2 * combined;
     const Scalar inherited = 2 * (combined - here);
     const auto child_cost = [&](std::int32_t c) {
-      const Aabb m = merged(nodes_[c].box, box);
-      if (nodes_[c].child1 == kNull) return area(m) + inherited;
-      return area(m) - area(nodes_[c].box) + inherited;
+      Node mc;
+      merge_into(mc, nodes_[c], box);
+      if (nodes_[c].child1 == kNull) return area(mc) + inherited;
+      return area(mc) - area(nodes_[c]) + inherited;
     };
     const Scalar cost1 = child_cost(n.child1);
     const Scalar cost2 = child_cost(n.child2);
@@ -197,15 +329,15 @@ void AabbTree::insert_leaf(std::int32_t leaf) {
     index = cost1 <= cost2 ? n.child1 : n.child2;
   }
   const std::int32_t sibling = index;
-  const std::int32_t old_parent = nodes_[sibling].parent;
-  const std::int32_t parent = allocate();
-  nodes_[parent].parent = old_parent;
-  nodes_[parent].box = merged(box, nodes_[sibling].box);
-  nodes_[parent].height = nodes_[sibling].height + 1;
+  const std::int32_t old_parent = parent_[sibling];
+  const std::int32_t parent = allocate();  // may reallocate nodes_: no references held here
+  parent_[parent] = old_parent;
+  merge_into(nodes_[parent], box, nodes_[sibling]);
+  height_[parent] = height_[sibling] + 1;
   nodes_[parent].child1 = sibling;
   nodes_[parent].child2 = leaf;
-  nodes_[sibling].parent = parent;
-  nodes_[leaf].parent = parent;
+  parent_[sibling] = parent;
+  parent_[leaf] = parent;
   if (old_parent == kNull) {
     root_ = parent;
   } else if (nodes_[old_parent].child1 == sibling) {
@@ -213,7 +345,7 @@ void AabbTree::insert_leaf(std::int32_t leaf) {
   } else {
     nodes_[old_parent].child2 = parent;
   }
-  refit_upwards(nodes_[leaf].parent);
+  refit_upwards(parent_[leaf]);
 }
 
 void AabbTree::remove_leaf(std::int32_t leaf) {
@@ -221,33 +353,33 @@ void AabbTree::remove_leaf(std::int32_t leaf) {
     root_ = kNull;
     return;
   }
-  const std::int32_t parent = nodes_[leaf].parent;
-  const std::int32_t grand = nodes_[parent].parent;
+  const std::int32_t parent = parent_[leaf];
+  const std::int32_t grand = parent_[parent];
   const std::int32_t sibling =
       nodes_[parent].child1 == leaf ? nodes_[parent].child2 : nodes_[parent].child1;
   if (grand == kNull) {
     root_ = sibling;
-    nodes_[sibling].parent = kNull;
+    parent_[sibling] = kNull;
   } else {
     if (nodes_[grand].child1 == parent) {
       nodes_[grand].child1 = sibling;
     } else {
       nodes_[grand].child2 = sibling;
     }
-    nodes_[sibling].parent = grand;
+    parent_[sibling] = grand;
     refit_upwards(grand);
   }
   release(parent);
-  nodes_[leaf].parent = kNull;
+  parent_[leaf] = kNull;
 }
 
 void AabbTree::refit_upwards(std::int32_t i) {
   while (i != kNull) {
     i = balance(i);
     Node& n = nodes_[i];
-    n.height = 1 + std::max(nodes_[n.child1].height, nodes_[n.child2].height);
-    n.box = merged(nodes_[n.child1].box, nodes_[n.child2].box);
-    i = n.parent;
+    height_[i] = 1 + std::max(height_[n.child1], height_[n.child2]);
+    merge_into(n, nodes_[n.child1], nodes_[n.child2]);
+    i = parent_[i];
   }
 }
 
@@ -256,10 +388,10 @@ void AabbTree::refit_upwards(std::int32_t i) {
 // node. Returns the index now at a's position.
 std::int32_t AabbTree::balance(std::int32_t a) {
   Node& na = nodes_[a];
-  if (na.child1 == kNull || na.height < 2) return a;
+  if (na.child1 == kNull || height_[a] < 2) return a;
   const std::int32_t b = na.child1;
   const std::int32_t c = na.child2;
-  const std::int32_t diff = nodes_[c].height - nodes_[b].height;
+  const std::int32_t diff = height_[c] - height_[b];
   if (diff >= -1 && diff <= 1) return a;
   // `up` is the taller child, `other` the shorter one.
   const std::int32_t up = diff > 1 ? c : b;
@@ -269,27 +401,27 @@ std::int32_t AabbTree::balance(std::int32_t a) {
   const std::int32_t g = nu.child2;
   // Lift `up` into a's place.
   nu.child1 = a;
-  nu.parent = na.parent;
-  na.parent = up;
-  if (nu.parent == kNull) {
+  parent_[up] = parent_[a];
+  parent_[a] = up;
+  if (parent_[up] == kNull) {
     root_ = up;
-  } else if (nodes_[nu.parent].child1 == a) {
-    nodes_[nu.parent].child1 = up;
+  } else if (nodes_[parent_[up]].child1 == a) {
+    nodes_[parent_[up]].child1 = up;
   } else {
-    nodes_[nu.parent].child2 = up;
+    nodes_[parent_[up]].child2 = up;
   }
   // The taller of up's children stays under up; the shorter goes down to a.
-  const bool keep_f = nodes_[f].height > nodes_[g].height;
+  const bool keep_f = height_[f] > height_[g];
   const std::int32_t keep = keep_f ? f : g;
   const std::int32_t give = keep_f ? g : f;
   nu.child2 = keep;
   na.child1 = other;
   na.child2 = give;
-  nodes_[give].parent = a;
-  na.box = merged(nodes_[other].box, nodes_[give].box);
-  na.height = 1 + std::max(nodes_[other].height, nodes_[give].height);
-  nu.box = merged(na.box, nodes_[keep].box);
-  nu.height = 1 + std::max(na.height, nodes_[keep].height);
+  parent_[give] = a;
+  merge_into(na, nodes_[other], nodes_[give]);
+  height_[a] = 1 + std::max(height_[other], height_[give]);
+  merge_into(nu, na, nodes_[keep]);
+  height_[up] = 1 + std::max(height_[a], height_[keep]);
   return up;
 }
 

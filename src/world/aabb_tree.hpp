@@ -1,15 +1,25 @@
 // Private: the World's broad phase, a dynamic AABB tree (a binary tree of axis-aligned boxes whose
 // leaves are objects) kept balanced by AVL-style rotations, with insertion guided by the growth of
 // surface area. Leaves hold fattened boxes so that small motions need no update (docs/design.md).
-// Greedy insertion and height-only rotations keep the height O(log n) but not the boxes tight: on
-// many objects spread through a volume, internal boxes grow into overlapping slabs and a query
-// visits a large fraction of the tree. So after as many changes (insertions, removals, moves) as
-// half the leaves, the tree is rebuilt top-down (median splits along the widest axis of the
-// leaves' centres): O(n log n) every n/2 changes, amortized O(log n) per change.
+//
+// Layout: 32-byte nodes (single-precision boxes rounded outward, so a node box always contains the
+// double box it was made from; two children or one object), with parents and heights kept apart
+// because only the mutations read them. A leaf is addressed by its object (a small integer, the
+// World's slot), so a rebuild may renumber every node: it lays the tree out in depth-first order,
+// which keeps a subtree in one stretch of memory for the traversals.
+//
+// Keeping it tight: greedy insertion and height-only rotations keep the height O(log n) but not the
+// boxes tight (on many objects spread through a volume, internal boxes grow into overlapping
+// slabs). So after as many incremental changes as half the leaves, the tree is rebuilt top-down
+// (median splits along the widest axis of the leaves' centres): amortized O(log n) per change. A
+// frame in which many objects leave their fattened boxes instead replaces their leaf boxes and
+// refits every internal box in one O(n) pass (set_box + refit); refit rebuilds when the surface
+// area of the internal boxes has grown by half over what the last rebuild produced.
 #pragma once
 
 #include <antcd/math.hpp>
 
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -29,18 +39,37 @@ class AabbTree {
  public:
   static constexpr std::int32_t kNull = -1;
 
-  /// Inserts a leaf with `box` for `object`; returns the leaf's node index (stable until removed).
-  std::int32_t insert(const Aabb& box, std::uint32_t object);
-  void remove(std::int32_t leaf);
-  /// Replaces a leaf's box (remove + insert of the same node index).
-  void move(std::int32_t leaf, const Aabb& box);
+  /// A unit of the all-pairs traversal: every pair within subtree `a` (a == b), or every pair with
+  /// one leaf under `a` and one under `b`. Independent of each other: run them on any threads.
+  struct PairTask {
+    std::int32_t a;
+    std::int32_t b;
+  };
 
-  [[nodiscard]] const Aabb& box(std::int32_t leaf) const { return nodes_[leaf].box; }
-  [[nodiscard]] std::size_t memory_bytes() const {
-    return nodes_.capacity() * sizeof(Node) + free_.capacity() * sizeof(std::int32_t);
+  /// Adds a leaf with `box` for `object` (not yet in the tree). O(log n).
+  void insert(std::uint32_t object, const Aabb& box);
+  void remove(std::uint32_t object);
+  /// Replaces a leaf's box by a removal and an insertion. O(log n).
+  void move(std::uint32_t object, const Aabb& box);
+  /// Replaces a leaf's box without touching its ancestors: after a batch of these, call refit()
+  /// before any other member function.
+  void set_box(std::uint32_t object, const Aabb& box);
+  /// Recomputes every internal box from its children (O(n)); rebuilds when the tree got loose.
+  void refit();
+
+  [[nodiscard]] bool contains(std::uint32_t object) const {
+    return object < leaf_of_.size() && leaf_of_[object] != kNull;
   }
-  [[nodiscard]] std::int32_t height() const { return root_ == kNull ? 0 : nodes_[root_].height; }
-  /// Rebuilds the internal nodes top-down; leaf indices and boxes are unchanged.
+  /// The box stored for `object` (its box rounded outward to single precision).
+  [[nodiscard]] Aabb box(std::uint32_t object) const { return to_aabb(nodes_[leaf_of_[object]]); }
+  [[nodiscard]] std::size_t size() const { return leaves_; }
+  [[nodiscard]] std::size_t memory_bytes() const {
+    return nodes_.capacity() * sizeof(Node) +
+           (parent_.capacity() + height_.capacity() + free_.capacity() + leaf_of_.capacity()) *
+               sizeof(std::int32_t);
+  }
+  [[nodiscard]] std::int32_t height() const { return root_ == kNull ? 0 : height_[root_]; }
+  /// Rebuilds the whole tree top-down (objects keep their boxes).
   void rebuild();
   /// Total surface area of the internal nodes' boxes divided by the root's: the expected number of
   /// internal nodes a small random query box inside the root visits (the SAH cost; tree quality).
@@ -50,31 +79,17 @@ class AabbTree {
   template <class Visit>
   void query(const Aabb& box, Visit&& visit) const {
     if (root_ == kNull) return;
-    std::int32_t stack[128];
-    std::vector<std::int32_t> overflow;  // only for degenerate trees taller than the stack
-    int top = 0;
-    stack[top++] = root_;
-    while (top > 0 || !overflow.empty()) {
-      std::int32_t i;
-      if (!overflow.empty()) {
-        i = overflow.back();
-        overflow.pop_back();
-      } else {
-        i = stack[--top];
-      }
-      const Node& n = nodes_[i];
-      if (!boxes_overlap(n.box, box)) continue;
+    Stack<std::int32_t> stack;
+    stack.push(root_);
+    while (!stack.empty()) {
+      const Node& n = nodes_[stack.pop()];
+      if (!overlaps(n, box)) continue;
       if (n.child1 == kNull) {
-        visit(n.object);
+        visit(static_cast<std::uint32_t>(n.child2));
         continue;
       }
-      for (const std::int32_t c : {n.child1, n.child2}) {
-        if (top < 128) {
-          stack[top++] = c;
-        } else {
-          overflow.push_back(c);
-        }
-      }
+      stack.push(n.child1);
+      stack.push(n.child2);
     }
   }
 
@@ -84,49 +99,159 @@ class AabbTree {
   void ray_query(const Vec3& origin, const Vec3& inv_dir, const Scalar* s_max,
                  Visit&& visit) const {
     if (root_ == kNull) return;
-    std::vector<std::int32_t> stack{root_};
+    Stack<std::int32_t> stack;
+    stack.push(root_);
     while (!stack.empty()) {
-      const std::int32_t i = stack.back();
-      stack.pop_back();
-      const Node& n = nodes_[i];
-      if (!ray_hits_box(n.box, origin, inv_dir, *s_max)) continue;
+      const Node& n = nodes_[stack.pop()];
+      if (!ray_hits_box(to_aabb(n), origin, inv_dir, *s_max)) continue;
       if (n.child1 == kNull) {
-        visit(n.object);
+        visit(static_cast<std::uint32_t>(n.child2));
         continue;
       }
-      stack.push_back(n.child1);
-      stack.push_back(n.child2);
+      stack.push(n.child1);
+      stack.push(n.child2);
     }
   }
 
   /// Slab test, conservative: a box the segment touches is never rejected.
   static bool ray_hits_box(const Aabb& b, const Vec3& o, const Vec3& inv, Scalar s_max);
 
+  /// Splits the all-pairs traversal at `gap` into about `target` independent tasks (fewer on a
+  /// small tree), in an order that depends only on the tree.
+  [[nodiscard]] std::vector<PairTask> pair_tasks(Scalar gap, std::size_t target) const;
+
+  /// Calls visit(object_a, object_b) once for every unordered pair of distinct leaves under `task`
+  /// whose boxes are within `gap` of each other on every axis (a's box grown by gap overlaps b's).
+  /// Reentrant (read only).
+  template <class Visit>
+  void pairs(PairTask task, Scalar gap, Visit&& visit) const {
+    if (task.a == kNull) return;
+    if (task.a != task.b && !near(nodes_[task.a], nodes_[task.b], gap)) return;
+    // Every entry on the stack is a subtree (a == b) or a pair of nodes already found near: the
+    // children are tested before they are pushed, while their parent's cache line is warm.
+    Stack<PairTask> stack;
+    stack.push(task);
+    while (!stack.empty()) {
+      const PairTask t = stack.pop();
+      const Node& a = nodes_[t.a];
+      if (t.a == t.b) {  // pairs within one subtree
+        if (a.child1 == kNull) continue;
+        if (nodes_[a.child1].child1 != kNull) stack.push({a.child1, a.child1});
+        if (nodes_[a.child2].child1 != kNull) stack.push({a.child2, a.child2});
+        if (near(nodes_[a.child1], nodes_[a.child2], gap)) stack.push({a.child1, a.child2});
+        continue;
+      }
+      const Node& b = nodes_[t.b];
+      const bool a_leaf = a.child1 == kNull;
+      const bool b_leaf = b.child1 == kNull;
+      if (a_leaf && b_leaf) {
+        visit(static_cast<std::uint32_t>(a.child2), static_cast<std::uint32_t>(b.child2));
+      } else if (b_leaf || (!a_leaf && span(a) >= span(b))) {
+        if (near(nodes_[a.child1], b, gap)) stack.push({a.child1, t.b});
+        if (near(nodes_[a.child2], b, gap)) stack.push({a.child2, t.b});
+      } else {
+        if (near(a, nodes_[b.child1], gap)) stack.push({t.a, b.child1});
+        if (near(a, nodes_[b.child2], gap)) stack.push({t.a, b.child2});
+      }
+    }
+  }
+  /// The whole traversal as one task.
+  [[nodiscard]] PairTask all_pairs() const { return {root_, root_}; }
+
  private:
   struct Node {
-    Aabb box;
-    std::int32_t parent = kNull;
+    float lo[3];
+    float hi[3];
     std::int32_t child1 = kNull;  // kNull for a leaf
-    std::int32_t child2 = kNull;
-    std::int32_t height = 0;  // leaf 0
-    std::uint32_t object = 0;
+    std::int32_t child2 = kNull;  // a leaf: its object
   };
 
+  /// A traversal stack: on the call stack up to 256 entries, then on the heap (degenerate trees).
+  template <class T>
+  class Stack {
+   public:
+    void push(T v) {
+      if (top_ < kInline) {
+        inline_[top_++] = v;
+      } else {
+        spill_.push_back(v);
+      }
+    }
+    T pop() {
+      if (!spill_.empty()) {
+        const T v = spill_.back();
+        spill_.pop_back();
+        return v;
+      }
+      return inline_[--top_];
+    }
+    [[nodiscard]] bool empty() const { return top_ == 0 && spill_.empty(); }
+
+   private:
+    static constexpr int kInline = 256;
+    T inline_[kInline];
+    int top_ = 0;
+    std::vector<T> spill_;
+  };
+
+  static Aabb to_aabb(const Node& n) {
+    Aabb b;
+    b.min = Vec3(n.lo[0], n.lo[1], n.lo[2]);
+    b.max = Vec3(n.hi[0], n.hi[1], n.hi[2]);
+    return b;
+  }
+  static void set_node_box(Node& n, const Aabb& b);
+  static void merge_into(Node& n, const Node& a, const Node& b);
+  static bool overlaps(const Node& n, const Aabb& b) {
+    for (int k = 0; k < 3; ++k) {
+      if (static_cast<Scalar>(n.lo[k]) > b.max[k] || b.min[k] > static_cast<Scalar>(n.hi[k])) {
+        return false;
+      }
+    }
+    return true;
+  }
+  [[gnu::always_inline]] static bool near(const Node& a, const Node& b, Scalar gap) {
+    if (gap == 0) {  // exact in single precision
+      return a.lo[0] <= b.hi[0] && b.lo[0] <= a.hi[0] && a.lo[1] <= b.hi[1] &&
+             b.lo[1] <= a.hi[1] && a.lo[2] <= b.hi[2] && b.lo[2] <= a.hi[2];
+    }
+    for (int k = 0; k < 3; ++k) {
+      if (static_cast<Scalar>(a.lo[k]) - gap > static_cast<Scalar>(b.hi[k]) ||
+          static_cast<Scalar>(b.lo[k]) - gap > static_cast<Scalar>(a.hi[k])) {
+        return false;
+      }
+    }
+    return true;
+  }
+  static float span(const Node& n) {
+    return (n.hi[0] - n.lo[0]) + (n.hi[1] - n.lo[1]) + (n.hi[2] - n.lo[2]);
+  }
+  static Scalar area(const Node& n);
+
   std::int32_t allocate();
-  std::int32_t build(std::int32_t* first, std::int32_t* last);
-  /// Counts a change; rebuilds after enough of them (see the header comment).
-  void changed();
   void release(std::int32_t i);
+  /// Counts an incremental change; rebuilds after enough of them (see the header comment).
+  void changed();
   void insert_leaf(std::int32_t leaf);
   void remove_leaf(std::int32_t leaf);
   std::int32_t balance(std::int32_t a);
   void refit_upwards(std::int32_t i);
+  /// Refits the subtree at i; returns the sum of its internal nodes' areas.
+  Scalar refit_subtree(std::int32_t i);
+
+  // Subtrees taller than this are refitted, and ranges longer than this built, by two oneTBB tasks.
+  static constexpr std::int32_t kParallelHeight = 12;
+  static constexpr std::ptrdiff_t kParallelBuild = 8192;
 
   std::vector<Node> nodes_;
+  std::vector<std::int32_t> parent_;
+  std::vector<std::int32_t> height_;  // leaf 0
   std::vector<std::int32_t> free_;
+  std::vector<std::int32_t> leaf_of_;  // by object; kNull when absent
   std::int32_t root_ = kNull;
   std::size_t leaves_ = 0;
-  std::size_t changes_ = 0;  // since the last rebuild
+  std::size_t changes_ = 0;        // incremental changes since the last rebuild
+  Scalar built_area_ = 0;          // relative_area() right after the last rebuild
 };
 
 }  // namespace antcd::detail

@@ -2,6 +2,8 @@
 // over oneTBB workers, results in a fixed order), and ray casts.
 #include <antcd/world.hpp>
 
+#include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
@@ -18,12 +20,15 @@ namespace antcd {
 namespace {
 
 using Object = World::Impl::Object;
+using Bounds = World::Impl::Bounds;
 using SlotPair = std::pair<std::uint32_t, std::uint32_t>;
 
 // Below these sizes a query stays on the calling thread: handing work to oneTBB costs more.
-constexpr std::size_t kParallelObjects = 256;
+constexpr std::size_t kParallelObjects = 64;
 constexpr std::size_t kParallelPairs = 64;
-constexpr std::size_t kBlock = 128;  // objects per broad-phase task
+// Broad-phase tasks per query: enough to balance a few threads, each still thousands of node visits
+// on a large world.
+constexpr std::size_t kPairTasks = 256;
 
 void check_delta(Scalar delta, const char* function, const char* argument) {
   if (!(delta >= 0) || !std::isfinite(delta)) {
@@ -32,41 +37,37 @@ void check_delta(Scalar delta, const char* function, const char* argument) {
   }
 }
 
-// Every admitted pair (i, j) of live slots, i < j, such that j's tree box overlaps
-// grown(box_i, grow(o_i)) and accept(i, o_i, j, o_j, query box) holds; sorted by (i, j).
-template <class Grow, class Accept>
-std::vector<SlotPair> self_pairs(const World::Impl& w, Grow&& grow, Accept&& accept) {
-  const std::size_t n = w.objects.size();
-  const std::size_t blocks = (n + kBlock - 1) / kBlock;
-  std::vector<std::vector<SlotPair>> found(blocks);
-  const auto run_block = [&](std::size_t b) {
-    std::vector<SlotPair>& out = found[b];
-    const auto end = static_cast<std::uint32_t>(std::min(n, (b + 1) * kBlock));
-    for (auto i = static_cast<std::uint32_t>(b * kBlock); i < end; ++i) {
-      const Object& oi = w.objects[i];
-      if (!oi.alive) continue;
-      const Aabb query = grown(oi.box, grow(oi));
-      const std::size_t first = out.size();
-      w.tree.query(query, [&](std::uint32_t j) {
-        if (j <= i) return;
-        const Object& oj = w.objects[j];
-        if (!w.admits(oi, j, oj)) return;
-        if (!accept(oi, oj, query)) return;
-        out.emplace_back(i, j);
-      });
-      std::sort(out.begin() + static_cast<std::ptrdiff_t>(first), out.end());
-    }
+// Every admitted pair (i, j) of live slots, i < j, whose tree boxes are within `gap` of each other
+// and for which accept(i, j) holds; sorted by (i, j). One traversal of the tree against itself,
+// split into independent tasks on a large world; the order of the answer never depends on them.
+template <class Accept>
+std::vector<SlotPair> self_pairs(const World::Impl& w, Scalar gap, Accept&& accept) {
+  const auto emit_into = [&](std::vector<SlotPair>& out) {
+    return [&w, &accept, &out](std::uint32_t a, std::uint32_t b) {
+      const std::uint32_t i = std::min(a, b);
+      const std::uint32_t j = std::max(a, b);
+      if (accept(i, j) && w.admits(i, j)) out.emplace_back(i, j);
+    };
   };
-  if (n < kParallelObjects) {
-    for (std::size_t b = 0; b < blocks; ++b) run_block(b);
-  } else {
-    tbb::parallel_for(std::size_t{0}, blocks, run_block);
-  }
-  std::size_t total = 0;
-  for (const auto& f : found) total += f.size();
   std::vector<SlotPair> out;
-  out.reserve(total);
-  for (const auto& f : found) out.insert(out.end(), f.begin(), f.end());
+  if (w.live < kParallelObjects) {
+    w.tree.pairs(w.tree.all_pairs(), gap, emit_into(out));
+  } else {
+    const std::vector<detail::AabbTree::PairTask> tasks = w.tree.pair_tasks(gap, kPairTasks);
+    tbb::enumerable_thread_specific<std::vector<SlotPair>> found;
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, tasks.size(), 1),
+                      [&](const tbb::blocked_range<std::size_t>& r) {
+                        std::vector<SlotPair>& mine = found.local();
+                        for (std::size_t t = r.begin(); t != r.end(); ++t) {
+                          w.tree.pairs(tasks[t], gap, emit_into(mine));
+                        }
+                      });
+    std::size_t total = 0;
+    for (const auto& f : found) total += f.size();
+    out.reserve(total);
+    for (const auto& f : found) out.insert(out.end(), f.begin(), f.end());
+  }
+  std::sort(out.begin(), out.end());
   return out;
 }
 
@@ -82,7 +83,22 @@ void for_each_pair(std::size_t m, Test&& test) {
 
 // The box grown for an exact query at distance delta: every point within delta of the object's
 // mesh lies inside (boxes contain their meshes with a rounding allowance).
-Scalar exact_growth(const Object& o, Scalar delta) { return delta * (1 + 1e-12) + o.tolerance; }
+Scalar exact_growth(const Bounds& b, Scalar delta) { return delta * (1 + 1e-12) + b.tolerance; }
+
+// Whether the posed root spheres are farther apart than delta by more than collide()'s own
+// rounding allowance (bvh/traverse.hpp: 1e-9 of a scale these magnitudes bound): collide() would
+// then reject the pair at its first test, so skipping it changes no answer. Most pairs whose boxes
+// overlap on a large world are rejected here, before collide() sets up the pair.
+bool spheres_apart(const Object& a, const Object& b, Scalar delta) {
+  const Sphere& sa = a.model->root().sphere;
+  const Sphere& sb = b.model->root().sphere;
+  const Vec3 ca = a.pose.apply(sa.center);
+  const Vec3 cb = b.pose.apply(sb.center);
+  const Scalar scale = sa.radius + sb.radius + 2 * (sa.center.norm() + sb.center.norm()) +
+                       ca.norm() + cb.norm();
+  const Scalar reach = sa.radius + sb.radius + delta + 1e-8 * scale;
+  return (ca - cb).squaredNorm() > reach * reach;
+}
 
 Obb posed_obb(const Object& o) {
   Obb b = o.model->root().obb;
@@ -96,12 +112,18 @@ Obb posed_obb(const Object& o) {
 std::vector<ObjectPair> World::candidate_pairs(Scalar delta) const {
   check_delta(delta, "World::candidate_pairs", "delta");
   const Impl& w = *impl_;
-  // The tree boxes contain the root boxes; a pair whose root spheres and root boxes pass the tests
-  // below has root boxes whose axis-aligned bounds are within sqrt(3) times the box margin, so
-  // growing by twice that loses none of them.
-  const auto grow = [&](const Object& o) { return 2 * (delta * (1 + 1e-12) + o.tolerance); };
-  const auto accept = [&](const Object& a, const Object& b, const Aabb& query) {
-    if (!detail::boxes_overlap(query, grown(b.box, b.tolerance))) return false;
+  // The tree boxes contain the root boxes grown by twice their rounding allowance. A pair whose
+  // root spheres and root boxes pass the tests below has root boxes whose axis-aligned bounds are
+  // within sqrt(3) times the box margin, so growing one of them by twice that (and the other by its
+  // allowance) loses none of them; the tree's boxes are then within 2 * delta of each other.
+  const Scalar gap = 2 * delta * (1 + 1e-12);
+  const auto accept = [&](std::uint32_t i, std::uint32_t j) {
+    const Bounds& ba = w.bounds[i];
+    const Bounds& bb = w.bounds[j];
+    const Aabb query = grown(ba.box, 2 * (delta * (1 + 1e-12) + ba.tolerance));
+    if (!detail::boxes_overlap(query, grown(bb.box, bb.tolerance))) return false;
+    const Object& a = w.objects[i];
+    const Object& b = w.objects[j];
     const Sphere& sa = a.model->root().sphere;
     const Sphere& sb = b.model->root().sphere;
     const Vec3 ca = a.pose.apply(sa.center);
@@ -112,7 +134,7 @@ std::vector<ObjectPair> World::candidate_pairs(Scalar delta) const {
     const Scalar margin = delta + 1e-9 * (reach + std::max(ca.norm(), cb.norm()));
     return geometry::obb_overlap(posed_obb(a), posed_obb(b), margin);
   };
-  const std::vector<SlotPair> slots = self_pairs(w, grow, accept);
+  const std::vector<SlotPair> slots = self_pairs(w, gap, accept);
   std::vector<ObjectPair> out;
   out.reserve(slots.size());
   for (const auto& [i, j] : slots) out.push_back({w.id_of(i), w.id_of(j)});
@@ -123,16 +145,19 @@ std::vector<PairContacts> World::collide_all(const CollisionRequest& request) co
   check_delta(request.delta, "World::collide_all", "request.delta");
   const Impl& w = *impl_;
   const Scalar delta = request.delta;
-  const std::vector<SlotPair> candidates = self_pairs(
-      w, [&](const Object& o) { return exact_growth(o, delta); },
-      [](const Object&, const Object& b, const Aabb& query) {
-        return detail::boxes_overlap(query, b.box);
+  // Tree boxes contain the objects' boxes grown by their rounding allowances, so pairs whose boxes
+  // pass the test below have tree boxes within delta of each other.
+  const std::vector<SlotPair> candidates =
+      self_pairs(w, delta * (1 + 1e-12), [&](std::uint32_t i, std::uint32_t j) {
+        const Bounds& a = w.bounds[i];
+        return detail::boxes_overlap(grown(a.box, exact_growth(a, delta)), w.bounds[j].box);
       });
   std::vector<PairContacts> results(candidates.size());
   std::vector<char> hit(candidates.size(), 0);
   for_each_pair(candidates.size(), [&](std::size_t k) {
     const Object& a = w.objects[candidates[k].first];
     const Object& b = w.objects[candidates[k].second];
+    if (spheres_apart(a, b, delta)) return;
     CollisionResult r;
     if (collide(*a.model, a.pose, *b.model, b.pose, request, r)) {
       hit[k] = 1;
@@ -168,8 +193,7 @@ std::vector<ObjectContacts> against_world(const World::Impl& w, const Model& mod
                                           const CollisionRequest& request, Admit&& admit) {
   std::vector<std::uint32_t> candidates;
   w.tree.query(query, [&](std::uint32_t j) {
-    const Object& oj = w.objects[j];
-    if (admit(j, oj) && detail::boxes_overlap(query, oj.box)) candidates.push_back(j);
+    if (admit(j) && detail::boxes_overlap(query, w.bounds[j].box)) candidates.push_back(j);
   });
   std::sort(candidates.begin(), candidates.end());
   std::vector<ObjectContacts> results(candidates.size());
@@ -198,11 +222,10 @@ std::vector<ObjectContacts> World::collide_object(ObjectId id,
   const Impl& w = *impl_;
   const Object& o = w.get(id, "World::collide_object", "id");
   check_delta(request.delta, "World::collide_object", "request.delta");
-  const Aabb query = grown(o.box, exact_growth(o, request.delta));
-  return against_world(w, *o.model, o.pose, query, request,
-                       [&](std::uint32_t j, const Object& oj) {
-                         return j != id.slot && w.admits(o, j, oj);
-                       });
+  const Aabb query = grown(w.bounds[id.slot].box, exact_growth(w.bounds[id.slot], request.delta));
+  return against_world(w, *o.model, o.pose, query, request, [&](std::uint32_t j) {
+    return j != id.slot && w.admits(id.slot, j);
+  });
 }
 
 std::vector<ObjectContacts> World::collide_model(const Model& model, const Transform& pose,
@@ -212,11 +235,12 @@ std::vector<ObjectContacts> World::collide_model(const Model& model, const Trans
   if (!pose.rotation.allFinite() || !pose.translation.allFinite()) {
     throw ArgumentError("World::collide_model: pose is not finite (NaN or infinity)");
   }
-  Impl::Object probe;
+  Bounds probe;
   probe.box = posed_box(model, pose, probe.tolerance);
   const Aabb query = grown(probe.box, exact_growth(probe, request.delta));
-  return against_world(*impl_, model, pose, query, request,
-                       [&](std::uint32_t, const Object& oj) { return Impl::admits(filter, oj); });
+  const Impl& w = *impl_;
+  return against_world(w, model, pose, query, request,
+                       [&](std::uint32_t j) { return Impl::admits(filter, w.bounds[j]); });
 }
 
 std::optional<RayHit> World::raycast(const Ray& ray, const QueryFilter& filter) const {
@@ -229,8 +253,8 @@ std::optional<RayHit> World::raycast(const Ray& ray, const QueryFilter& filter) 
   Scalar best_distance = ray.max_distance;
   std::optional<RayHit> best;
   w.tree.ray_query(ray.origin, inv, &best_distance, [&](std::uint32_t j) {
+    if (!Impl::admits(filter, w.bounds[j])) return;
     const Object& o = w.objects[j];
-    if (!Impl::admits(filter, o)) return;
     std::optional<RayHit> hit = detail::model_ray_first(*o.model, o.pose, ray, d, best_distance);
     if (!hit) return;
     hit->object = w.id_of(j);
@@ -255,8 +279,8 @@ std::vector<RayHit> World::raycast_all(const Ray& ray, const QueryFilter& filter
   std::vector<RayHit> out;
   const Scalar s_max = ray.max_distance;
   w.tree.ray_query(ray.origin, inv, &s_max, [&](std::uint32_t j) {
+    if (!Impl::admits(filter, w.bounds[j])) return;
     const Object& o = w.objects[j];
-    if (!Impl::admits(filter, o)) return;
     const std::size_t first = out.size();
     detail::model_ray_hits(*o.model, o.pose, ray, d, out);
     for (std::size_t k = first; k < out.size(); ++k) out[k].object = w.id_of(j);

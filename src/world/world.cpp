@@ -1,8 +1,10 @@
 // The World's objects: adding, removing, moving and filtering them, with the broad-phase tree
-// updated incrementally (a leaf moves only when its object leaves its fattened box).
+// kept up to date (a leaf changes only when its object leaves its box; see set_poses).
 #include <antcd/world.hpp>
 
+#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
 
 #include <algorithm>
 #include <cmath>
@@ -15,6 +17,9 @@
 namespace antcd {
 
 namespace {
+
+// Batches of poses at least this long are checked and fitted by oneTBB tasks.
+constexpr std::size_t kParallelBatch = 2048;
 
 std::string describe(ObjectId id) {
   return "(slot " + std::to_string(id.slot) + ", generation " + std::to_string(id.generation) + ")";
@@ -69,18 +74,17 @@ Aabb posed_box(const Model& model, const Transform& pose, Scalar& tolerance) {
 
 const World::Impl::Object& World::Impl::get(ObjectId id, const char* function,
                                             const char* argument) const {
-  if (id.slot >= objects.size() || !objects[id.slot].alive ||
-      objects[id.slot].generation != id.generation) {
+  if (!contains(id)) {
     throw ArgumentError(std::string(function) + ": " + argument + " " + describe(id) +
                                 " is not an object of this world (removed, or never added)");
   }
   return objects[id.slot];
 }
 
-Aabb World::Impl::fattened(const Object& o) const {
-  // At least the rounding allowance, so that the tree box always contains the box grown by it
-  // (candidate_pairs relies on that).
-  return grown(o.box, settings.fat_fraction * o.model->root().sphere.radius + o.tolerance);
+Aabb World::Impl::fattened(std::uint32_t slot) const {
+  const Bounds& b = bounds[slot];
+  return grown(b.box, settings.fat_fraction * objects[slot].model->root().sphere.radius +
+                          2 * b.tolerance);
 }
 
 World::World(const WorldOptions& options) : impl_(std::make_unique<Impl>()) {
@@ -108,17 +112,25 @@ ObjectId World::add(std::shared_ptr<const Model> model, const Transform& pose,
     if (w.objects.size() >= UINT32_MAX - 1) throw ArgumentError("World::add: too many objects (2^32 - 2)");
     slot = static_cast<std::uint32_t>(w.objects.size());
     w.objects.emplace_back();
+    w.bounds.emplace_back();
+    w.handles.push_back(0);
+    w.last_set.push_back(0);
+    w.flags.push_back(0);
   }
   Impl::Object& o = w.objects[slot];
   o.model = std::move(model);
   o.pose = pose;
   o.options = std::move(options);
-  o.box = posed_box(*o.model, o.pose, o.tolerance);
   o.ignored.clear();
-  o.alive = true;
-  o.leaf = w.tree.insert(w.fattened(o), slot);
+  w.handles[slot] |= 1;
+  Impl::Bounds& b = w.bounds[slot];
+  b.box = posed_box(*o.model, o.pose, b.tolerance);
+  b.group = o.options.group;
+  b.mask = o.options.mask;
+  b.has_ignored = false;
+  w.tree.insert(slot, w.fattened(slot));
   ++w.live;
-  return {slot, o.generation};
+  return w.id_of(slot);
 }
 
 void World::remove(ObjectId id) {
@@ -127,11 +139,14 @@ void World::remove(ObjectId id) {
   for (const std::uint32_t other : o.ignored) {
     auto& list = w.objects[other].ignored;
     list.erase(std::lower_bound(list.begin(), list.end(), id.slot));
+    w.bounds[other].has_ignored = !list.empty();
   }
-  w.tree.remove(o.leaf);
+  w.tree.remove(id.slot);
   o = Impl::Object{};
-  o.generation = id.generation + 1;  // the old id never matches again
-  if (o.generation != 0) w.free_slots.push_back(id.slot);  // a wrapped slot is retired
+  w.bounds[id.slot] = Impl::Bounds{};
+  const std::uint32_t next = id.generation + 1;  // the old id never matches again
+  w.handles[id.slot] = std::uint64_t{next} << 1;
+  if (next != 0) w.free_slots.push_back(id.slot);  // a wrapped slot is retired
   --w.live;
 }
 
@@ -150,35 +165,89 @@ void World::set_poses(std::span<const ObjectId> ids, std::span<const Transform> 
     throw ArgumentError("World::set_poses: " + std::to_string(ids.size()) + " ids but " +
                                 std::to_string(poses.size()) + " poses");
   }
-  for (std::size_t k = 0; k < ids.size(); ++k) {
-    if (!contains(ids[k])) {
-      w.get(ids[k], "World::set_poses", ("ids[" + std::to_string(k) + "]").c_str());
-    }
+  // Every argument is checked before anything changes: in parallel on a large batch, then the first
+  // bad one (if any) again, on this thread, for its message.
+  const auto bad = [&](std::size_t k) {
     Scalar err = 0;
-    if (pose_problem(poses[k], err) != nullptr) {
-      check_pose(poses[k], "World::set_poses",
-                 "poses[" + std::to_string(k) + "] of " + object_label(w.objects[ids[k].slot], ids[k]));
-    }
-  }
-  // Boxes in parallel (independent), then the tree sequentially in argument order (a repeated id
-  // ends with its last pose).
-  std::vector<Aabb> boxes(ids.size());
-  std::vector<Scalar> tolerances(ids.size());
-  const auto fit = [&](std::size_t k) {
-    boxes[k] = posed_box(*w.objects[ids[k].slot].model, poses[k], tolerances[k]);
+    return !w.contains(ids[k]) || pose_problem(poses[k], err) != nullptr;
   };
-  if (ids.size() < 2048) {
+  std::size_t first_bad = ids.size();
+  if (ids.size() < kParallelBatch) {
+    for (std::size_t k = 0; k < ids.size() && first_bad == ids.size(); ++k) {
+      if (bad(k)) first_bad = k;
+    }
+  } else {
+    first_bad = tbb::parallel_reduce(
+        tbb::blocked_range<std::size_t>(0, ids.size()), ids.size(),
+        [&](const tbb::blocked_range<std::size_t>& r, std::size_t found) {
+          for (std::size_t k = r.begin(); k != r.end() && k < found; ++k) {
+            if (bad(k)) return k;
+          }
+          return found;
+        },
+        [](std::size_t x, std::size_t y) { return std::min(x, y); });
+  }
+  if (first_bad < ids.size()) {
+    const std::size_t k = first_bad;
+    w.get(ids[k], "World::set_poses", ("ids[" + std::to_string(k) + "]").c_str());
+    check_pose(poses[k], "World::set_poses",
+               "poses[" + std::to_string(k) + "] of " + object_label(w.objects[ids[k].slot], ids[k]));
+  }
+  // Boxes in parallel (independent): an id given more than once ends with its last pose, so only
+  // its last occurrence is fitted. An object whose new box left its leaf's box gets the new box
+  // (grown by the rounding margin the queries rely on, see fattened()) in its leaf at once; its
+  // ancestors are fixed below, by a move or by the refit.
+  for (std::size_t k = 0; k < ids.size(); ++k) w.last_set[ids[k].slot] = k;
+  const auto fit = [&](std::size_t k) {
+    const std::uint32_t slot = ids[k].slot;
+    if (w.last_set[slot] != k) return;
+    Impl::Object& o = w.objects[slot];
+    o.pose = poses[k];
+    Impl::Bounds& b = w.bounds[slot];
+    b.box = posed_box(*o.model, o.pose, b.tolerance);
+    const Aabb leaf = w.tree.box(slot);
+    const Aabb tight = grown(b.box, 2 * b.tolerance);
+    if (detail::box_contains(leaf, tight)) return;
+    // Jumped: the new box does not even meet the old one (a teleport, a respawn).
+    w.flags[slot] = detail::boxes_overlap(leaf, b.box) ? Impl::kEscaped
+                                                        : Impl::kEscaped | Impl::kJumped;
+    w.tree.set_box(slot, tight);
+  };
+  if (ids.size() < kParallelBatch) {
     for (std::size_t k = 0; k < ids.size(); ++k) fit(k);
   } else {
     tbb::parallel_for(std::size_t{0}, ids.size(), fit);
   }
-  for (std::size_t k = 0; k < ids.size(); ++k) {
-    Impl::Object& o = w.objects[ids[k].slot];
-    o.pose = poses[k];
-    o.box = boxes[k];
-    o.tolerance = tolerances[k];
-    if (!detail::box_contains(w.tree.box(o.leaf), grown(o.box, o.tolerance))) {
-      w.tree.move(o.leaf, w.fattened(o));
+  std::size_t escaped = 0;
+  for (const ObjectId id : ids) escaped += w.flags[id.slot] != 0;
+  // Few leaves to update: one removal and insertion each (O(log n)), with the fattened box so that
+  // small motions after this one need no update. Many (a frame of a moving world, where most
+  // objects move every frame): one O(n) refit of the new leaf boxes, which rebuilds when the tree
+  // got loose; fattening would then buy nothing (the refit costs O(n) anyway) and only let more
+  // pairs through the broad phase, so those leaves keep their unfattened boxes. Objects that jumped
+  // are taken out before the refit and reinserted after it: refitting would stretch every box on
+  // their old path across the jump.
+  const bool refit = escaped > std::max<std::size_t>(64, w.live / 16);
+  if (!refit) {
+    for (const ObjectId id : ids) {
+      if (w.flags[id.slot] == 0) continue;
+      w.flags[id.slot] = 0;
+      w.tree.move(id.slot, w.fattened(id.slot));
+    }
+    return;
+  }
+  for (const ObjectId id : ids) {
+    if ((w.flags[id.slot] & Impl::kJumped) != 0 && w.tree.contains(id.slot)) {
+      w.tree.remove(id.slot);
+    }
+  }
+  w.tree.refit();
+  for (const ObjectId id : ids) {
+    const std::uint8_t f = w.flags[id.slot];
+    w.flags[id.slot] = 0;
+    if ((f & Impl::kJumped) != 0) {
+      const Impl::Bounds& b = w.bounds[id.slot];
+      w.tree.insert(id.slot, grown(b.box, 2 * b.tolerance));
     }
   }
 }
@@ -187,6 +256,8 @@ void World::set_filter(ObjectId id, std::uint32_t group, std::uint32_t mask) {
   Impl::Object& o = impl_->get(id, "World::set_filter", "id");
   o.options.group = group;
   o.options.mask = mask;
+  impl_->bounds[id.slot].group = group;
+  impl_->bounds[id.slot].mask = mask;
 }
 
 void World::ignore_pair(ObjectId a, ObjectId b, bool ignored) {
@@ -205,20 +276,21 @@ void World::ignore_pair(ObjectId a, ObjectId b, bool ignored) {
   };
   set(oa.ignored, b.slot);
   set(ob.ignored, a.slot);
+  w.bounds[a.slot].has_ignored = !oa.ignored.empty();
+  w.bounds[b.slot].has_ignored = !ob.ignored.empty();
 }
 
 std::size_t World::size() const { return impl_->live; }
 
 bool World::contains(ObjectId id) const {
-  return id.slot < impl_->objects.size() && impl_->objects[id.slot].alive &&
-         impl_->objects[id.slot].generation == id.generation;
+  return impl_->contains(id);
 }
 
 std::vector<ObjectId> World::objects() const {
   std::vector<ObjectId> out;
   out.reserve(impl_->live);
   for (std::uint32_t s = 0; s < impl_->objects.size(); ++s) {
-    if (impl_->objects[s].alive) out.push_back(impl_->id_of(s));
+    if (impl_->alive(s)) out.push_back(impl_->id_of(s));
   }
   return out;
 }
@@ -239,14 +311,17 @@ bool World::pair_ignored(ObjectId a, ObjectId b) const {
 }
 
 bool World::may_collide(ObjectId a, ObjectId b) const {
-  const Impl::Object& oa = impl_->get(a, "World::may_collide", "a");
-  const Impl::Object& ob = impl_->get(b, "World::may_collide", "b");
-  return a.slot != b.slot && impl_->admits(oa, b.slot, ob);
+  impl_->get(a, "World::may_collide", "a");
+  impl_->get(b, "World::may_collide", "b");
+  return a.slot != b.slot && impl_->admits(a.slot, b.slot);
 }
 
 std::size_t World::memory_bytes() const {
   const Impl& w = *impl_;
   std::size_t bytes = sizeof(Impl) + w.objects.capacity() * sizeof(Impl::Object) +
+                      w.bounds.capacity() * sizeof(Impl::Bounds) +
+                      w.handles.capacity() * sizeof(std::uint64_t) +
+                      w.last_set.capacity() * sizeof(std::size_t) + w.flags.capacity() +
                       w.free_slots.capacity() * sizeof(std::uint32_t) + w.tree.memory_bytes();
   for (const Impl::Object& o : w.objects) {
     bytes += o.ignored.capacity() * sizeof(std::uint32_t);

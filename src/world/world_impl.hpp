@@ -19,19 +19,33 @@ struct World::Impl {
     std::shared_ptr<const Model> model;
     Transform pose;
     ObjectOptions options;
+    /// Slots of the objects this one must not be paired with, sorted.
+    std::vector<std::uint32_t> ignored;
+  };
+
+  /// What the all-pairs traversal reads of each object, kept apart from the rest (a frame of a
+  /// large world touches it for every broad-phase pair, the rest only for pairs that pass it).
+  struct Bounds {
     /// World box containing every triangle of the posed mesh (rounding included).
     Aabb box;
     /// Absolute rounding allowance of this object's world-frame volumes.
     Scalar tolerance = 0;
-    /// Slots of the objects this one must not be paired with, sorted.
-    std::vector<std::uint32_t> ignored;
-    std::int32_t leaf = detail::AabbTree::kNull;
-    std::uint32_t generation = 0;
-    bool alive = false;
+    std::uint32_t group = 0;  ///< copies of the object's options.group and options.mask
+    std::uint32_t mask = 0;
+    bool has_ignored = false;  ///< whether the object's ignored list is non-empty
   };
 
   WorldOptions settings;
   std::vector<Object> objects;
+  std::vector<Bounds> bounds;  ///< by slot, like objects
+  /// By slot: generation << 1 | alive. Dense, so that checking a batch of ids is cheap.
+  std::vector<std::uint64_t> handles;
+  // Scratch of set_poses (a mutation), by slot: the last index of the object in its arguments, and
+  // flags (kEscaped: its new box left the tree's box; kJumped: it left the tree until reinserted).
+  std::vector<std::size_t> last_set;
+  std::vector<std::uint8_t> flags;
+  static constexpr std::uint8_t kEscaped = 1;
+  static constexpr std::uint8_t kJumped = 2;
   std::vector<std::uint32_t> free_slots;
   detail::AabbTree tree;
   std::size_t live = 0;
@@ -41,24 +55,33 @@ struct World::Impl {
   Object& get(ObjectId id, const char* function, const char* argument) {
     return const_cast<Object&>(std::as_const(*this).get(id, function, argument));
   }
-  [[nodiscard]] ObjectId id_of(std::uint32_t slot) const {
-    return {slot, objects[slot].generation};
+  [[nodiscard]] std::uint32_t generation(std::uint32_t slot) const {
+    return static_cast<std::uint32_t>(handles[slot] >> 1);
   }
+  [[nodiscard]] bool alive(std::uint32_t slot) const { return (handles[slot] & 1) != 0; }
+  [[nodiscard]] bool contains(ObjectId id) const {
+    return id.slot < handles.size() &&
+           handles[id.slot] == ((std::uint64_t{id.generation} << 1) | 1);
+  }
+  [[nodiscard]] ObjectId id_of(std::uint32_t slot) const { return {slot, generation(slot)}; }
 
   /// The filter between two live objects: groups, masks, ignored pairs.
-  [[nodiscard]] bool admits(const Object& a, std::uint32_t slot_b, const Object& b) const {
-    if ((a.options.group & b.options.mask) == 0 || (b.options.group & a.options.mask) == 0) {
-      return false;
-    }
-    return a.ignored.empty() ||
-           !std::binary_search(a.ignored.begin(), a.ignored.end(), slot_b);
+  [[nodiscard]] bool admits(std::uint32_t a, std::uint32_t b) const {
+    const Bounds& ba = bounds[a];
+    const Bounds& bb = bounds[b];
+    if ((ba.group & bb.mask) == 0 || (bb.group & ba.mask) == 0) return false;
+    if (!ba.has_ignored) return true;
+    const std::vector<std::uint32_t>& list = objects[a].ignored;
+    return !std::binary_search(list.begin(), list.end(), b);
   }
-  static bool admits(const QueryFilter& f, const Object& b) {
-    return (f.group & b.options.mask) != 0 && (b.options.group & f.mask) != 0;
+  static bool admits(const QueryFilter& f, const Bounds& b) {
+    return (f.group & b.mask) != 0 && (b.group & f.mask) != 0;
   }
 
-  /// The fattened box the tree stores for an object.
-  [[nodiscard]] Aabb fattened(const Object& o) const;
+  /// The fattened box the tree stores for an object: grown by at least twice the rounding
+  /// allowance, so that the tree's box of an object always contains grown(box, 2 * tolerance)
+  /// (the queries' tree traversals rely on that margin).
+  [[nodiscard]] Aabb fattened(std::uint32_t slot) const;
 };
 
 /// World box of a posed model (from its root sphere and root box, whichever is tighter per axis),

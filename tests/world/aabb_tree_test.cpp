@@ -1,16 +1,19 @@
-// The World's broad-phase tree on its own (a private class, compiled into this test): queries equal
-// brute force over seeded random insert / move / remove sequences that cross many rebuilds, and the
-// tree stays tight on many objects spread through a volume (the case where greedy insertion with
-// height-only rotations had produced overlapping slabs, and a world of 100 000 objects spent
-// minutes per frame in its broad phase).
+// The World's broad-phase tree on its own (a private class, compiled into this test): box queries
+// and the all-pairs traversal (whole, and split into tasks) equal brute force over seeded random
+// sequences of insertions, moves, removals and batches of new boxes with a refit, crossing many
+// rebuilds; and the tree stays tight on many objects spread through a volume (the case where
+// greedy insertion with height-only rotations had produced overlapping slabs, and a world of
+// 100 000 objects spent minutes per frame in its broad phase).
 #include "world/aabb_tree.hpp"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <random>
 #include <set>
+#include <utility>
 #include <vector>
 
 namespace antcd::detail {
@@ -18,41 +21,111 @@ namespace {
 
 Aabb box_at(const Vec3& c, Scalar half) { return Aabb{c - Vec3::Constant(half), c + Vec3::Constant(half)}; }
 
-TEST(AabbTree, QueriesEqualBruteForceAcrossRebuilds) {
+Aabb grown_by(Aabb b, Scalar by) {
+  b.min.array() -= by;
+  b.max.array() += by;
+  return b;
+}
+
+using Pairs = std::vector<std::pair<std::uint32_t, std::uint32_t>>;
+
+// Boxes within `gap` of each other on every axis.
+bool near(const Aabb& a, const Aabb& b, Scalar gap) {
+  for (int k = 0; k < 3; ++k) {
+    if (a.min[k] - gap > b.max[k] || b.min[k] - gap > a.max[k]) return false;
+  }
+  return true;
+}
+
+Pairs sorted(Pairs p) {
+  for (auto& [a, b] : p) {
+    if (a > b) std::swap(a, b);
+  }
+  std::sort(p.begin(), p.end());
+  return p;
+}
+
+TEST(AabbTree, QueriesAndPairsEqualBruteForceAcrossRebuildsAndRefits) {
   std::mt19937_64 rng(5);
   std::uniform_real_distribution<Scalar> u(0, 20);
   std::uniform_real_distribution<Scalar> size(0.05, 1.5);
   AabbTree tree;
-  std::vector<Aabb> boxes;          // by object
-  std::vector<std::int32_t> leaf;   // by object; kNull when removed
+  std::vector<Aabb> boxes;  // by object
+  std::vector<bool> present;
+  std::size_t pairs_seen = 0;
   for (int step = 0; step < 3000; ++step) {
     const Scalar op = std::uniform_real_distribution<Scalar>(0, 1)(rng);
     if (op < 0.4 || boxes.empty()) {
       boxes.push_back(box_at(Vec3(u(rng), u(rng), u(rng)), size(rng)));
-      leaf.push_back(tree.insert(boxes.back(), static_cast<std::uint32_t>(boxes.size() - 1)));
-    } else {
+      present.push_back(true);
+      tree.insert(static_cast<std::uint32_t>(boxes.size() - 1), boxes.back());
+    } else if (op < 0.97) {
       const std::size_t k = std::uniform_int_distribution<std::size_t>(0, boxes.size() - 1)(rng);
-      if (leaf[k] == AabbTree::kNull) continue;
+      if (!present[k]) continue;
       if (op < 0.5) {
-        tree.remove(leaf[k]);
-        leaf[k] = AabbTree::kNull;
+        tree.remove(static_cast<std::uint32_t>(k));
+        present[k] = false;
       } else {
         boxes[k] = box_at(Vec3(u(rng), u(rng), u(rng)), size(rng));
-        tree.move(leaf[k], boxes[k]);
+        tree.move(static_cast<std::uint32_t>(k), boxes[k]);
       }
+    } else {  // a frame: every object drifts a little, new leaf boxes, one refit
+      std::normal_distribution<Scalar> drift(0, 0.3);
+      for (std::size_t k = 0; k < boxes.size(); ++k) {
+        if (!present[k]) continue;
+        const Vec3 d(drift(rng), drift(rng), drift(rng));
+        boxes[k].min += d;
+        boxes[k].max += d;
+        tree.set_box(static_cast<std::uint32_t>(k), boxes[k]);
+      }
+      tree.refit();
     }
+    ASSERT_TRUE(tree.contains(static_cast<std::uint32_t>(boxes.size() - 1)) ==
+                present.back());
     if (step % 50 != 0) continue;
     const Aabb query = box_at(Vec3(u(rng), u(rng), u(rng)), 2 * size(rng));
     std::multiset<std::uint32_t> found;
     tree.query(query, [&](std::uint32_t object) { found.insert(object); });
     std::multiset<std::uint32_t> expected;
     for (std::size_t k = 0; k < boxes.size(); ++k) {
-      if (leaf[k] != AabbTree::kNull && boxes_overlap(boxes[k], query)) {
-        expected.insert(static_cast<std::uint32_t>(k));
+      // The tree stores boxes rounded outward to single precision: a brute-force hit is always
+      // found, and a box it finds is the object's box or a hair larger.
+      if (present[k] && boxes_overlap(boxes[k], query)) expected.insert(static_cast<std::uint32_t>(k));
+    }
+    for (const std::uint32_t k : expected) ASSERT_EQ(found.count(k), 1u) << "step " << step;
+    for (const std::uint32_t k : found) {
+      ASSERT_TRUE(present[k]);
+      ASSERT_TRUE(boxes_overlap(grown_by(boxes[k], 1e-5), query)) << "step " << step;
+    }
+
+    // All pairs within a gap: one traversal, and the same split into tasks.
+    const Scalar gap = step % 100 == 0 ? 0.0 : 0.25;
+    Pairs whole;
+    tree.pairs(tree.all_pairs(), gap, [&](std::uint32_t a, std::uint32_t b) { whole.emplace_back(a, b); });
+    Pairs split;
+    for (const AabbTree::PairTask t : tree.pair_tasks(gap, 64)) {
+      tree.pairs(t, gap, [&](std::uint32_t a, std::uint32_t b) { split.emplace_back(a, b); });
+    }
+    whole = sorted(whole);
+    split = sorted(split);
+    ASSERT_EQ(whole, split) << "step " << step;
+    ASSERT_EQ(std::adjacent_find(whole.begin(), whole.end()), whole.end()) << "a pair twice";
+    Pairs expected_pairs;
+    for (std::uint32_t i = 0; i < boxes.size(); ++i) {
+      for (std::uint32_t j = i + 1; j < boxes.size(); ++j) {
+        if (present[i] && present[j] && near(boxes[i], boxes[j], gap)) expected_pairs.emplace_back(i, j);
       }
     }
-    ASSERT_EQ(found, expected) << "step " << step;
+    for (const auto& p : expected_pairs) {
+      ASSERT_TRUE(std::binary_search(whole.begin(), whole.end(), p)) << "step " << step;
+    }
+    for (const auto& [a, b] : whole) {
+      ASSERT_TRUE(present[a] && present[b]);
+      ASSERT_TRUE(near(boxes[a], boxes[b], gap + 1e-5)) << "step " << step;
+    }
+    pairs_seen += expected_pairs.size();
   }
+  EXPECT_GT(pairs_seen, 1000u);  // not vacuous
 }
 
 TEST(AabbTree, StaysTightOnManyObjectsSpreadThroughAVolume) {
@@ -64,19 +137,25 @@ TEST(AabbTree, StaysTightOnManyObjectsSpreadThroughAVolume) {
   std::mt19937_64 rng(42);
   std::uniform_real_distribution<Scalar> u(-0.5, 0.5);
   AabbTree tree;
-  std::vector<std::int32_t> leaves;
-  for (std::size_t i = 0; i < kObjects; ++i) {
-    leaves.push_back(tree.insert(box_at(Vec3(side * u(rng), side * u(rng), side * u(rng)), 0.55),
-                                 static_cast<std::uint32_t>(i)));
+  for (std::uint32_t i = 0; i < kObjects; ++i) {
+    tree.insert(i, box_at(Vec3(side * u(rng), side * u(rng), side * u(rng)), 0.55));
   }
   EXPECT_LT(tree.relative_area(), 200);
   EXPECT_LE(tree.height(), 24);
   // Every object moves once (as in a frame of a moving world): still tight.
-  for (std::size_t i = 0; i < kObjects; ++i) {
-    tree.move(leaves[i], box_at(Vec3(side * u(rng), side * u(rng), side * u(rng)), 0.55));
+  for (std::uint32_t i = 0; i < kObjects; ++i) {
+    tree.move(i, box_at(Vec3(side * u(rng), side * u(rng), side * u(rng)), 0.55));
   }
   EXPECT_LT(tree.relative_area(), 200);
   EXPECT_LE(tree.height(), 24);
+  // The same through new leaf boxes and refits: the refit rebuilds once the tree got loose.
+  for (int frame = 0; frame < 3; ++frame) {
+    for (std::uint32_t i = 0; i < kObjects; ++i) {
+      tree.set_box(i, box_at(Vec3(side * u(rng), side * u(rng), side * u(rng)), 0.55));
+    }
+    tree.refit();
+    EXPECT_LT(tree.relative_area(), 200);
+  }
 }
 
 }  // namespace
