@@ -20,7 +20,7 @@
 //    cell that the box of some triangle (grown by 1e-9 of the model's size) meets. The other cells
 //    form connected regions the surface does not cross; the winding number of each is computed
 //    once, exactly (far from the surface), and a point in such a cell, or outside the grid, takes
-//    it. This is the winding-number definition itself, with no approximation.
+//    it (regions beyond a budget of about 1000 + n/16, n the triangles, are left to step 2). This is the winding-number definition itself, with no approximation.
 // 2. Near the surface (a point in a marked cell): the angle-weighted pseudo-normal of the closest
 //    feature (face, edge or vertex; Bærentzen and Aanæs): inside when the point lies behind it.
 //    For a closed surface that does not cross itself this equals the winding number.

@@ -46,22 +46,6 @@ bool outside_box(const BvhNode& node, const Vec3& p) {
   return ((local.cwiseAbs() - node.obb.half_extents).array() > margin).any();
 }
 
-/// Stack of a depth-first descent that pushes two children and pops one per internal node: it
-/// never holds more than depth + 1 entries. On the call stack unless the tree is unusually deep.
-template <typename T>
-class NodeStack {
- public:
-  explicit NodeStack(const Model& model) {
-    if (model.stats().depth + 2 > kLocal) heap_.resize(model.stats().depth + 2);
-  }
-  T* data() { return heap_.empty() ? local_ : heap_.data(); }
-
- private:
-  static constexpr std::size_t kLocal = 96;
-  T local_[kLocal];
-  std::vector<T> heap_;
-};
-
 /// Whether two connected pieces of the hierarchy's triangles (joined through shared vertex
 /// indices) have overlapping bounding boxes.
 bool pieces_overlap(const Model& model) {
@@ -206,7 +190,7 @@ int winding_number(const Model& model, const PointIndex& index, const Vec3& p) {
   const auto lv = model.leaf_vertices();
   const auto& verts = model.mesh().vertices;
   Scalar total = 0;
-  NodeStack<std::uint32_t> storage(model);
+  DescentStack<std::uint32_t> storage(model.stats().depth);
   std::uint32_t* stack = storage.data();
   std::size_t top = 0;
   stack[top++] = 0;

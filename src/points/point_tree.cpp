@@ -109,21 +109,6 @@ struct Entry {
   Scalar bound;
 };
 
-/// Descent stack on the call stack (the hierarchy's depth is bounded by its builder); a deeper
-/// tree uses the heap.
-class EntryStack {
- public:
-  explicit EntryStack(std::size_t depth) {
-    if (depth + 2 > kLocal) heap_.resize(depth + 2);
-  }
-  Entry* data() { return heap_.empty() ? local_ : heap_.data(); }
-
- private:
-  static constexpr std::size_t kLocal = 96;
-  Entry local_[kLocal];
-  std::vector<Entry> heap_;
-};
-
 }  // namespace
 
 ClosestPoint closest_point(const Model& model, const PointTree& tree, const Vec3& p,
@@ -153,7 +138,7 @@ ClosestPoint closest_point(const Model& model, const PointTree& tree, const Vec3
     for (std::uint32_t k = 0; k < tree.root_leaf_count; ++k) test_triangle(k);
     return best;
   }
-  EntryStack storage(tree.max_depth);
+  DescentStack<Entry> storage(tree.max_depth);
   Entry* stack = storage.data();
   std::size_t top = 0;
   stack[top++] = {0, 0, 0};

@@ -46,6 +46,22 @@ struct PointTree {
   std::size_t max_depth = 0;          ///< longest root-to-leaf path, in nodes
 };
 
+/// Stack of a depth-first descent that pushes two children and pops one per internal node: it
+/// never holds more than depth + 1 entries. On the call stack unless the tree is unusually deep.
+template <typename T>
+class DescentStack {
+ public:
+  explicit DescentStack(std::size_t depth) {
+    if (depth + 2 > kLocal) heap_.resize(depth + 2);
+  }
+  T* data() { return heap_.empty() ? local_ : heap_.data(); }
+
+ private:
+  static constexpr std::size_t kLocal = 96;
+  T local_[kLocal];
+  std::vector<T> heap_;
+};
+
 /// Builds the tree from the model's hierarchy. O(n).
 PointTree build_point_tree(const Model& model);
 

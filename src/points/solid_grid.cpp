@@ -81,6 +81,10 @@ SolidGrid::SolidGrid(const Model& model, const std::function<int(const Vec3&)>& 
   std::vector<std::size_t> queue;
   std::vector<std::size_t> component;
   const std::int64_t stride[3] = {1, dims_[0], dims_[0] * dims_[1]};
+  // Each component costs one winding number; a surface that encloses very many small free
+  // regions (thousands of tiny shells) would make that the bulk of the build, so past a budget
+  // the remaining components are left to the point queries (marked as surface cells).
+  std::size_t budget = 1024 + lv.size() / 48;
   for (std::size_t start = 0; start < total; ++start) {
     if (cells_[start] == kSurface || seen[start]) continue;
     component.clear();
@@ -108,7 +112,11 @@ SolidGrid::SolidGrid(const Model& model, const std::function<int(const Vec3&)>& 
         origin_ + cell * Vec3(static_cast<Scalar>(s0 % dims_[0]) + 0.5,
                               static_cast<Scalar>((s0 / dims_[0]) % dims_[1]) + 0.5,
                               static_cast<Scalar>(s0 / (dims_[0] * dims_[1])) + 0.5);
-    const std::uint8_t state = winding(centre) != 0 ? kInside : kOutside;
+    std::uint8_t state = kSurface;
+    if (budget > 0) {
+      --budget;
+      state = winding(centre) != 0 ? kInside : kOutside;
+    }
     for (const std::size_t i : component) cells_[i] = state;
   }
 }

@@ -15,7 +15,8 @@ namespace antcd::detail {
 /// cell is marked "surface" when the box of some triangle, grown by a margin far above rounding,
 /// meets the closed cell. The unmarked cells fall into face-connected components; the surface
 /// meets no component's closed union, so the winding number is constant on it, and is computed
-/// once at a cell centre. A point in an unmarked cell (or outside the grid, where the winding
+/// once at a cell centre (for at most about 1000 + n/16 components; any further ones are left
+/// undecided, like surface cells). A point in an unmarked cell (or outside the grid, where the winding
 /// number is 0) gets its answer from the cell; one in a surface cell needs a point query.
 class SolidGrid {
  public:
