@@ -172,7 +172,7 @@ ClosestPoint closest_point(const Model& model, const PointTree& tree, const Vec3
   return best;
 }
 
-std::vector<std::uint32_t> coherent_order(std::span<const Vec3> points) {
+std::vector<std::size_t> coherent_order(std::span<const Vec3> points) {
   Aabb box;
   for (const Vec3& p : points) box.extend(p);
   const Vec3 extent = box.extent();
@@ -188,16 +188,16 @@ std::vector<std::uint32_t> coherent_order(std::span<const Vec3> points) {
     x = (x | x << 2) & 0x1249249249249249ULL;
     return x;
   };
-  std::vector<std::pair<std::uint64_t, std::uint32_t>> keyed(points.size());
+  std::vector<std::pair<std::uint64_t, std::size_t>> keyed(points.size());
   for (std::size_t i = 0; i < points.size(); ++i) {
     const Vec3 q = (points[i] - box.min) * scale;
     keyed[i] = {spread(static_cast<std::uint64_t>(q.x())) |
                     spread(static_cast<std::uint64_t>(q.y())) << 1 |
                     spread(static_cast<std::uint64_t>(q.z())) << 2,
-                static_cast<std::uint32_t>(i)};
+                i};
   }
   std::sort(keyed.begin(), keyed.end());
-  std::vector<std::uint32_t> order(points.size());
+  std::vector<std::size_t> order(points.size());
   for (std::size_t i = 0; i < points.size(); ++i) order[i] = keyed[i].second;
   return order;
 }

@@ -87,6 +87,6 @@ ClosestPoint closest_point(const Model& model, const PointTree& tree, const Vec3
 
 /// A permutation of the points that follows a Morton (Z-order) curve through their bounding box,
 /// so that consecutive points are near one another. Deterministic (ties by index).
-std::vector<std::uint32_t> coherent_order(std::span<const Vec3> points);
+std::vector<std::size_t> coherent_order(std::span<const Vec3> points);
 
 }  // namespace antcd::detail

@@ -25,8 +25,8 @@ void check_points(std::span<const Vec3> points, const char* function) {
 }
 
 /// Points per block of the coherent order: each block is searched by one thread, each point
-/// seeded with the previous point's closest triangle. Fixed, so that the results do not depend
-/// on the number of threads.
+/// seeded with the previous point's closest triangle. The answers do not depend on the seed
+/// (closest_point); fixed blocks keep even the work per point independent of the thread count.
 constexpr std::size_t kBlock = 64;
 
 /// Runs body(i, hint) for every point index i, in parallel, blocks of kBlock points along a
@@ -34,7 +34,7 @@ constexpr std::size_t kBlock = 64;
 /// previous point of the block (detail::kNoHint for its first), and body returns point i's.
 template <typename Body>
 void for_each_point(std::span<const Vec3> local, const Body& body) {
-  const std::vector<std::uint32_t> order = detail::coherent_order(local);
+  const std::vector<std::size_t> order = detail::coherent_order(local);
   const std::size_t blocks = (local.size() + kBlock - 1) / kBlock;
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, blocks, 4),
                     [&](const tbb::blocked_range<std::size_t>& r) {
