@@ -12,6 +12,8 @@ namespace antcd::detail {
 struct ModelCache {
   std::once_flag point_index_once;
   std::shared_ptr<const void> point_index;
+  std::once_flag point_tree_once;
+  std::shared_ptr<const void> point_tree;
 };
 
 struct ModelCacheAccess {

@@ -1,5 +1,5 @@
 // Per-model data for point queries and the per-point queries: winding number through the
-// hierarchy (boundary fans), closest point by branch-and-bound descent, pseudo-normal sign.
+// hierarchy (boundary fans), pseudo-normal sign of the closest feature.
 #include "points/point_index.hpp"
 
 #include "bvh/model_cache.hpp"
@@ -38,16 +38,6 @@ void reduce_boundary(std::vector<Edge>& edges) {
   edges.resize(out);
 }
 
-/// Squared distance from p to the node's box, at least that to its sphere (both lower bounds).
-Scalar node_distance_squared(const BvhNode& node, const Vec3& p) {
-  const Vec3 d = p - node.obb.center;
-  const Scalar sphere_gap = d.norm() - node.sphere.radius;
-  const Vec3 local = node.obb.axes.transpose() * d;
-  const Vec3 excess = (local.cwiseAbs() - node.obb.half_extents).cwiseMax(Scalar{0});
-  const Scalar box2 = excess.squaredNorm();
-  return sphere_gap > 0 ? std::max(box2, sphere_gap * sphere_gap) : box2;
-}
-
 /// p lies outside the node's box by more than the rounding of the box's fit.
 bool outside_box(const BvhNode& node, const Vec3& p) {
   const Vec3 local = node.obb.axes.transpose() * (p - node.obb.center);
@@ -55,22 +45,6 @@ bool outside_box(const BvhNode& node, const Vec3& p) {
       1e-10 * (node.obb.center.cwiseAbs().maxCoeff() + node.obb.half_extents.maxCoeff());
   return ((local.cwiseAbs() - node.obb.half_extents).array() > margin).any();
 }
-
-/// Stack of a depth-first descent that pushes two children and pops one per internal node: it
-/// never holds more than depth + 1 entries. On the call stack unless the tree is unusually deep.
-template <typename T>
-class NodeStack {
- public:
-  explicit NodeStack(const Model& model) {
-    if (model.stats().depth + 2 > kLocal) heap_.resize(model.stats().depth + 2);
-  }
-  T* data() { return heap_.empty() ? local_ : heap_.data(); }
-
- private:
-  static constexpr std::size_t kLocal = 96;
-  T local_[kLocal];
-  std::vector<T> heap_;
-};
 
 /// Whether two connected pieces of the hierarchy's triangles (joined through shared vertex
 /// indices) have overlapping bounding boxes.
@@ -198,6 +172,7 @@ PointIndex build_point_index(const Model& model) {
     i = j;
   }
   index.sign_by_winding = pieces_overlap(model);
+  index.grid = SolidGrid(model, [&](const Vec3& p) { return winding_number(model, index, p); });
   return index;
 }
 
@@ -215,7 +190,7 @@ int winding_number(const Model& model, const PointIndex& index, const Vec3& p) {
   const auto lv = model.leaf_vertices();
   const auto& verts = model.mesh().vertices;
   Scalar total = 0;
-  NodeStack<std::uint32_t> storage(model);
+  DescentStack<std::uint32_t> storage(model.stats().depth);
   std::uint32_t* stack = storage.data();
   std::size_t top = 0;
   stack[top++] = 0;
@@ -246,45 +221,6 @@ int winding_number(const Model& model, const PointIndex& index, const Vec3& p) {
     stack[top++] = i + 1;
   }
   return static_cast<int>(std::lround(total / (4 * std::numbers::pi)));
-}
-
-ClosestPoint closest_point(const Model& model, const Vec3& p) {
-  const auto nodes = model.nodes();
-  const auto lv = model.leaf_vertices();
-  ClosestPoint best;
-  best.distance_squared = std::numeric_limits<Scalar>::infinity();
-  struct Entry {
-    std::uint32_t node;
-    Scalar bound;
-  };
-  NodeStack<Entry> storage(model);
-  Entry* stack = storage.data();
-  std::size_t top = 0;
-  stack[top++] = {0, 0};
-  while (top > 0) {
-    const Entry e = stack[--top];
-    if (!(e.bound < best.distance_squared)) continue;
-    const BvhNode& node = nodes[e.node];
-    if (node.is_leaf()) {
-      for (std::uint32_t k = node.first_or_right; k < node.first_or_right + node.count; ++k) {
-        Vec3 c;
-        const std::size_t t = 3 * static_cast<std::size_t>(k);
-        const Scalar d2 = geometry::point_triangle_distance_squared(p, lv[t], lv[t + 1], lv[t + 2], &c);
-        if (d2 < best.distance_squared) best = {d2, c, k};
-      }
-      continue;
-    }
-    const std::uint32_t l = e.node + 1;
-    const std::uint32_t r = node.first_or_right;
-    const Scalar bl = node_distance_squared(nodes[l], p);
-    const Scalar br = node_distance_squared(nodes[r], p);
-    // Nearer child on top of the stack, so it is searched first and tightens the bound.
-    const Entry near = bl <= br ? Entry{l, bl} : Entry{r, br};
-    const Entry far = bl <= br ? Entry{r, br} : Entry{l, bl};
-    if (far.bound < best.distance_squared) stack[top++] = far;
-    if (near.bound < best.distance_squared) stack[top++] = near;
-  }
-  return best;
 }
 
 bool inside_from_closest(const Model& model, const PointIndex& index, const Vec3& p,

@@ -4,6 +4,9 @@
 
 #include <antcd/bvh.hpp>
 
+#include "points/point_tree.hpp"
+#include "points/solid_grid.hpp"
+
 #include <array>
 #include <cstdint>
 #include <vector>
@@ -27,6 +30,8 @@ struct PointIndex {
   /// shells): the nearest feature's pseudo-normal need not tell the winding number there, so the
   /// sign of a distance is always read from the winding number.
   bool sign_by_winding = false;
+  /// Inside/outside at once for points away from the surface.
+  SolidGrid grid;
 };
 
 /// Builds the index of a closed model (fans and pseudo-normals).
@@ -38,18 +43,16 @@ const PointIndex& point_index(const Model& model);
 /// Winding number of the model's surface at p (model frame), rounded to the nearest integer.
 int winding_number(const Model& model, const PointIndex& index, const Vec3& p);
 
-/// Closest point of the model's surface to p (model frame): squared distance, the point, and
-/// the leaf-order triangle index.
-struct ClosestPoint {
-  Scalar distance_squared = 0;
-  Vec3 point = Vec3::Zero();
-  std::uint32_t leaf_triangle = 0;
-};
-ClosestPoint closest_point(const Model& model, const Vec3& p);
-
 /// Whether p (model frame) is inside the closed model, read from the pseudo-normal of the closest
 /// feature of `c` (the winding number decides where that test is ill-conditioned).
+/// Use solid_state() first: it answers most points without a closest point.
 bool inside_from_closest(const Model& model, const PointIndex& index, const Vec3& p,
                          const ClosestPoint& c);
+
+/// SolidGrid::kInside / kOutside from the grid, or kSurface: then closest_point() and
+/// inside_from_closest() decide.
+inline std::uint8_t solid_state(const PointIndex& index, const Vec3& p) {
+  return index.grid.classify(p);
+}
 
 }  // namespace antcd::detail

@@ -2,10 +2,12 @@
 #include <antcd/points.hpp>
 
 #include "points/point_index.hpp"
+#include "points/point_tree.hpp"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -22,14 +24,34 @@ void check_points(std::span<const Vec3> points, const char* function) {
   }
 }
 
-/// Runs body(i) for every point index, in parallel; each point is independent, so the results do
-/// not depend on the partition.
+/// Points per block of the coherent order: each block is searched by one thread, each point
+/// seeded with the previous point's closest triangle. The answers do not depend on the seed
+/// (closest_point); fixed blocks keep even the work per point independent of the thread count.
+constexpr std::size_t kBlock = 64;
+
+/// Runs body(i, hint) for every point index i, in parallel, blocks of kBlock points along a
+/// Morton curve through the (model-frame) points; `hint` is the leaf-order closest triangle of the
+/// previous point of the block (detail::kNoHint for its first), and body returns point i's.
 template <typename Body>
-void for_each_point(std::size_t n, const Body& body) {
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 256),
+void for_each_point(std::span<const Vec3> local, const Body& body) {
+  const std::vector<std::size_t> order = detail::coherent_order(local);
+  const std::size_t blocks = (local.size() + kBlock - 1) / kBlock;
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, blocks, 4),
                     [&](const tbb::blocked_range<std::size_t>& r) {
-                      for (std::size_t i = r.begin(); i != r.end(); ++i) body(i);
+                      for (std::size_t b = r.begin(); b != r.end(); ++b) {
+                        std::uint32_t hint = detail::kNoHint;
+                        const std::size_t end = std::min(local.size(), (b + 1) * kBlock);
+                        for (std::size_t j = b * kBlock; j < end; ++j) hint = body(order[j], hint);
+                      }
                     });
+}
+
+/// The points in the model's frame.
+std::vector<Vec3> to_model_frame(const Transform& pose, std::span<const Vec3> points) {
+  const Transform to_model = pose.inverse();
+  std::vector<Vec3> local(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) local[i] = to_model.apply(points[i]);
+  return local;
 }
 
 }  // namespace
@@ -44,9 +66,18 @@ std::vector<std::uint8_t> contains(const Model& model, const Transform& pose,
   std::vector<std::uint8_t> inside(points.size(), 0);
   if (points.empty()) return inside;
   const detail::PointIndex& index = detail::point_index(model);
-  const Transform to_model = pose.inverse();
-  for_each_point(points.size(), [&](std::size_t i) {
-    inside[i] = detail::winding_number(model, index, to_model.apply(points[i])) != 0 ? 1 : 0;
+  const detail::PointTree& tree = detail::point_tree(model);
+  const std::vector<Vec3> local = to_model_frame(pose, points);
+  for_each_point(local, [&](std::size_t i, std::uint32_t hint) {
+    const Vec3& p = local[i];
+    const std::uint8_t state = detail::solid_state(index, p);
+    if (state != detail::SolidGrid::kSurface) {
+      inside[i] = state == detail::SolidGrid::kInside ? 1 : 0;
+      return hint;
+    }
+    const detail::ClosestPoint c = detail::closest_point(model, tree, p, hint);
+    inside[i] = c.distance_squared > 0 && detail::inside_from_closest(model, index, p, c) ? 1 : 0;
+    return c.leaf_triangle;
   });
   return inside;
 }
@@ -59,17 +90,23 @@ SignedDistanceResult signed_distance(const Model& model, const Transform& pose,
   result.points.resize(points.size());
   if (points.empty()) return result;
   const detail::PointIndex* index = result.is_signed ? &detail::point_index(model) : nullptr;
-  const Transform to_model = pose.inverse();
-  for_each_point(points.size(), [&](std::size_t i) {
-    const Vec3 p = to_model.apply(points[i]);
-    const detail::ClosestPoint c = detail::closest_point(model, p);
+  const detail::PointTree& tree = detail::point_tree(model);
+  const std::vector<Vec3> local = to_model_frame(pose, points);
+  for_each_point(local, [&](std::size_t i, std::uint32_t hint) {
+    const Vec3& p = local[i];
+    const detail::ClosestPoint c = detail::closest_point(model, tree, p, hint);
     PointDistance& out = result.points[i];
     out.distance = std::sqrt(c.distance_squared);
     out.closest = pose.apply(c.point);
     out.triangle = model.leaf_triangles()[c.leaf_triangle];
-    if (index != nullptr && out.distance > 0 && detail::inside_from_closest(model, *index, p, c)) {
-      out.distance = -out.distance;
+    if (index != nullptr && out.distance > 0) {
+      const std::uint8_t state = detail::solid_state(*index, p);
+      const bool in = state == detail::SolidGrid::kSurface
+                          ? detail::inside_from_closest(model, *index, p, c)
+                          : state == detail::SolidGrid::kInside;
+      if (in) out.distance = -out.distance;
     }
+    return c.leaf_triangle;
   });
   return result;
 }

@@ -6,6 +6,7 @@
 
 #include <tbb/global_control.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <random>
@@ -129,6 +130,116 @@ TEST(Points, VerticesEdgesAndNearSurfacePointsGetTheRightSign) {
   const SignedDistanceResult on =
       signed_distance(model, Transform::identity(), std::vector<Vec3>{Vec3(1, 0.2, 0.3)});
   EXPECT_EQ(on.points[0].distance, 0);
+}
+
+TEST(Points, ModelFrameDistanceIsExactlyTheBruteForceMinimum) {
+  // Identity pose: the query point is the model-frame point, so the tree's answer must equal the
+  // minimum of the same point-triangle distance over every triangle bit for bit (the descent's
+  // single bounds never prune the nearest triangle). Points on, near and far from the surface.
+  const Mesh mesh = make_torus(1.0, 0.35, 40, 20);
+  const Model model(mesh, {}, "torus");
+  std::mt19937_64 rng(5);
+  std::vector<Vec3> points = random_points(rng, mesh.bounds(), 0.5, 300);
+  std::normal_distribution<Scalar> g(0, 1e-6);
+  for (std::size_t v = 0; v < mesh.vertices.size(); v += 7) {
+    points.push_back(mesh.vertices[v]);
+    points.push_back(mesh.vertices[v] + Vec3(g(rng), g(rng), g(rng)));
+  }
+  for (std::size_t t = 0; t < mesh.triangles.size(); t += 11) {
+    const auto& tri = mesh.triangles[t];
+    points.push_back(0.5 * (mesh.vertices[tri[0]] + mesh.vertices[tri[1]]));
+    points.push_back((mesh.vertices[tri[0]] + mesh.vertices[tri[1]] + mesh.vertices[tri[2]]) / 3);
+  }
+  const SignedDistanceResult sd = signed_distance(model, Transform::identity(), points);
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    Scalar best = std::numeric_limits<Scalar>::infinity();
+    for (const auto& t : mesh.triangles) {
+      best = std::min(best, geometry::point_triangle_distance_squared(
+                                points[i], mesh.vertices[t[0]], mesh.vertices[t[1]],
+                                mesh.vertices[t[2]]));
+    }
+    ASSERT_EQ(std::abs(sd.points[i].distance), std::sqrt(best)) << "point " << i;
+  }
+}
+
+TEST(Points, AnswersDoNotDependOnBatchOrderOrCompany) {
+  // Batches are searched in a spatial order, each point seeded with its predecessor's triangle:
+  // the answers must not depend on that (shuffled batch, one point at a time).
+  const Model model(make_sphere(1.0, 32, 16), {}, "sphere");
+  std::mt19937_64 rng(9);
+  std::vector<Vec3> points = random_points(rng, model.mesh().bounds(), 0.4, 500);
+  const SignedDistanceResult all = signed_distance(model, Transform::identity(), points);
+  const std::vector<std::uint8_t> in = contains(model, Transform::identity(), points);
+  std::vector<std::size_t> perm(points.size());
+  for (std::size_t i = 0; i < perm.size(); ++i) perm[i] = i;
+  std::shuffle(perm.begin(), perm.end(), rng);
+  std::vector<Vec3> shuffled;
+  for (const std::size_t i : perm) shuffled.push_back(points[i]);
+  const SignedDistanceResult again = signed_distance(model, Transform::identity(), shuffled);
+  const std::vector<std::uint8_t> in_again = contains(model, Transform::identity(), shuffled);
+  for (std::size_t j = 0; j < perm.size(); ++j) {
+    const std::size_t i = perm[j];
+    ASSERT_EQ(again.points[j].distance, all.points[i].distance) << "point " << i;
+    ASSERT_EQ(again.points[j].triangle, all.points[i].triangle) << "point " << i;
+    ASSERT_EQ(in_again[j], in[i]) << "point " << i;
+  }
+  for (std::size_t i = 0; i < points.size(); i += 50) {
+    const SignedDistanceResult one =
+        signed_distance(model, Transform::identity(), std::vector<Vec3>{points[i]});
+    ASSERT_EQ(one.points[0].distance, all.points[i].distance) << "point " << i;
+    ASSERT_EQ(one.points[0].triangle, all.points[i].triangle) << "point " << i;
+  }
+}
+
+TEST(Points, PointsJustOffFacesEdgesAndCornersGetTheRightSign) {
+  // 1e-7 off a box of side 2 (far below a grid cell, far above rounding), along the outward
+  // direction and against it, at random spots of its faces, on its edges and at its corners.
+  const Mesh mesh = make_box(Vec3(1, 1, 1), 3);
+  const Model model(mesh, {}, "box");
+  std::mt19937_64 rng(21);
+  std::uniform_real_distribution<Scalar> u(-1, 1);
+  std::vector<Vec3> points;
+  std::vector<std::uint8_t> expect;
+  std::vector<Scalar> expect_distance;  // inside an edge or corner: to the nearest face
+  for (int i = 0; i < 600; ++i) {
+    Vec3 on(u(rng), u(rng), u(rng));
+    const int pinned = 1 + i % 3;  // 1: a face, 2: an edge, 3: a corner
+    for (int a = 0; a < pinned; ++a) on[(i + a) % 3] = on[(i + a) % 3] < 0 ? -1 : 1;
+    Vec3 out = Vec3::Zero();
+    for (int a = 0; a < 3; ++a) out[a] = std::abs(on[a]) == 1 ? on[a] : 0;
+    out.normalize();
+    points.push_back(on + 1e-7 * out);
+    expect.push_back(0);
+    expect_distance.push_back(1e-7);
+    points.push_back(on - 1e-7 * out);
+    expect.push_back(1);
+    expect_distance.push_back(1e-7 / std::sqrt(static_cast<Scalar>(pinned)));
+  }
+  const std::vector<std::uint8_t> in = contains(model, Transform::identity(), points);
+  const SignedDistanceResult sd = signed_distance(model, Transform::identity(), points);
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    ASSERT_EQ(in[i], expect[i]) << "point " << i;
+    ASSERT_EQ(sd.points[i].distance < 0, expect[i] != 0) << "point " << i;
+    ASSERT_NEAR(std::abs(sd.points[i].distance), expect_distance[i], 1e-12) << "point " << i;
+  }
+}
+
+TEST(Points, ThinSolidMatchesTheWindingNumber) {
+  // A plate 1e-3 thick: the inside/outside grid gets flat cells along the thin axis.
+  const Mesh mesh = make_box(Vec3(1, 0.7, 5e-4), 2);
+  const Model model(mesh, {}, "plate");
+  std::mt19937_64 rng(4);
+  const std::vector<Vec3> points = random_points(rng, mesh.bounds(), 2e-3, 400);
+  const std::vector<std::uint8_t> in = contains(model, Transform::identity(), points);
+  const SignedDistanceResult sd = signed_distance(model, Transform::identity(), points);
+  int inside = 0;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const bool truth = brute_inside(mesh, Transform::identity(), points[i]);
+    ASSERT_EQ(in[i] != 0, truth) << "point " << i;
+    ASSERT_EQ(sd.points[i].distance < 0, truth) << "point " << i;
+    inside += truth ? 1 : 0;
+  }
+  EXPECT_GT(inside, 20);
 }
 
 TEST(Points, InwardFacingSolidCountsAsInsideToo) {
