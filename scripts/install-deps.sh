@@ -6,7 +6,7 @@ set -euo pipefail
 
 packages=(
   build-essential cmake pkg-config git
-  libeigen3-dev libassimp-dev libtbb-dev libcli11-dev nlohmann-json3-dev
+  libeigen3-dev libassimp-dev libtinyobjloader-dev libtbb-dev libcli11-dev nlohmann-json3-dev
   libgtest-dev libgmock-dev libbenchmark-dev libcgal-dev
   libfcl-dev libbullet-dev
   libkainjow-mustache-dev

@@ -1,4 +1,5 @@
-// load_mesh: reads any mesh file assimp understands into an antcd::Mesh.
+// load_mesh: reads any mesh file assimp understands into an antcd::Mesh; OBJ, OFF and ASCII PLY
+// are read in double precision instead (polygon_soup.hpp), the other formats through assimp.
 //
 // Every call uses its own Assimp::Importer, so concurrent loads share no state. antcd never
 // creates assimp's DefaultLogger (a process-wide object): while no logger exists assimp logs into
@@ -6,6 +7,8 @@
 // the OpenDDL parser inside the OpenGEX reader writes "nullptr returned by creating DDLNode." to
 // stderr for OpenGEX/empty_camera.ogex, past assimp's logger.
 #include <antcd/mesh.hpp>
+
+#include "mesh/polygon_soup.hpp"
 
 #include <assimp/config.h>
 #include <assimp/mesh.h>
@@ -24,7 +27,6 @@
 #include <string>
 #include <string_view>
 #include <system_error>
-#include <unordered_map>
 #include <unordered_set>
 #include <utility>
 #include <vector>
@@ -32,6 +34,7 @@
 namespace antcd {
 namespace {
 
+using detail::one_line;
 using Affine = Eigen::Matrix<Scalar, 4, 4>;
 
 /// assimp's matrices are row-major with the translation in the fourth column, the same
@@ -41,17 +44,6 @@ Affine to_affine(const aiMatrix4x4& m) {
   a << m.a1, m.a2, m.a3, m.a4, m.b1, m.b2, m.b3, m.b4, m.c1, m.c2, m.c3, m.c4, m.d1, m.d2, m.d3,
       m.d4;
   return a;
-}
-
-/// One line, no surrounding blanks: assimp's messages sometimes carry newlines.
-std::string one_line(std::string text) {
-  for (char& c : text) {
-    if (c == '\n' || c == '\r' || c == '\t' || c == '\v' || c == '\f') c = ' ';
-  }
-  const auto first = text.find_first_not_of(' ');
-  if (first == std::string::npos) return {};
-  const auto last = text.find_last_not_of(' ');
-  return text.substr(first, last - first + 1);
 }
 
 /// One placement of an aiMesh in the scene: the mesh and the accumulated node transform.
@@ -158,40 +150,6 @@ void append_instance(const Instance& inst, const std::string& source, Mesh& out,
     if (mirrored) std::swap(tri[1], tri[2]);
     out.triangles.push_back(tri);
   }
-}
-
-struct PositionHash {
-  std::size_t operator()(const Vec3& p) const {
-    std::size_t h = 0;
-    for (int k = 0; k < 3; ++k) {
-      const double x = p[k] == 0 ? 0.0 : p[k];  // -0 and +0 are the same position
-      std::uint64_t bits = 0;
-      std::memcpy(&bits, &x, sizeof bits);
-      h ^= std::hash<std::uint64_t>{}(bits) + 0x9E3779B97F4A7C15ULL + (h << 6) + (h >> 2);
-    }
-    return h;
-  }
-};
-
-/// assimp joins identical vertices within each of its meshes; when a file holds several meshes
-/// (or one mesh placed several times) their shared positions are joined here, exactly.
-void join_across_meshes(Mesh& mesh) {
-  std::unordered_map<Vec3, std::uint32_t, PositionHash> first;
-  first.reserve(mesh.vertices.size());
-  std::vector<std::uint32_t> remap(mesh.vertices.size());
-  std::vector<Vec3> unique;
-  unique.reserve(mesh.vertices.size());
-  for (std::size_t i = 0; i < mesh.vertices.size(); ++i) {
-    const auto [it, inserted] =
-        first.try_emplace(mesh.vertices[i], static_cast<std::uint32_t>(unique.size()));
-    if (inserted) unique.push_back(mesh.vertices[i]);
-    remap[i] = it->second;
-  }
-  if (unique.size() == mesh.vertices.size()) return;
-  for (TriangleIndices& t : mesh.triangles) {
-    for (std::uint32_t& v : t) v = remap[v];
-  }
-  mesh.vertices = std::move(unique);
 }
 
 /// assimp's OFF reader trusts the counts in the header and allocates for them before reading any
@@ -448,6 +406,18 @@ Mesh load_mesh(const std::filesystem::path& path) {
     throw MeshError(source, "not a readable mesh: " + problem);
   }
 
+  // The text formats are read in double precision; assimp (single precision) reads the rest.
+  switch (detail::text_format(path, std::string_view(head.data(), head_size))) {
+    case detail::TextFormat::Obj:
+      return detail::soup_to_mesh(detail::read_obj(path, source), source);
+    case detail::TextFormat::Off:
+      return detail::soup_to_mesh(detail::read_off(path, source), source);
+    case detail::TextFormat::AsciiPly:
+      return detail::soup_to_mesh(detail::read_ascii_ply(path, source, size), source);
+    case detail::TextFormat::None:
+      break;
+  }
+
   Assimp::Importer importer;
   // Drop every vertex attribute but the position before vertices are joined, so that vertices
   // that differ only in normal, texture coordinate or colour (e.g. every corner of an STL cube)
@@ -511,7 +481,7 @@ Mesh load_mesh(const std::filesystem::path& path) {
   importer.FreeScene();
 
   validate_mesh(mesh, source);
-  if (used > 1) join_across_meshes(mesh);
+  if (used > 1) detail::join_identical_positions(mesh);
   return mesh;
 }
 

@@ -406,27 +406,35 @@ TEST(LoadMeshErrors, TruncatedBinaryStlWithSolidHeader) {
 }
 
 TEST(LoadMeshErrors, ObjIndexOutOfRange) {
-  // assimp's OBJ reader rejects the face itself (it neither clamps nor drops it).
+  // The face is refused (neither clamped nor dropped); OBJ counts vertices from 1.
   const auto dir = fresh_temp_dir("err_obj_index");
   write_file(dir / "bad.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 99\n");
-  expect_load_error(dir / "bad.obj", "not a readable mesh: OBJ: vertex index out of range");
+  expect_load_error(dir / "bad.obj",
+                    "face 1 references vertex 99 but the file has 3 vertices (counted from 1)");
   write_file(dir / "negative.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 -9\n");
-  expect_load_error(dir / "negative.obj", "not a readable mesh: OBJ: vertex index out of range");
+  expect_load_error(dir / "negative.obj", "face 1 references a vertex before the first one");
   write_file(dir / "zero.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 0\n");
-  expect_load_error(dir / "zero.obj", "not a readable mesh: OBJ: Invalid face index");
+  expect_load_error(dir / "zero.obj", "not a readable mesh: Failed parse `f' line");
+  // An index past int's range would wrap (atoi) to another vertex: refused.
+  write_file(dir / "huge.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 99999999999999999999999\n");
+  expect_load_error(dir / "huge.obj", "the face on line 4 has a vertex index out of range");
   expect_load_error(assimp_model("invalid/malformed.obj"), "not a readable mesh");
 }
 
 TEST(LoadMeshErrors, ObjNanCoordinate) {
   const auto dir = fresh_temp_dir("err_obj_nan");
   write_file(dir / "nan.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv nan 0 0\nf 1 2 3\nf 1 3 4\n");
-  expect_load_error(dir / "nan.obj", "vertex 3 has a non-finite coordinate");
+  expect_load_error(dir / "nan.obj", "vertex 4 (line 4) has a non-finite coordinate 'nan'");
+  write_file(dir / "word.obj", "v 0 0 0\nv 1 zero 0\nv 0 1 0\nf 1 2 3\n");
+  expect_load_error(dir / "word.obj", "vertex 2 (line 2) has a coordinate that is not a number");
+  write_file(dir / "short.obj", "v 0 0 0\nv 1 0\nv 0 1 0\nf 1 2 3\n");
+  expect_load_error(dir / "short.obj", "vertex 2 (line 2) has fewer than 3 coordinates");
 }
 
 TEST(LoadMeshErrors, ObjOverflowingCoordinate) {
   const auto dir = fresh_temp_dir("err_obj_inf");
   write_file(dir / "inf.obj", "v 1e999 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
-  expect_load_error(dir / "inf.obj", "vertex 0 has a non-finite coordinate");
+  expect_load_error(dir / "inf.obj", "vertex 1 (line 1) has a non-finite coordinate '1e999'");
 }
 
 TEST(LoadMeshErrors, OnlyLines) {
@@ -559,13 +567,15 @@ TEST(MeshDegenerate, OutOfRangeTriangleCountsAsDegenerate) {
 // ---- save_obj ----
 
 TEST(SaveObj, RoundTripThroughLoader) {
-  // assimp stores coordinates as float, so the mesh is built from float values: then the round
-  // trip save -> load reproduces every triangle's corners exactly.
-  Mesh original = transformed(make_torus(2, 0.5, 24, 12),
-                              Transform::from_axis_angle(Vec3(1, 2, 3), 0.7, Vec3(0.1, -3, 7)));
-  for (Vec3& v : original.vertices) {
-    for (int k = 0; k < 3; ++k) v[k] = to_float_value(v[k]);
+  // OBJ is read in double precision: the round trip save -> load reproduces every triangle's
+  // corners exactly, for arbitrary doubles (none of them is a float value here).
+  const Mesh original = transformed(
+      make_torus(2, 0.5, 24, 12), Transform::from_axis_angle(Vec3(1, 2, 3), 0.7, Vec3(0.1, -3, 7)));
+  std::size_t float_values = 0;
+  for (const Vec3& v : original.vertices) {
+    for (int k = 0; k < 3; ++k) float_values += to_float_value(v[k]) == v[k] ? 1 : 0;
   }
+  EXPECT_LT(float_values, original.vertices.size() / 10);
   const auto dir = fresh_temp_dir("save_round_trip");
   save_obj(original, dir / "torus.obj");
   const Mesh loaded = load_mesh(dir / "torus.obj");
