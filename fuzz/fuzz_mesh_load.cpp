@@ -1,6 +1,6 @@
 // libFuzzer target: antcd::load_mesh and the Model build on arbitrary bytes.
 //
-// load_mesh reads files only, and assimp picks its reader by the extension first. The first byte
+// load_mesh reads files only and picks its reader by the extension first. The first byte
 // of an input chooses the extension (byte % 4: 0 .obj, 1 .stl, 2 .ply, 3 .off) and the rest is
 // written to a file of this process's own temporary folder and loaded. The seeds in
 // fuzz/corpus/mesh start with '0', '1', '2' or '3' accordingly, followed by the mesh file. A

@@ -110,15 +110,6 @@ std::vector<Vec3> read_vertex_lines(std::string_view text, const std::string& so
   return out;
 }
 
-std::string read_whole_file(const std::filesystem::path& path, const std::string& source) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw MeshError(source, "cannot be opened: " + one_line(std::strerror(errno)));
-  std::ostringstream buffer;
-  buffer << in.rdbuf();
-  if (in.bad()) throw MeshError(source, "cannot be read");
-  return std::move(buffer).str();
-}
-
 }  // namespace
 
 PolygonSoup read_obj(const std::filesystem::path& path, const std::string& source) {

@@ -22,15 +22,6 @@ namespace {
 using CgalPoint = CGAL::Simple_cartesian<double>::Point_3;
 using CgalPolygons = std::vector<std::vector<std::size_t>>;
 
-std::string read_whole_file(const std::filesystem::path& path, const std::string& source) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw MeshError(source, "cannot be opened: " + one_line(std::strerror(errno)));
-  std::ostringstream buffer;
-  buffer << in.rdbuf();
-  if (in.bad()) throw MeshError(source, "cannot be read");
-  return std::move(buffer).str();
-}
-
 PolygonSoup to_soup(const std::vector<CgalPoint>& points, const CgalPolygons& polygons) {
   PolygonSoup soup;
   soup.points.reserve(points.size());

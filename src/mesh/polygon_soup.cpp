@@ -4,9 +4,12 @@
 
 #include <algorithm>
 #include <array>
+#include <cerrno>
 #include <cmath>
 #include <cstring>
+#include <fstream>
 #include <limits>
+#include <sstream>
 #include <unordered_map>
 #include <utility>
 
@@ -141,6 +144,15 @@ std::string one_line(std::string text) {
   if (first == std::string::npos) return {};
   const auto last = text.find_last_not_of(' ');
   return text.substr(first, last - first + 1);
+}
+
+std::string read_whole_file(const std::filesystem::path& path, const std::string& source) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw MeshError(source, "cannot be opened: " + one_line(std::strerror(errno)));
+  std::ostringstream buffer;
+  buffer << in.rdbuf();
+  if (in.bad()) throw MeshError(source, "cannot be read");
+  return std::move(buffer).str();
 }
 
 TextFormat text_format(const std::filesystem::path& path, std::string_view head) {

@@ -45,6 +45,9 @@ Mesh soup_to_mesh(const PolygonSoup& soup, const std::string& source);
 /// Joins vertices at bit-identical positions (-0 and +0 alike), renumbering the triangles.
 void join_identical_positions(Mesh& mesh);
 
+/// The file's bytes. Throws MeshError naming `source` when it cannot be opened or read.
+std::string read_whole_file(const std::filesystem::path& path, const std::string& source);
+
 /// One line, no surrounding blanks: library messages sometimes carry newlines.
 std::string one_line(std::string text);
 

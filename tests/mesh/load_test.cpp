@@ -305,19 +305,24 @@ TEST(LoadMesh, LoadingPrintsNothing) {
 }
 
 TEST(LoadMesh, ConcurrentLoadsAgree) {
-  const auto path = assimp_model("STL/Spider_binary.stl");
-  const Mesh reference = load_mesh(path);
-  std::vector<Mesh> results(8);
-  std::vector<std::thread> threads;
-  for (std::size_t i = 0; i < results.size(); ++i) {
-    threads.emplace_back([&, i] {
-      for (int round = 0; round < 5; ++round) results[i] = load_mesh(path);
-    });
-  }
-  for (auto& t : threads) t.join();
-  for (const Mesh& m : results) {
-    EXPECT_EQ(m.vertices, reference.vertices);
-    EXPECT_EQ(m.triangles, reference.triangles);
+  // One file per reader: assimp (STL), tinyobjloader (OBJ), CGAL (OFF, ASCII PLY).
+  for (const char* name :
+       {"STL/Spider_binary.stl", "OBJ/spider.obj", "OFF/Wuson.off", "PLY/Wuson.ply"}) {
+    SCOPED_TRACE(name);
+    const auto path = assimp_model(name);
+    const Mesh reference = load_mesh(path);
+    std::vector<Mesh> results(8);
+    std::vector<std::thread> threads;
+    for (std::size_t i = 0; i < results.size(); ++i) {
+      threads.emplace_back([&, i] {
+        for (int round = 0; round < 3; ++round) results[i] = load_mesh(path);
+      });
+    }
+    for (auto& t : threads) t.join();
+    for (const Mesh& m : results) {
+      EXPECT_EQ(m.vertices, reference.vertices);
+      EXPECT_EQ(m.triangles, reference.triangles);
+    }
   }
 }
 
