@@ -411,7 +411,7 @@ Mesh load_mesh(const std::filesystem::path& path) {
     case detail::TextFormat::Obj:
       return detail::soup_to_mesh(detail::read_obj(path, source), source);
     case detail::TextFormat::Off:
-      return detail::soup_to_mesh(detail::read_off(path, source), source);
+      return detail::soup_to_mesh(detail::read_off(path, source, size), source);
     case detail::TextFormat::AsciiPly:
       return detail::soup_to_mesh(detail::read_ascii_ply(path, source, size), source);
     case detail::TextFormat::None:

@@ -31,7 +31,8 @@ TextFormat text_format(const std::filesystem::path& path, std::string_view head)
 
 /// The readers. Each throws MeshError naming `source` when the file cannot be read.
 PolygonSoup read_obj(const std::filesystem::path& path, const std::string& source);
-PolygonSoup read_off(const std::filesystem::path& path, const std::string& source);
+PolygonSoup read_off(const std::filesystem::path& path, const std::string& source,
+                     std::uintmax_t file_size);
 PolygonSoup read_ascii_ply(const std::filesystem::path& path, const std::string& source,
                            std::uintmax_t file_size);
 

@@ -394,6 +394,36 @@ TEST(BadMeshFile, BinaryStlCountLies) {
   }
 }
 
+// ---- counts the double-precision readers would allocate for ----
+
+TEST(BadMeshFile, TextReadersRefuseCountsTheFileCannotHold) {
+  // CGAL's OFF reader sizes a face by its corner count before reading the corners, and its PLY
+  // reader a list by its size: "99999999 0 1 2" alone made them allocate 800 MB. Refused at once.
+  const auto start = std::chrono::steady_clock::now();
+  const auto dir = fresh_temp_dir("text_counts");
+  const std::string tri_ply_head =
+      "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty "
+      "float z\nelement face 1\nproperty list ";
+  const std::string tri_ply_tail = " int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n";
+  const std::vector<std::pair<std::string, std::string>> refused = {
+      {"big_face.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n99999999 0 1 2\n"},
+      {"huge_face.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n4000000000 0 1 2\n"},
+      {"big_list.ply", tri_ply_head + "uint" + tri_ply_tail + "99999999 0 1 2\n"},
+      {"huge_list.ply", tri_ply_head + "int" + tri_ply_tail + "4000000000 0 1 2\n"},
+      {"huge_element.ply",
+       "ply\nformat ascii 1.0\nelement vertex 99999999999\nelement face 1\nend_header\n"},
+  };
+  for (const auto& [name, text] : refused) {
+    SCOPED_TRACE(name);
+    write_file(dir / name, text);
+    expect_refused(dir / name, "can hold");
+  }
+  // The same files with honest counts load; an int-sized list count is fine.
+  write_file(dir / "int_list.ply", tri_ply_head + "int" + tri_ply_tail + "3 0 1 2\n");
+  EXPECT_EQ(load_and_build(dir / "int_list.ply"), Outcome::Loaded);
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 5.0);
+}
+
 // ---- OBJ indices out of range ----
 
 TEST(BadMeshFile, ObjIndicesOutOfRange) {
