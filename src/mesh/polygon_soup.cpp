@@ -36,35 +36,6 @@ bool ply_header_is_ascii(std::string_view head) {
   return false;
 }
 
-/// "OFF BINARY" (any OFF keyword, then BINARY): CGAL would read its counts as binary integers
-/// and allocate for them unchecked, so such files stay with assimp, as before.
-bool off_header_is_binary(std::string_view head) {
-  std::size_t i = 0;
-  auto skip = [&] {
-    while (i < head.size()) {
-      if (head[i] == ' ' || head[i] == '\t' || head[i] == '\r' || head[i] == '\n') {
-        ++i;
-      } else if (head[i] == '#') {
-        while (i < head.size() && head[i] != '\n') ++i;
-      } else {
-        break;
-      }
-    }
-  };
-  auto word = [&] {
-    skip();
-    const std::size_t start = i;
-    while (i < head.size() && head[i] != ' ' && head[i] != '\t' && head[i] != '\r' &&
-           head[i] != '\n' && head[i] != '#') {
-      ++i;
-    }
-    return head.substr(start, i - start);
-  };
-  const std::string_view keyword = word();
-  if (keyword.size() < 3 || keyword.substr(keyword.size() - 3) != "OFF") return false;
-  return word() == "BINARY";
-}
-
 /// A corner list is a polygon of the soup; `tri` receives its triangles as corner positions
 /// (0 .. n-1) in the polygon's own winding.
 using Triangles = std::vector<std::array<std::uint32_t, 3>>;
@@ -188,7 +159,6 @@ TextFormat text_format(const std::filesystem::path& path, std::string_view head)
   std::string ext = path.extension().string();
   for (char& c : ext) c = static_cast<char>(c | 0x20);
   if (ext == ".obj") return TextFormat::Obj;
-  if (ext == ".off") return off_header_is_binary(head) ? TextFormat::None : TextFormat::Off;
   // CGAL's PLY reader wants the magic in lower case, as the format says; assimp takes "PLY" too.
   if (ext == ".ply" && head.substr(0, 3) == "ply" && ply_header_is_ascii(head)) {
     return TextFormat::AsciiPly;

@@ -1,4 +1,4 @@
-// Internal to the mesh layer: the text-format readers (OBJ, OFF, ASCII PLY) produce a polygon
+// Internal to the mesh layer: the text-format readers (OBJ, ASCII PLY) produce a polygon
 // soup of double coordinates, turned into a Mesh here the same way for every format.
 #pragma once
 
@@ -18,21 +18,20 @@ struct PolygonSoup {
   std::vector<Vec3> points;
   std::vector<std::int64_t> corners;
   std::vector<std::uint32_t> corner_counts;
-  /// How the file counts vertices (OBJ from 1, OFF and PLY from 0), for error messages.
+  /// How the file counts vertices (OBJ from 1, PLY from 0), for error messages.
   std::int64_t index_base = 0;
 };
 
 /// The text formats read in double precision; anything else goes to assimp.
-enum class TextFormat { None, Obj, Off, AsciiPly };
+enum class TextFormat { None, Obj, AsciiPly };
 
-/// Decides by extension (.obj, .off, .ply) and, for PLY, by the header's format line: a binary PLY
-/// is left to assimp. `head` is the file's first bytes.
+/// Decides by extension (.obj, .ply) and, for PLY, by the header's format line: a binary PLY is
+/// left to assimp. `head` is the file's first bytes. OFF stays with assimp: CGAL's OFF reader
+/// reads past its arrays on malformed colour entries (found by fuzz/fuzz_mesh_load).
 TextFormat text_format(const std::filesystem::path& path, std::string_view head);
 
 /// The readers. Each throws MeshError naming `source` when the file cannot be read.
 PolygonSoup read_obj(const std::filesystem::path& path, const std::string& source);
-PolygonSoup read_off(const std::filesystem::path& path, const std::string& source,
-                     std::uintmax_t file_size);
 PolygonSoup read_ascii_ply(const std::filesystem::path& path, const std::string& source,
                            std::uintmax_t file_size);
 

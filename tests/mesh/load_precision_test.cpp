@@ -1,4 +1,4 @@
-// OBJ, OFF and ASCII PLY keep their coordinates in double precision: each loaded coordinate is
+// OBJ and ASCII PLY keep their coordinates in double precision: each loaded coordinate is
 // the nearest double to the file's text (std::strtod is the reference), polygons are triangulated
 // into triangles that tile them, the real assimp-testmodels files give the triangles and vertices
 // assimp gives (within float rounding), and a distance on a real file matches brute force over
@@ -67,14 +67,6 @@ struct TextMesh {
     }
     return s;
   }
-  [[nodiscard]] std::string off() const {
-    std::string s = "OFF\n" + std::to_string(text.size()) + ' ' + std::to_string(triangles.size()) + " 0\n";
-    for (const auto& p : text) s += p[0] + ' ' + p[1] + ' ' + p[2] + '\n';
-    for (const auto& t : triangles) {
-      s += "3 " + std::to_string(t[0]) + ' ' + std::to_string(t[1]) + ' ' + std::to_string(t[2]) + '\n';
-    }
-    return s;
-  }
   /// `type` is the declared coordinate type: "float" (the usual) or "double".
   [[nodiscard]] std::string ply(const std::string& type) const {
     std::string s = "ply\nformat ascii 1.0\nelement vertex " + std::to_string(text.size()) +
@@ -106,7 +98,6 @@ void expect_every_format_reproduces(const TextMesh& m, const std::string& name) 
   const auto expected = m.expected();
   const std::vector<std::pair<std::string, std::string>> files = {
       {name + ".obj", m.obj()},
-      {name + ".off", m.off()},
       {name + "_float.ply", m.ply("float")},
       {name + "_float32.ply", m.ply("float32")},
       {name + "_double.ply", m.ply("double")},
@@ -208,14 +199,12 @@ TEST(LoadPrecision, PolygonsAreTriangulatedIntoTheirArea) {
       obj += "v " + shortest(poly.xy[k][0]) + ' ' + shortest(poly.xy[k][1]) + " 0.25\n";
     }
     obj += "f" + indices1 + '\n';
-    const std::string off =
-        "OFF\n" + std::to_string(n) + " 1 0\n" + v_lines + std::to_string(n) + indices0 + '\n';
     const std::string ply = "ply\nformat ascii 1.0\nelement vertex " + std::to_string(n) +
                             "\nproperty float x\nproperty float y\nproperty float z\nelement face "
                             "1\nproperty list uchar int vertex_indices\nend_header\n" +
                             v_lines + std::to_string(n) + indices0 + '\n';
     for (const auto& [ext, text] :
-         std::vector<std::pair<std::string, std::string>>{{".obj", obj}, {".off", off}, {".ply", ply}}) {
+         std::vector<std::pair<std::string, std::string>>{{".obj", obj}, {".ply", ply}}) {
       SCOPED_TRACE("polygon " + std::to_string(i) + ext);
       const auto path = dir / ("polygon" + std::to_string(i) + ext);
       write_file(path, text);
@@ -266,7 +255,7 @@ AssimpMesh assimp_reference(const std::filesystem::path& path) {
 
 TEST(LoadPrecision, RealFilesAgreeWithAssimpWithinFloatRounding) {
   for (const char* name : {"OBJ/spider.obj", "OBJ/box.obj", "OBJ/concave_polygon.obj",
-                           "OBJ/WusonOBJ.obj", "OFF/Cube.off", "OFF/Wuson.off", "PLY/cube.ply",
+                           "OBJ/WusonOBJ.obj", "PLY/cube.ply",
                            "PLY/Wuson.ply", "PLY/float-color.ply"}) {
     SCOPED_TRACE(name);
     const auto path = assimp_model(name);
@@ -296,31 +285,12 @@ TEST(LoadPrecision, RealFilesAgreeWithAssimpWithinFloatRounding) {
 
 // ---- a distance on a real file against the file's own coordinates ----
 
-/// Vertices and triangles of an OBJ (triangles only; "v" and "f" lines, corner "a/b/c" or "a")
-/// or an OFF file (triangles only), parsed with strtod: the reference for the file's coordinates.
+/// Vertices and triangles of an OBJ file (triangles only; "v" and "f" lines, corner "a/b/c" or
+/// "a"), parsed with strtod: the reference for the file's coordinates.
 Mesh parse_reference(const std::filesystem::path& path) {
   std::ifstream in(path);
   Mesh m;
   std::string line;
-  if (path.extension() == ".off") {
-    std::string keyword;
-    std::size_t nv = 0, nf = 0, ne = 0;
-    in >> keyword >> nv >> nf >> ne;
-    for (std::size_t i = 0; i < nv; ++i) {
-      std::string x, y, z;
-      in >> x >> y >> z;
-      m.vertices.emplace_back(std::strtod(x.c_str(), nullptr), std::strtod(y.c_str(), nullptr),
-                              std::strtod(z.c_str(), nullptr));
-    }
-    for (std::size_t i = 0; i < nf; ++i) {
-      int n = 0;
-      TriangleIndices t{};
-      in >> n >> t[0] >> t[1] >> t[2];
-      EXPECT_EQ(n, 3);
-      m.triangles.push_back(t);
-    }
-    return m;
-  }
   while (std::getline(in, line)) {
     std::istringstream fields(line);
     std::string tag;
@@ -354,7 +324,7 @@ Scalar brute_distance(const Mesh& mesh, const Vec3& p) {
 }
 
 TEST(LoadPrecision, DistanceOnRealFileMatchesOracleOnFileCoordinates) {
-  for (const char* name : {"OBJ/spider.obj", "OFF/Wuson.off"}) {
+  for (const char* name : {"OBJ/spider.obj", "OBJ/WusonOBJ.obj"}) {
     SCOPED_TRACE(name);
     const auto path = assimp_model(name);
     if (!std::filesystem::exists(path)) GTEST_SKIP() << path << " is absent";

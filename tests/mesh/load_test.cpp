@@ -305,7 +305,7 @@ TEST(LoadMesh, LoadingPrintsNothing) {
 }
 
 TEST(LoadMesh, ConcurrentLoadsAgree) {
-  // One file per reader: assimp (STL), tinyobjloader (OBJ), CGAL (OFF, ASCII PLY).
+  // One file per reader: assimp (STL, OFF), tinyobjloader (OBJ), CGAL (ASCII PLY).
   for (const char* name :
        {"STL/Spider_binary.stl", "OBJ/spider.obj", "OFF/Wuson.off", "PLY/Wuson.ply"}) {
     SCOPED_TRACE(name);
@@ -471,8 +471,7 @@ TEST(LoadMeshErrors, OffHeaderAnnouncingTooMuch) {
   write_file(dir / "liar.dat", "OFF 2000000000 12 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
   expect_load_error(dir / "liar.dat", "the OFF header announces");
   EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 5.0);
-  // A binary OFF's counts are not text: such files are left to assimp (as before the text
-  // formats were read in double precision), never to a reader that allocates for the counts.
+  // A binary OFF's counts are not text (no header check applies): refused quickly all the same.
   std::string binary = "OFF BINARY\n";
   for (const std::uint32_t count : {200000000u, 200000000u, 0u}) {
     for (int shift = 24; shift >= 0; shift -= 8) binary.push_back(static_cast<char>(count >> shift));

@@ -1,5 +1,5 @@
-// OFF and ASCII PLY in double precision through CGAL's polygon-soup readers, which read every
-// number with the standard library's stream extraction (correctly rounded to double).
+// ASCII PLY in double precision through CGAL's polygon-soup reader, which reads every number with
+// the standard library's stream extraction (correctly rounded to double).
 //
 // A PLY property declared "float" is read by CGAL as a float. In an ASCII file the declared type
 // only tells how the writer meant the text; the text itself is what the file says. So the
@@ -7,7 +7,6 @@
 // every coordinate is the nearest double to the printed number.
 #include "mesh/polygon_soup.hpp"
 
-#include <CGAL/IO/OFF.h>
 #include <CGAL/IO/PLY.h>
 #include <CGAL/Simple_cartesian.h>
 
@@ -28,9 +27,9 @@ using CgalPoint = CGAL::Simple_cartesian<double>::Point_3;
 /// The most elements one allocation of a Bounded container may hold, on this thread (0: none).
 thread_local std::size_t allocation_limit = 0;
 
-/// CGAL's OFF reader sizes its point, face and corner arrays by counts read from the file before
-/// it reads what they count ("99999999 0 1 2" as a face line allocates 800 MB). Its arrays use
-/// this allocator, which refuses (std::length_error) more elements than the file could describe.
+/// CGAL's readers size arrays by counts read from the file before reading what they count. The
+/// arrays handed to them use this allocator, which refuses (std::length_error) more elements than
+/// the file could describe.
 template <class T>
 struct Bounded {
   using value_type = T;
@@ -185,30 +184,6 @@ void check_ply_list_sizes(std::string_view body, const std::vector<PlyElement>& 
 }
 
 }  // namespace
-
-PolygonSoup read_off(const std::filesystem::path& path, const std::string& source,
-                     std::uintmax_t file_size) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw MeshError(source, "cannot be opened: " + one_line(std::strerror(errno)));
-  CgalPoints points;
-  CgalPolygons polygons;
-  bool ok = false;
-  try {
-    // Every vertex, face and corner takes at least 2 bytes of text ("0 ").
-    const AllocationLimit limit(static_cast<std::size_t>(file_size / 2) + 16);
-    ok = CGAL::IO::read_OFF(in, points, polygons, CGAL::parameters::verbose(false));
-  } catch (const std::length_error&) {
-    throw MeshError(source, "not a readable mesh: the OFF file announces more vertices, faces or "
-                            "face corners than its " + std::to_string(file_size) +
-                            " bytes can hold");
-  }
-  if (!ok) {
-    throw MeshError(source,
-                    "not a readable mesh: CGAL's OFF reader refused it (a header, vertex or face "
-                    "line that does not follow the OFF format, or a vertex index out of range)");
-  }
-  return to_soup(points, polygons);
-}
 
 PolygonSoup read_ascii_ply(const std::filesystem::path& path, const std::string& source,
                            std::uintmax_t file_size) {
