@@ -55,8 +55,8 @@ void bind_model(py::module_& m) {
       py::arg("path"),
       "Loads every triangle of a mesh file (OBJ, STL, PLY, OFF, glTF/GLB and the other formats "
       "assimp reads), with the file's node transforms applied, polygons triangulated and identical "
-      "vertices joined. OBJ and ASCII PLY coordinates are the nearest doubles to the file's "
-      "text; the other formats are read by assimp in single precision.\n\n"
+      "vertices joined. OBJ coordinates are the nearest doubles to the file's text; the other "
+      "formats are read by assimp in single precision.\n\n"
       "Returns (vertices float64[n, 3], faces int64[m, 3]).\n"
       "Raises FileNotFoundError / IsADirectoryError / PermissionError (OSError) when the file "
       "cannot be opened, ValueError when it is not a readable triangle mesh.");

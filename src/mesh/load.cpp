@@ -1,5 +1,5 @@
-// load_mesh: reads any mesh file assimp understands into an antcd::Mesh; OBJ and ASCII PLY are
-// read in double precision instead (polygon_soup.hpp), the other formats through assimp.
+// load_mesh: reads any mesh file assimp understands into an antcd::Mesh; OBJ is read in double
+// precision instead (polygon_soup.hpp, load_obj.cpp), the other formats through assimp.
 //
 // Every call uses its own Assimp::Importer, so concurrent loads share no state. antcd never
 // creates assimp's DefaultLogger (a process-wide object): while no logger exists assimp logs into
@@ -406,14 +406,9 @@ Mesh load_mesh(const std::filesystem::path& path) {
     throw MeshError(source, "not a readable mesh: " + problem);
   }
 
-  // OBJ and ASCII PLY are read in double precision; assimp (single precision) reads the rest.
-  switch (detail::text_format(path, std::string_view(head.data(), head_size))) {
-    case detail::TextFormat::Obj:
-      return detail::soup_to_mesh(detail::read_obj(path, source), source);
-    case detail::TextFormat::AsciiPly:
-      return detail::soup_to_mesh(detail::read_ascii_ply(path, source, size), source);
-    case detail::TextFormat::None:
-      break;
+  // OBJ is read in double precision; assimp (single precision) reads the rest.
+  if (detail::text_format(path) == detail::TextFormat::Obj) {
+    return detail::soup_to_mesh(detail::read_obj(path, source), source);
   }
 
   Assimp::Importer importer;

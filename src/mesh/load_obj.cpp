@@ -125,7 +125,7 @@ PolygonSoup read_obj(const std::filesystem::path& path, const std::string& sourc
   {
     std::istringstream in(std::move(text));
     // No material reader: materials are not geometry, and .mtl files are not opened at all.
-    // Polygons are triangulated by soup_to_mesh, the same way as PLY polygons.
+    // Polygons are triangulated by soup_to_mesh.
     ok = tinyobj::LoadObj(&attrib, &shapes, &materials, &warnings, &errors, &in, nullptr,
                           /*triangulate=*/false, /*default_vcols_fallback=*/false);
   }

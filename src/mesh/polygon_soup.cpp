@@ -16,26 +16,6 @@
 namespace antcd::detail {
 namespace {
 
-/// The PLY header's "format" line says "ascii" (any other format, or none, is not ours).
-bool ply_header_is_ascii(std::string_view head) {
-  std::size_t line = head.find('\n');
-  while (line != std::string_view::npos) {
-    std::size_t start = line + 1;
-    while (start < head.size() && (head[start] == ' ' || head[start] == '\t')) ++start;
-    const std::size_t end = head.find('\n', start);
-    std::string_view text = head.substr(start, end == std::string_view::npos ? end : end - start);
-    if (text.substr(0, 7) == "format " || text.substr(0, 7) == "format\t") {
-      text.remove_prefix(7);
-      while (!text.empty() && (text.front() == ' ' || text.front() == '\t')) text.remove_prefix(1);
-      return text.substr(0, 5) == "ascii" &&
-             (text.size() == 5 || text[5] == ' ' || text[5] == '\t' || text[5] == '\r');
-    }
-    if (text.substr(0, 10) == "end_header") return false;
-    line = end;
-  }
-  return false;
-}
-
 /// A corner list is a polygon of the soup; `tri` receives its triangles as corner positions
 /// (0 .. n-1) in the polygon's own winding.
 using Triangles = std::vector<std::array<std::uint32_t, 3>>;
@@ -155,15 +135,10 @@ std::string read_whole_file(const std::filesystem::path& path, const std::string
   return std::move(buffer).str();
 }
 
-TextFormat text_format(const std::filesystem::path& path, std::string_view head) {
+TextFormat text_format(const std::filesystem::path& path) {
   std::string ext = path.extension().string();
   for (char& c : ext) c = static_cast<char>(c | 0x20);
-  if (ext == ".obj") return TextFormat::Obj;
-  // CGAL's PLY reader wants the magic in lower case, as the format says; assimp takes "PLY" too.
-  if (ext == ".ply" && head.substr(0, 3) == "ply" && ply_header_is_ascii(head)) {
-    return TextFormat::AsciiPly;
-  }
-  return TextFormat::None;
+  return ext == ".obj" ? TextFormat::Obj : TextFormat::None;
 }
 
 void join_identical_positions(Mesh& mesh) {

@@ -1,4 +1,4 @@
-// Internal to the mesh layer: the text-format readers (OBJ, ASCII PLY) produce a polygon
+// Internal to the mesh layer: the double-precision reader (OBJ) produces a polygon
 // soup of double coordinates, turned into a Mesh here the same way for every format.
 #pragma once
 
@@ -18,22 +18,20 @@ struct PolygonSoup {
   std::vector<Vec3> points;
   std::vector<std::int64_t> corners;
   std::vector<std::uint32_t> corner_counts;
-  /// How the file counts vertices (OBJ from 1, PLY from 0), for error messages.
+  /// How the file counts vertices (OBJ from 1), for error messages.
   std::int64_t index_base = 0;
 };
 
-/// The text formats read in double precision; anything else goes to assimp.
-enum class TextFormat { None, Obj, AsciiPly };
+/// The formats read in double precision; anything else goes to assimp.
+enum class TextFormat { None, Obj };
 
-/// Decides by extension (.obj, .ply) and, for PLY, by the header's format line: a binary PLY is
-/// left to assimp. `head` is the file's first bytes. OFF stays with assimp: CGAL's OFF reader
-/// reads past its arrays on malformed colour entries (found by fuzz/fuzz_mesh_load).
-TextFormat text_format(const std::filesystem::path& path, std::string_view head);
+/// Decides by extension (.obj). OFF and PLY stay with assimp: CGAL's OFF and PLY readers were
+/// tried and read past their arrays or call through null pointers on malformed files (found by
+/// fuzz/fuzz_mesh_load).
+TextFormat text_format(const std::filesystem::path& path);
 
-/// The readers. Each throws MeshError naming `source` when the file cannot be read.
+/// The reader. Throws MeshError naming `source` when the file cannot be read.
 PolygonSoup read_obj(const std::filesystem::path& path, const std::string& source);
-PolygonSoup read_ascii_ply(const std::filesystem::path& path, const std::string& source,
-                           std::uintmax_t file_size);
 
 /// Triangulates the soup's polygons (triangles kept, quads split on the diagonal through a
 /// reflex corner if there is one, larger polygons by ear clipping in their plane), keeps only the

@@ -305,7 +305,7 @@ TEST(LoadMesh, LoadingPrintsNothing) {
 }
 
 TEST(LoadMesh, ConcurrentLoadsAgree) {
-  // One file per reader: assimp (STL, OFF), tinyobjloader (OBJ), CGAL (ASCII PLY).
+  // One file per reader: assimp (STL, OFF, PLY), tinyobjloader (OBJ).
   for (const char* name :
        {"STL/Spider_binary.stl", "OBJ/spider.obj", "OFF/Wuson.off", "PLY/Wuson.ply"}) {
     SCOPED_TRACE(name);
