@@ -170,8 +170,10 @@ int run_demo(const DemoOptions& o) {
       "maco: the paper's improved ant colony (m = %u ants, N = %u iterations, %zu features per\n"
       "side) on %zu of the %zu frames%s, stopping at the first colliding feature pair, which the\n"
       "exact triangle test at delta then confirms (the witness verdict): every pair it reports is\n"
-      "a real contact, misses are its only error. The colonies' pheromone and last witnesses are\n"
-      "carried from frame to frame (docs/random-detection.md); %llu fitness evaluations in all.\n",
+      "a real contact, misses are its only error. Where a pair's budget covers every cell of its\n"
+      "overlapping leaf pairs, those cells are scanned instead of searched (complete: no witness\n"
+      "there proves the pair separate). The colonies' pheromone and last witnesses are carried\n"
+      "from frame to frame (docs/random-detection.md); %llu fitness evaluations in all.\n",
       maco.agents, maco.iterations, maco.samples_per_side, result.frames.size(), frames,
       o.maco_step == 1 ? "" : " (every --maco-step-th)", static_cast<unsigned long long>(evaluations));
   if (ab_frames > 0) {
