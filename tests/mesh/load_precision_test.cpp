@@ -3,6 +3,7 @@
 // into triangles that tile them, the real assimp-testmodels files give the triangles and vertices
 // assimp gives (within float rounding), and a distance on a real file matches brute force over
 // the file's own coordinates to ~1e-12 relative. assimp is linked here as a reference only.
+#include "support/mesh_files.hpp"
 #include "support/test_support.hpp"
 
 #include <antcd/bvh.hpp>
@@ -261,32 +262,6 @@ TEST(LoadPrecision, RealFilesAgreeWithAssimpWithinFloatRounding) {
 
 // ---- a distance on a real file against the file's own coordinates ----
 
-/// Vertices and triangles of an OBJ file (triangles only; "v" and "f" lines, corner "a/b/c" or
-/// "a"), parsed with strtod: the reference for the file's coordinates.
-Mesh parse_reference(const std::filesystem::path& path) {
-  std::ifstream in(path);
-  Mesh m;
-  std::string line;
-  while (std::getline(in, line)) {
-    std::istringstream fields(line);
-    std::string tag;
-    fields >> tag;
-    if (tag == "v") {
-      std::string x, y, z;
-      fields >> x >> y >> z;
-      m.vertices.emplace_back(std::strtod(x.c_str(), nullptr), std::strtod(y.c_str(), nullptr),
-                              std::strtod(z.c_str(), nullptr));
-    } else if (tag == "f") {
-      std::vector<std::uint32_t> f;
-      std::string corner;
-      while (fields >> corner) f.push_back(static_cast<std::uint32_t>(std::stoul(corner)) - 1);
-      EXPECT_EQ(f.size(), 3u);
-      if (f.size() == 3) m.triangles.push_back({f[0], f[1], f[2]});
-    }
-  }
-  return m;
-}
-
 Scalar brute_distance(const Mesh& mesh, const Vec3& p) {
   Scalar best = std::numeric_limits<Scalar>::infinity();
   for (const auto& t : mesh.triangles) {
@@ -304,7 +279,7 @@ TEST(LoadPrecision, DistanceOnRealFileMatchesOracleOnFileCoordinates) {
     SCOPED_TRACE(name);
     const auto path = assimp_model(name);
     if (!std::filesystem::exists(path)) GTEST_SKIP() << path << " is absent";
-    const Mesh reference = parse_reference(path);
+    const Mesh reference = test::parse_obj_reference(path);
     Mesh rounded = reference;  // what a single-precision loader gives
     for (Vec3& v : rounded.vertices) {
       for (int k = 0; k < 3; ++k) v[k] = to_float_value(v[k]);

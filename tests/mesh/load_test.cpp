@@ -610,27 +610,9 @@ TEST(SaveObj, WritesEveryDoubleExactly) {
   const auto dir = fresh_temp_dir("save_exact");
   save_obj(m, dir / "exact.obj");
 
-  std::ifstream in(dir / "exact.obj");
-  std::string line;
-  std::vector<Vec3> vertices;
-  std::vector<TriangleIndices> triangles;
-  while (std::getline(in, line)) {
-    std::istringstream fields(line);
-    std::string tag;
-    fields >> tag;
-    if (tag == "v") {
-      std::string x, y, z;
-      fields >> x >> y >> z;
-      vertices.emplace_back(std::strtod(x.c_str(), nullptr), std::strtod(y.c_str(), nullptr),
-                            std::strtod(z.c_str(), nullptr));
-    } else if (tag == "f") {
-      TriangleIndices t{};
-      fields >> t[0] >> t[1] >> t[2];
-      triangles.push_back({t[0] - 1, t[1] - 1, t[2] - 1});
-    }
-  }
-  EXPECT_EQ(vertices, m.vertices);
-  EXPECT_EQ(triangles, m.triangles);
+  const Mesh back = test::parse_obj_reference(dir / "exact.obj");
+  EXPECT_EQ(back.vertices, m.vertices);
+  EXPECT_EQ(back.triangles, m.triangles);
 }
 
 TEST(SaveObj, OverwritesExistingFile) {

@@ -1,7 +1,11 @@
 #include "support/mesh_files.hpp"
 
+#include <cstdlib>
 #include <cstring>
+#include <fstream>
 #include <sstream>
+#include <stdexcept>
+#include <vector>
 
 namespace antcd::test {
 
@@ -59,6 +63,30 @@ std::string ascii_stl(const Mesh& m) {
   }
   out << "endsolid cube\n";
   return out.str();
+}
+
+Mesh parse_obj_reference(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  Mesh m;
+  std::string line;
+  while (std::getline(in, line)) {
+    std::istringstream fields(line);
+    std::string tag;
+    fields >> tag;
+    if (tag == "v") {
+      std::string x, y, z;
+      fields >> x >> y >> z;
+      m.vertices.emplace_back(std::strtod(x.c_str(), nullptr), std::strtod(y.c_str(), nullptr),
+                              std::strtod(z.c_str(), nullptr));
+    } else if (tag == "f") {
+      std::vector<std::uint32_t> f;
+      std::string corner;
+      while (fields >> corner) f.push_back(static_cast<std::uint32_t>(std::stoul(corner)) - 1);
+      if (f.size() != 3) throw std::runtime_error(path.string() + ": a face that is not a triangle");
+      m.triangles.push_back({f[0], f[1], f[2]});
+    }
+  }
+  return m;
 }
 
 }  // namespace antcd::test

@@ -7,6 +7,7 @@
 
 #include <array>
 #include <cstdint>
+#include <filesystem>
 #include <string>
 
 namespace antcd::test {
@@ -25,5 +26,11 @@ std::string binary_stl(const Mesh& m, std::string header = {}, std::int64_t coun
 
 /// An ASCII STL of `m` ("solid cube" … "endsolid cube"), nine significant digits.
 std::string ascii_stl(const Mesh& m);
+
+/// Vertices and triangles of a triangle-only OBJ file ("v" and "f" lines, corners "a/b/c" or "a",
+/// 1-based), coordinates parsed with strtod: the test's own reading of a file's exact numbers,
+/// independent of the library's loaders. Throws std::runtime_error on a face that is not a
+/// triangle.
+Mesh parse_obj_reference(const std::filesystem::path& path);
 
 }  // namespace antcd::test
