@@ -141,6 +141,9 @@ void random_frame(const std::vector<std::pair<PairSide, PairSide>>& pairs,
       }
       ColonyMemory* mem = memory.empty() ? nullptr : memory[k];
       SearchResult found = search(spaces[k], request, mem);
+      // Decided: a witness, or a complete scan of every overlapping leaf pair's triangles (judged
+      // on the space that was searched, before any rebuild below replaces it).
+      bool decided = found.found || proves_separate(spaces[k], found);
       if (!found.found && !spaces[k].complete) {
         // Nothing among the leaf pairs met first: every leaf pair, and (without a frame budget)
         // search again; with one, the next round searches the full space.
@@ -157,6 +160,7 @@ void random_frame(const std::vector<std::pair<PairSide, PairSide>>& pairs,
                 query.evaluations_per_leaf_pair * spaces[k].leaf_pairs;
           }
           found = search(spaces[k], request, mem);
+          decided = found.found || proves_separate(spaces[k], found);
           found.evaluations += partial;
         }
       }
@@ -164,8 +168,6 @@ void random_frame(const std::vector<std::pair<PairSide, PairSide>>& pairs,
       out[k].evaluations += found.evaluations;
       out[k].feature_hits += found.hits.size();
       if (found.found) out[k].colliding = true;
-      // Decided: a witness, or a complete scan of every overlapping leaf pair's triangles.
-      const bool decided = found.found || proves_separate(spaces[k], found);
       // A verdict needs one witness; collecting them all (search_all) takes one round.
       if (decided || all || !frame_budget) pending[k] = 0;
       if (!decided && !frame_budget) out[k].undecided = true;

@@ -95,6 +95,22 @@ TEST(RunScene, LeafScanDecidesEveryPairAndTheJsonSaysSo) {
     colliding += truth.frames[f].pairs.size();
   }
   ASSERT_GT(colliding, 0u);
+  // With frame budgets from starved to ample, a pair that is neither reported nor undecided was
+  // decided separate, and must be: exact's pairs are always among the reported and undecided.
+  for (const std::uint64_t budget : {50u, 400u, 3000u, 100000u}) {
+    SceneQuery q;
+    q.method = Method::Maco;
+    q.frame_evaluations = budget;
+    q.first_leaf_pairs = 1;  // partial spaces of one leaf pair: most contacts lie beyond
+    const RunResult r = run_scene(scene, q, "line");
+    for (std::size_t f = 0; f < truth.frames.size(); ++f) {
+      std::set<NamePair> open(r.frames[f].pairs.begin(), r.frames[f].pairs.end());
+      open.insert(r.frames[f].undecided.begin(), r.frames[f].undecided.end());
+      for (const NamePair& p : truth.frames[f].pairs) {
+        EXPECT_EQ(open.count(p), 1u) << "budget " << budget << " frame " << f;
+      }
+    }
+  }
   EXPECT_TRUE(parse_run_result(to_json(scanned), "scanned").leaf_scan);
   EXPECT_FALSE(parse_run_result(to_json(colony), "colony").leaf_scan);
 }
