@@ -210,6 +210,19 @@ bool fcl_callback(fcl::CollisionObjectd* a, fcl::CollisionObjectd* b, void* data
   return false;
 }
 
+// One FCL frame: every object moved to its pose at `frame`, the manager updated, then all pairs
+// collided into `data` (the same per-frame work as World::set_poses + collide_all).
+void fcl_frame(const std::vector<std::unique_ptr<fcl::CollisionObjectd>>& objects,
+               fcl::BroadPhaseCollisionManagerd& manager, const Motion& motion,
+               std::size_t frame, FclData& data) {
+  for (std::size_t i = 0; i < objects.size(); ++i) {
+    objects[i]->setTransform(to_fcl(motion.pose(i, frame)));
+    objects[i]->computeAABB();
+  }
+  manager.update();
+  manager.collide(&data, fcl_callback);
+}
+
 // The first pair on which FCL's sorted pairs differ from antcd's, described with antcd's exact
 // distance of that pair at this frame (an empty string when they agree).
 std::string first_difference(const IndexPairs& fcl_pairs, const IndexPairs& antcd_pairs,
@@ -261,13 +274,8 @@ void world_frame_fcl(benchmark::State& state) {
   std::size_t checked = 0;  // frames compared with antcd's pairs (none when antcd's run was filtered out)
   for (auto _ : state) {
     ++frame;
-    for (std::size_t i = 0; i < n; ++i) {
-      objects[i]->setTransform(to_fcl(motion.pose(i, frame)));
-      objects[i]->computeAABB();
-    }
-    manager->update();
     FclData data;
-    manager->collide(&data, fcl_callback);
+    fcl_frame(objects, *manager, motion, frame, data);
     colliding += data.colliding;
     tested += data.tested;
     if (frame <= expected.size()) {
@@ -346,13 +354,8 @@ void world_interleaved(benchmark::State& state) {
     });
     const auto w1 = std::chrono::steady_clock::now();
     const double c1 = thread_seconds();
-    for (std::size_t i = 0; i < n; ++i) {
-      objects[i]->setTransform(to_fcl(motion.pose(i, frame)));
-      objects[i]->computeAABB();
-    }
-    manager->update();
     FclData data;
-    manager->collide(&data, fcl_callback);
+    fcl_frame(objects, *manager, motion, frame, data);
     const auto w2 = std::chrono::steady_clock::now();
     const double c2 = thread_seconds();
     antcd_wall.push_back(std::chrono::duration<double>(w1 - w0).count());
