@@ -43,42 +43,51 @@ inline float cell_distance(const FeatureSpace& s, Cell p, Cell q) {
   return feature_step(s.a, p.i, q.i) + feature_step(s.b, p.j, q.j);
 }
 
-/// d_ij of Eq. 12 for the 16 lanes: cell_distance from the current cell (cax..cbz its two
-/// centroids) to each candidate, from the centroids the batch gathered. Same sums as
-/// cell_distance, in the same order.
-ANTCD_VECTOR_CLONES void step_lengths(const Recorder::Lanes& l, float cax, float cay, float caz,
-                                      float cbx, float cby, float cbz, float* step) {
+/// The largest of the 16 lanes. Floats are mapped to integers of the same order (negative ones
+/// have their magnitude bits flipped), whose maximum vectorises; no lane is NaN. -0 and +0 may
+/// come out either way, which no caller can tell apart (l - top and the == test treat them alike).
+inline std::int32_t order_key(float v) {
+  const auto bits = std::bit_cast<std::int32_t>(v);
+  return bits ^ ((bits >> 31) & 0x7FFFFFFF);
+}
+inline float from_order_key(std::int32_t key) {
+  return std::bit_cast<float>(key ^ ((key >> 31) & 0x7FFFFFFF));
+}
+
+/// Eq. 7 in logarithms with the remaining-distance reading of Eq. 12, for the 16 lanes, in one
+/// pass: d_ij (`step`: cell_distance from the current cell, cax..cbz its two centroids, to each
+/// candidate, from the centroids the batch gathered; same sums as cell_distance, in the same
+/// order), then alpha' log2 tau - beta' log2(d_oj + d_ij + max(0, f - reach)) into `out`.
+/// Returns the largest of the 16 lanes (padding lanes repeat the first candidate, so it is the
+/// real lanes' largest).
+ANTCD_VECTOR_CLONES float remaining_log_weights(const Recorder::Lanes& l, float cax, float cay,
+                                                float caz, float cbx, float cby, float cbz,
+                                                const float* log_tau, float travelled,
+                                                float alpha, float beta, float denom_floor,
+                                                float* step, float* out) {
+  std::int32_t best = std::numeric_limits<std::int32_t>::min();
   for (std::uint32_t k = 0; k < Recorder::kLanes; ++k) {
     const float sa = std::abs(cax - l.ax[k]) + std::abs(cay - l.ay[k]) + std::abs(caz - l.az[k]);
     const float sb = std::abs(cbx - l.bx[k]) + std::abs(cby - l.by[k]) + std::abs(cbz - l.bz[k]);
     step[k] = sa + sb;
-  }
-}
-
-/// Eq. 7 in logarithms with the remaining-distance reading of Eq. 12, for the 16 lanes:
-/// alpha' log2 tau - beta' log2(d_oj + d_ij + max(0, f - reach)).
-ANTCD_VECTOR_CLONES void remaining_log_weights(const Recorder::Lanes& l, const float* step,
-                                               const float* log_tau, float travelled, float alpha,
-                                               float beta, float denom_floor, float* out) {
-  for (std::uint32_t k = 0; k < Recorder::kLanes; ++k) {
     const float missing = l.d[k] > l.reach[k] ? l.d[k] - l.reach[k] : 0.0f;
     float denom = travelled + step[k] + missing;
     denom = denom > denom_floor ? denom : denom_floor;
     out[k] = alpha * log_tau[k] - beta * fast_log2(denom);
+    const std::int32_t key = order_key(out[k]);
+    best = key > best ? key : best;
   }
+  return from_order_key(best);
 }
 
-/// The largest of the 16 lanes. Floats are mapped to integers of the same order (negative ones
-/// have their magnitude bits flipped), whose maximum vectorises; no lane is NaN. -0 and +0 may
-/// come out either way, which no caller can tell apart (l - top and the == test treat them alike).
+/// The largest of the 16 lanes (see order_key).
 ANTCD_VECTOR_CLONES float lane_max(const float* v) {
   std::int32_t best = std::numeric_limits<std::int32_t>::min();
   for (std::uint32_t k = 0; k < Recorder::kLanes; ++k) {
-    const auto bits = std::bit_cast<std::int32_t>(v[k]);
-    const std::int32_t key = bits ^ ((bits >> 31) & 0x7FFFFFFF);
+    const std::int32_t key = order_key(v[k]);
     best = key > best ? key : best;
   }
-  return std::bit_cast<float>(best ^ ((best >> 31) & 0x7FFFFFFF));
+  return from_order_key(best);
 }
 
 /// Roulette weights 2^(l - top) of the first `count` lanes, 0 for the padding.
@@ -87,6 +96,16 @@ ANTCD_VECTOR_CLONES void roulette_weights(const float* log_weight, float top, st
   for (std::uint32_t k = 0; k < Recorder::kLanes; ++k) {
     const float w = fast_exp2(log_weight[k] - top);
     weight[k] = k < count ? w : 0.0f;
+  }
+}
+
+/// log2 tau of the 16 lanes' pheromone blocks (row offset of i plus column of j): vector gathers
+/// in the AVX2 clone.
+ANTCD_VECTOR_CLONES void gather_log_tau(const float* log_tau, const std::uint32_t* block_row,
+                                        const std::uint32_t* block_col, const std::uint32_t* ci,
+                                        const std::uint32_t* cj, float* out) {
+  for (std::uint32_t k = 0; k < Recorder::kLanes; ++k) {
+    out[k] = log_tau[block_row[ci[k]] + block_col[cj[k]]];
   }
 }
 
@@ -157,8 +176,12 @@ void run_colony(const FeatureSpace& space, const SearchRequest& request, bool im
   std::vector<Cell> paths(std::size_t{p.ants} * path_capacity);
   std::vector<std::uint32_t> path_length(p.ants);
   std::vector<double> tour_length(p.ants);  // L_k
+  std::vector<double> pending(log_tau.size(), 0.0);  // deposits of this iteration, per block
+  std::vector<std::uint8_t> is_touched(log_tau.size(), 0);
+  std::vector<std::uint32_t> touched;  // blocks with a pending deposit, in first-touch order
+  touched.reserve(std::size_t{p.ants} * path_capacity);
   constexpr std::uint32_t kCandidates = Recorder::kLanes;
-  std::array<std::uint32_t, kCandidates> cand_i{}, cand_j{};
+  std::array<std::uint32_t, kCandidates> cand_i{}, cand_j{}, cand_lane{};
   Recorder::Lanes lanes;
   alignas(64) std::array<float, kCandidates> cand_step{}, cand_tau{}, cand_log{}, cand_weight{},
       cand_cumulative{};
@@ -169,8 +192,19 @@ void run_colony(const FeatureSpace& space, const SearchRequest& request, bool im
   double bt = memory.best_evaluation > 0 ? memory.best_evaluation
                                          : std::numeric_limits<double>::infinity();
 
+  // J_k(c): the 8 neighbours at distance 1 (lanes 0–7), then the 8 at distance hop (8–15). The
+  // directions are listed so that lane 7 - k (8 + 15 - k) is the opposite move of lane k.
   static constexpr std::array<std::array<int, 2>, 8> kDirections = {
       {{-1, -1}, {-1, 0}, {-1, 1}, {0, -1}, {0, 1}, {1, -1}, {1, 0}, {1, 1}}};
+  constexpr std::uint32_t kNoLane = Recorder::kLanes;
+  std::array<std::int64_t, Recorder::kLanes> lane_di{}, lane_dj{};
+  for (std::uint32_t k = 0; k < 8; ++k) {
+    lane_di[k] = kDirections[k][0];
+    lane_dj[k] = kDirections[k][1];
+    lane_di[k + 8] = kDirections[k][0] * std::int64_t{hop_a};
+    lane_dj[k + 8] = kDirections[k][1] * std::int64_t{hop_b};
+  }
+  auto opposite_lane = [](std::uint32_t k) { return k < 8 ? 7 - k : 23 - k; };
 
   // Same stream for Aco and Maco: Maco with every switch off runs exactly as Aco.
   Rng rng(seed ^ 0xAC0ULL);
@@ -226,33 +260,33 @@ void run_colony(const FeatureSpace& space, const SearchRequest& request, bool im
         filter[h >> 6] |= std::uint64_t{1} << (h & 63);
       };
       remember(cur);
+      std::uint32_t came_from = kNoLane;  // lane of the cell just left, none at the start
 
       bool stopped = false;
       for (std::uint32_t step = 0; step < p.steps; ++step) {
+        // The candidates in lane order, compacted without a branch per lane. The cell just left
+        // (the opposite lane of the last move) is on the path: ruled out without a look-up, so
+        // the filter below almost never hits and its branch stays predictable.
+        const bool interior = cur.i >= hop_a && std::uint64_t{cur.i} + hop_a < na &&
+                              cur.j >= hop_b && std::uint64_t{cur.j} + hop_b < nb;
         std::uint32_t count = 0;
-        for (int scale_index = 0; scale_index < 2; ++scale_index) {
-          const std::int64_t ha = scale_index == 0 ? 1 : hop_a;
-          const std::int64_t hb = scale_index == 0 ? 1 : hop_b;
-          for (const auto& dir : kDirections) {
-            const std::int64_t ci = std::int64_t{cur.i} + dir[0] * ha;
-            const std::int64_t cj = std::int64_t{cur.j} + dir[1] * hb;
-            if (ci < 0 || cj < 0 || ci >= na || cj >= nb) continue;
-            const auto ui = static_cast<std::uint32_t>(ci);
-            const auto uj = static_cast<std::uint32_t>(cj);
+        for (std::uint32_t k = 0; k < kCandidates; ++k) {
+          const std::int64_t ci = std::int64_t{cur.i} + lane_di[k];
+          const std::int64_t cj = std::int64_t{cur.j} + lane_dj[k];
+          bool ok = k != came_from && (interior || (ci >= 0 && cj >= 0 && ci < na && cj < nb));
+          const auto ui = static_cast<std::uint32_t>(ci);
+          const auto uj = static_cast<std::uint32_t>(cj);
+          if (ok) {
             // J_k: cells not yet on this ant's path (the tabu list of Eq. 7).
             const std::uint32_t h = filter_bit(ui, uj);
             if ((filter[h >> 6] >> (h & 63)) & 1) {
-              bool visited = false;
-              // Newest first: the cell just left is always a neighbour, found at once.
-              for (std::uint32_t t = len; t-- > 0 && !visited;) {
-                visited = path[t].i == ui && path[t].j == uj;
-              }
-              if (visited) continue;
+              for (std::uint32_t t = len; t-- > 0 && ok;) ok = !(path[t].i == ui && path[t].j == uj);
             }
-            cand_i[count] = ui;
-            cand_j[count] = uj;
-            ++count;
           }
+          cand_i[count] = ui;
+          cand_j[count] = uj;
+          cand_lane[count] = k;
+          count += ok ? 1 : 0;
         }
         if (count == 0) break;  // boxed in by its own path at a border
         // Lanes past `count` repeat the first candidate: computed, never chosen.
@@ -267,16 +301,16 @@ void run_colony(const FeatureSpace& space, const SearchRequest& request, bool im
         }
         // Eq. 7 in logarithms: log2(tau^alpha' eta^beta') = alpha' log2 tau - beta' log2 denom,
         // with denom = 1/eta: f(j) (classic), or one of the readings of Eq. 12 (switch 3).
-        for (std::uint32_t c = 0; c < kCandidates; ++c) {
-          cand_tau[c] = log_tau[block_of(cand_i[c], cand_j[c])];
-        }
+        gather_log_tau(log_tau.data(), block_row.data(), block_col.data(), cand_i.data(),
+                       cand_j.data(), cand_tau.data());
+        float top = 0;
         if (remaining) {
           // d_ij: the step from the current cell, from the centroids the batch gathered.
           const float cax = space.a.x[cur.i], cay = space.a.y[cur.i], caz = space.a.z[cur.i];
           const float cbx = space.b.x[cur.j], cby = space.b.y[cur.j], cbz = space.b.z[cur.j];
-          step_lengths(lanes, cax, cay, caz, cbx, cby, cbz, cand_step.data());
-          remaining_log_weights(lanes, cand_step.data(), cand_tau.data(), travelled, alpha, beta,
-                                denom_floor, cand_log.data());
+          top = remaining_log_weights(lanes, cax, cay, caz, cbx, cby, cbz, cand_tau.data(),
+                                      travelled, alpha, beta, denom_floor, cand_step.data(),
+                                      cand_log.data());
         } else {
           for (std::uint32_t c = 0; c < count; ++c) {
             const Cell to{cand_i[c], cand_j[c]};
@@ -288,14 +322,15 @@ void run_colony(const FeatureSpace& space, const SearchRequest& request, bool im
             denom = denom > denom_floor ? denom : denom_floor;
             cand_log[c] = alpha * cand_tau[c] - beta * fast_log2(denom);
           }
+          // Padding lanes repeat the first candidate's value, so the maximum over all 16 lanes
+          // is the real lanes' maximum.
+          for (std::uint32_t c = count; c < kCandidates; ++c) cand_log[c] = cand_log[0];
+          top = lane_max(cand_log.data());
         }
-        // Padding lanes repeat the first candidate's value, so the maximum over all 16 lanes is
-        // the real lanes' maximum.
-        for (std::uint32_t c = count; c < kCandidates; ++c) cand_log[c] = cand_log[0];
-        const float top = lane_max(cand_log.data());
         std::uint32_t pick = 0;
-        while (!(cand_log[pick] == top)) ++pick;  // the first largest (the greedy route)
-        if (!sw.greedy_moves) {
+        if (sw.greedy_moves) {
+          while (!(cand_log[pick] == top)) ++pick;  // the first largest (the greedy route)
+        } else {
           // Roulette over weights scaled by the largest (2^(l - top) in (0, 1]); padding lanes
           // weigh 0, so the running total over the real lanes is unchanged.
           roulette_weights(cand_log.data(), top, count, cand_weight.data());
@@ -305,17 +340,17 @@ void run_colony(const FeatureSpace& space, const SearchRequest& request, bool im
             cand_cumulative[c] = total;
           }
           const float target = rng.unit_float() * total;
-          pick = count - 1;
-          for (std::uint32_t c = 0; c < count; ++c) {
-            if (cand_cumulative[c] > target) {
-              pick = c;
-              break;
-            }
+          // The first lane whose running total exceeds the target: the totals never decrease,
+          // so it is the number of lanes at or below it (the last real lane if none exceeds).
+          for (std::uint32_t c = 0; c < kCandidates; ++c) {
+            pick += (c < count && !(cand_cumulative[c] > target)) ? 1 : 0;
           }
+          pick = pick < count ? pick : count - 1;
         }
         const Cell next{cand_i[pick], cand_j[pick]};
         if (remaining) travelled += cand_step[pick];
         cur = next;
+        came_from = opposite_lane(cand_lane[pick]);
         sum_f += lanes.d[pick];
         path[len++] = cur;
         remember(cur);
@@ -335,18 +370,35 @@ void run_colony(const FeatureSpace& space, const SearchRequest& request, bool im
     // floor), deposits add in the linear domain (a few per ant, not per candidate).
     const float keep = rho < 1 ? static_cast<float>(std::log2(1.0 - rho)) : -1e30f;
     for (float& t : log_tau) t = std::max(t + keep, log_tau_floor);
+    // Deposits are summed per block first (linear domain, double), then each touched block takes
+    // its sum in one logarithm: log2(2^tau + sum of Delta tau), the same quantity as one deposit
+    // after the other, with one exp2/log2 pair per block instead of per path cell.
+    touched.clear();
     for (std::uint32_t ant = 0; ant < p.ants; ++ant) {
       // Delta tau^k = Q / L_k on each cell of the path.
       double deposit = p.q / tour_length[ant];
       // Eqs. 14–15 (switch 4): paths as good as the best evaluation are rewarded (+theta),
       // the others punished (mu < 0).
       if (sw.reward_punishment) deposit *= tour_length[ant] <= bt ? 1.0 + p.theta : 1.0 + p.mu;
-      const auto dep = static_cast<float>(deposit);
       const Cell* path = &paths[std::size_t{ant} * path_capacity];
       for (std::uint32_t t = 0; t < path_length[ant]; ++t) {
-        float& lt = log_tau[block_of(path[t].i, path[t].j)];
-        lt = std::max(static_cast<float>(std::log2(std::exp2(double{lt}) + dep)), log_tau_floor);
+        const std::size_t b = block_of(path[t].i, path[t].j);
+        if (!is_touched[b]) {
+          is_touched[b] = 1;
+          touched.push_back(static_cast<std::uint32_t>(b));
+        }
+        pending[b] += deposit;
       }
+    }
+    for (const std::uint32_t b : touched) {
+      float& lt = log_tau[b];
+      // A punishment factor mu < -1 makes deposits negative: a block driven to or below zero
+      // pheromone takes the floor.
+      const double linear = std::exp2(double{lt}) + pending[b];
+      lt = linear > 0 ? std::max(static_cast<float>(std::log2(linear)), log_tau_floor)
+                      : log_tau_floor;
+      pending[b] = 0;
+      is_touched[b] = 0;
     }
   }
   if (std::isfinite(bt)) memory.best_evaluation = bt;

@@ -34,8 +34,19 @@ class Recorder {
   struct Lanes;
 
  private:
-  /// The lane arithmetic of evaluate_batch: fixed length, branch-free, vectorised (recorder.cpp).
-  static void compute_lanes(Lanes& lanes, bool witness, float delta, float centroid);
+  /// The lane arithmetic of evaluate_batch (lanes.cpp): gathers the 16 cells' centroids (and
+  /// radii for the witness verdict) and computes their distances and reaches, in fixed-length,
+  /// branch-free loops that vectorise (the AVX2 clone gathers with vector loads).
+  /// Returns, over the first `count` lanes, whether any is within reach and the bits of the
+  /// smallest squared distance (non-negative floats order like their bits).
+  struct LaneSummary {
+    std::uint32_t any_within = 0;
+    std::uint32_t min_d2_bits = 0;
+  };
+  static LaneSummary compute_lanes(Lanes& lanes, const FeatureSpace& space,
+                                   const std::uint32_t* ci, const std::uint32_t* cj,
+                                   std::uint32_t count, bool witness, float delta,
+                                   float centroid);
 
 
  public:
@@ -134,33 +145,11 @@ class Recorder {
       const std::uint64_t left = max_evaluations_ - out_.evaluations;
       if (left < count) count = static_cast<std::uint32_t>(left);
     }
-    for (std::uint32_t k = 0; k < kLanes; ++k) {
-      lanes.ax[k] = space_.a.x[ci[k]];
-      lanes.ay[k] = space_.a.y[ci[k]];
-      lanes.az[k] = space_.a.z[ci[k]];
-      lanes.bx[k] = space_.b.x[cj[k]];
-      lanes.by[k] = space_.b.y[cj[k]];
-      lanes.bz[k] = space_.b.z[cj[k]];
-    }
     const bool witness = t_.verdict == Verdict::Witness;
-    if (witness) {
-      for (std::uint32_t k = 0; k < kLanes; ++k) {
-        lanes.ra[k] = space_.a.radius[ci[k]];
-        lanes.rb[k] = space_.b.radius[cj[k]];
-      }
-    }
-    compute_lanes(lanes, witness, t_.delta, t_.centroid);
-    // Reductions over the real lanes only. Squared distances are non-negative and not NaN, so
-    // their bit patterns order like the floats.
-    std::uint32_t any = 0;
-    std::uint32_t lane_min = std::bit_cast<std::uint32_t>(std::numeric_limits<float>::infinity());
-    for (std::uint32_t k = 0; k < count; ++k) {
-      any |= lanes.within[k];
-      const auto bits = std::bit_cast<std::uint32_t>(lanes.d2[k]);
-      lane_min = bits < lane_min ? bits : lane_min;
-    }
+    const LaneSummary sum =
+        compute_lanes(lanes, space_, ci, cj, count, witness, t_.delta, t_.centroid);
     std::uint32_t counted_in_batch = 0;
-    if (std::bit_cast<float>(lane_min) < best2_ || any != 0) {
+    if (std::bit_cast<float>(sum.min_d2_bits) < best2_ || sum.any_within != 0) {
       for (std::uint32_t k = 0; k < count; ++k) {
         const float d2 = lanes.d2[k];
         if (d2 < best2_) offer_best(ci[k], cj[k], d2);
