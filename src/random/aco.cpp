@@ -160,15 +160,17 @@ void run_colony(const FeatureSpace& space, const SearchRequest& request, bool im
   const std::uint32_t hop_a = std::max<std::uint32_t>(2, (na + 63) / 64);
   const std::uint32_t hop_b = std::max<std::uint32_t>(2, (nb + 63) / 64);
 
-  // Leaf pairs whose both leaves kept features: the starting cells (section 4 step 3).
-  std::vector<std::uint32_t> starts;
+  // Leaf pairs whose both leaves kept features: the starting cells (section 4 step 3), each as
+  // its two leaves' ranges in leaf_features, so that an ant's start reads one entry.
+  struct StartRange {
+    std::uint32_t a0, a1, b0, b1;
+  };
+  std::vector<StartRange> starts;
   if (p.start == AntStart::LeafPairs) {
-    for (std::uint32_t k = 0; k < space.overlaps.size(); ++k) {
-      const auto [la, lb] = space.overlaps[k];
-      if (space.a.leaf_start[la] != space.a.leaf_start[la + 1] &&
-          space.b.leaf_start[lb] != space.b.leaf_start[lb + 1]) {
-        starts.push_back(k);
-      }
+    for (const auto& [la, lb] : space.overlaps) {
+      const StartRange r{space.a.leaf_start[la], space.a.leaf_start[la + 1],
+                         space.b.leaf_start[lb], space.b.leaf_start[lb + 1]};
+      if (r.a0 != r.a1 && r.b0 != r.b1) starts.push_back(r);
     }
   }
 
@@ -211,12 +213,9 @@ void run_colony(const FeatureSpace& space, const SearchRequest& request, bool im
 
   auto pick_start = [&]() -> Cell {
     if (!starts.empty()) {
-      const auto [la, lb] = space.overlaps[starts[rng.below32(
-          static_cast<std::uint32_t>(starts.size()))]];
-      const std::uint32_t a0 = space.a.leaf_start[la], a1 = space.a.leaf_start[la + 1];
-      const std::uint32_t b0 = space.b.leaf_start[lb], b1 = space.b.leaf_start[lb + 1];
-      return {space.a.leaf_features[a0 + rng.below32(a1 - a0)],
-              space.b.leaf_features[b0 + rng.below32(b1 - b0)]};
+      const StartRange& r = starts[rng.below32(static_cast<std::uint32_t>(starts.size()))];
+      return {space.a.leaf_features[r.a0 + rng.below32(r.a1 - r.a0)],
+              space.b.leaf_features[r.b0 + rng.below32(r.b1 - r.b0)]};
     }
     return {rng.below32(na), rng.below32(nb)};
   };
@@ -252,9 +251,9 @@ void run_colony(const FeatureSpace& space, const SearchRequest& request, bool im
       // 1024-bit filter over the path's cells: most candidates are ruled off the tabu list
       // without scanning the path.
       std::array<std::uint64_t, 16> filter{};
-      auto filter_bit = [](std::uint32_t i, std::uint32_t j) {
-        return static_cast<std::uint32_t>((i * 0x9E3779B1U) ^ (j * 0x85EBCA77U)) >> 22;
-      };
+      // Cells near each other (a path's, a step's candidates) get different bits: 37 i + j
+      // separates the 5 x 5 neighbourhood; a collision only costs a scan of the path.
+      auto filter_bit = [](std::uint32_t i, std::uint32_t j) { return (i * 37U + j) & 1023U; };
       auto remember = [&](Cell c) {
         const std::uint32_t h = filter_bit(c.i, c.j);
         filter[h >> 6] |= std::uint64_t{1} << (h & 63);
