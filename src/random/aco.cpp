@@ -25,6 +25,63 @@
 #include "random/recorder.hpp"
 
 namespace antcd::detail {
+
+// The lane arithmetic of a colony step (Recorder::evaluate_batch): the 16 candidates' centroids
+// gathered, their distances and reaches, in fixed-length, branch-free loops that vectorise inside
+// run_colony's clones (this file is built without trapping maths or errno, so that float selects
+// and sqrt vectorise; neither changes a value).
+[[gnu::always_inline]] inline Recorder::LaneSummary Recorder::compute_lanes(
+    Lanes& lanes, const FeatureSpace& space, const std::uint32_t* ci, const std::uint32_t* cj,
+    std::uint32_t count, bool witness, float delta, float centroid) {
+  const float* const ax = space.a.x.data();
+  const float* const ay = space.a.y.data();
+  const float* const az = space.a.z.data();
+  const float* const bx = space.b.x.data();
+  const float* const by = space.b.y.data();
+  const float* const bz = space.b.z.data();
+  for (std::uint32_t k = 0; k < kLanes; ++k) {
+    lanes.ax[k] = ax[ci[k]];
+    lanes.ay[k] = ay[ci[k]];
+    lanes.az[k] = az[ci[k]];
+    lanes.bx[k] = bx[cj[k]];
+    lanes.by[k] = by[cj[k]];
+    lanes.bz[k] = bz[cj[k]];
+  }
+  if (witness) {
+    const float* const ra = space.a.radius.data();
+    const float* const rb = space.b.radius.data();
+    for (std::uint32_t k = 0; k < kLanes; ++k) {
+      lanes.ra[k] = ra[ci[k]];
+      lanes.rb[k] = rb[cj[k]];
+    }
+    for (std::uint32_t k = 0; k < kLanes; ++k) {
+      lanes.reach[k] = lanes.ra[k] + lanes.rb[k] + delta;
+    }
+  } else {
+    for (std::uint32_t k = 0; k < kLanes; ++k) lanes.reach[k] = centroid;
+  }
+  for (std::uint32_t k = 0; k < kLanes; ++k) {
+    const float dx = lanes.ax[k] - lanes.bx[k];
+    const float dy = lanes.ay[k] - lanes.by[k];
+    const float dz = lanes.az[k] - lanes.bz[k];
+    const float d2 = dx * dx + dy * dy + dz * dz;
+    lanes.d2[k] = d2;
+    lanes.d[k] = std::sqrt(d2);
+    lanes.within[k] = d2 <= lanes.reach[k] * lanes.reach[k] ? 1U : 0U;
+  }
+  // Reductions over the real lanes only, in fixed-length loops.
+  LaneSummary summary;
+  summary.min_d2_bits = std::bit_cast<std::uint32_t>(std::numeric_limits<float>::infinity());
+  for (std::uint32_t k = 0; k < kLanes; ++k) {
+    const std::uint32_t real = k < count ? 1U : 0U;
+    summary.any_within |= lanes.within[k] & real;
+    const std::uint32_t bits = real != 0 ? std::bit_cast<std::uint32_t>(lanes.d2[k]) : ~0U;
+    summary.min_d2_bits = bits < summary.min_d2_bits ? bits : summary.min_d2_bits;
+  }
+  return summary;
+}
+
+
 namespace {
 
 struct Cell {
@@ -60,7 +117,7 @@ inline float from_order_key(std::int32_t key) {
 /// order), then alpha' log2 tau - beta' log2(d_oj + d_ij + max(0, f - reach)) into `out`.
 /// Returns the largest of the 16 lanes (padding lanes repeat the first candidate, so it is the
 /// real lanes' largest).
-ANTCD_VECTOR_CLONES float remaining_log_weights(const Recorder::Lanes& l, float cax, float cay,
+inline float remaining_log_weights(const Recorder::Lanes& l, float cax, float cay,
                                                 float caz, float cbx, float cby, float cbz,
                                                 const float* log_tau, float travelled,
                                                 float alpha, float beta, float denom_floor,
@@ -81,7 +138,7 @@ ANTCD_VECTOR_CLONES float remaining_log_weights(const Recorder::Lanes& l, float 
 }
 
 /// The largest of the 16 lanes (see order_key).
-ANTCD_VECTOR_CLONES float lane_max(const float* v) {
+inline float lane_max(const float* v) {
   std::int32_t best = std::numeric_limits<std::int32_t>::min();
   for (std::uint32_t k = 0; k < Recorder::kLanes; ++k) {
     const std::int32_t key = order_key(v[k]);
@@ -91,7 +148,7 @@ ANTCD_VECTOR_CLONES float lane_max(const float* v) {
 }
 
 /// Roulette weights 2^(l - top) of the first `count` lanes, 0 for the padding.
-ANTCD_VECTOR_CLONES void roulette_weights(const float* log_weight, float top, std::uint32_t count,
+inline void roulette_weights(const float* log_weight, float top, std::uint32_t count,
                                           float* weight) {
   for (std::uint32_t k = 0; k < Recorder::kLanes; ++k) {
     const float w = fast_exp2(log_weight[k] - top);
@@ -101,7 +158,7 @@ ANTCD_VECTOR_CLONES void roulette_weights(const float* log_weight, float top, st
 
 /// log2 tau of the 16 lanes' pheromone blocks (row offset of i plus column of j): vector gathers
 /// in the AVX2 clone.
-ANTCD_VECTOR_CLONES void gather_log_tau(const float* log_tau, const std::uint32_t* block_row,
+inline void gather_log_tau(const float* log_tau, const std::uint32_t* block_row,
                                         const std::uint32_t* block_col, const std::uint32_t* ci,
                                         const std::uint32_t* cj, float* out) {
   for (std::uint32_t k = 0; k < Recorder::kLanes; ++k) {
@@ -116,8 +173,11 @@ std::uint32_t grid_size(std::uint32_t resolution, std::uint32_t model_triangles)
 
 }  // namespace
 
-void run_colony(const FeatureSpace& space, const SearchRequest& request, bool improved,
-                std::uint64_t seed, ColonyMemory& memory, Recorder& rec) {
+// Compiled for the baseline and for AVX2 (fast_math.hpp): the lane helpers above are inlined into
+// each clone, so a step makes no call through the clones' dispatch.
+ANTCD_VECTOR_CLONES void run_colony(const FeatureSpace& space, const SearchRequest& request,
+                                    bool improved, std::uint64_t seed, ColonyMemory& memory,
+                                    Recorder& rec) {
   const AntParams& p = request.ant;
   MacoSwitches sw = p.maco;
   if (!improved) {

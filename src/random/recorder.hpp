@@ -34,7 +34,7 @@ class Recorder {
   struct Lanes;
 
  private:
-  /// The lane arithmetic of evaluate_batch (lanes.cpp): gathers the 16 cells' centroids (and
+  /// The lane arithmetic of evaluate_batch (aco.cpp): gathers the 16 cells' centroids (and
   /// radii for the witness verdict) and computes their distances and reaches, in fixed-length,
   /// branch-free loops that vectorise (the AVX2 clone gathers with vector loads).
   /// Returns, over the first `count` lanes, whether any is within reach and the bits of the
