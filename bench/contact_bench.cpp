@@ -5,6 +5,9 @@
 //   contacts_plain      all_contacts = true
 //   contacts_normals    all_contacts + contact_normals (normal and depth per contact)
 //   contacts_manifold   all_contacts + manifold_points = 4 (normals, then the reduction)
+//   boolean_plain       a boolean query (stops at the first contact)
+//   boolean_volume      the same with request.volume = true (both models closed): what the
+//                       containment test adds to a boolean query that finds a surface contact
 // Shapes: "torus" (non-convex) and "sphere", both models the same mesh at two poses. Every
 // benchmark runs the same 32 seeded pose pairs per iteration, all overlapping (the centres within
 // a quarter of the radius, random rotations), and reports `per_query` and `contacts` (per query).
@@ -30,7 +33,7 @@ using antcd::Scalar;
 using antcd::Vec3;
 
 enum class Shape { Torus, Sphere };
-enum class Mode { Plain, Normals, Manifold };
+enum class Mode { Plain, Normals, Manifold, Boolean, BooleanVolume };
 
 // A mesh of about `triangles` triangles, its radius about 1.
 const antcd::Model& model(Shape shape, int triangles) {
@@ -66,7 +69,13 @@ void run(benchmark::State& state, Shape shape, Mode mode) {
   const antcd::Model& m = model(shape, static_cast<int>(state.range(0)));
   const auto pairs = poses();
   antcd::CollisionRequest request;
-  request.all_contacts = true;
+  const bool boolean = mode == Mode::Boolean || mode == Mode::BooleanVolume;
+  request.all_contacts = !boolean;
+  request.volume = mode == Mode::BooleanVolume;
+  if (request.volume && !m.is_closed()) {
+    state.SkipWithError("the volume test needs a closed model");
+    return;
+  }
   request.contact_normals = mode == Mode::Normals;
   request.manifold_points = mode == Mode::Manifold ? 4 : 0;
   antcd::CollisionResult result;
@@ -95,6 +104,10 @@ BENCHMARK_CAPTURE(run, contacts_manifold/torus, Shape::Torus, Mode::Manifold)->A
 BENCHMARK_CAPTURE(run, contacts_plain/sphere, Shape::Sphere, Mode::Plain)->Apply(args);
 BENCHMARK_CAPTURE(run, contacts_normals/sphere, Shape::Sphere, Mode::Normals)->Apply(args);
 BENCHMARK_CAPTURE(run, contacts_manifold/sphere, Shape::Sphere, Mode::Manifold)->Apply(args);
+BENCHMARK_CAPTURE(run, boolean_plain/torus, Shape::Torus, Mode::Boolean)->Apply(args);
+BENCHMARK_CAPTURE(run, boolean_volume/torus, Shape::Torus, Mode::BooleanVolume)->Apply(args);
+BENCHMARK_CAPTURE(run, boolean_plain/sphere, Shape::Sphere, Mode::Boolean)->Apply(args);
+BENCHMARK_CAPTURE(run, boolean_volume/sphere, Shape::Sphere, Mode::BooleanVolume)->Apply(args);
 
 }  // namespace
 
