@@ -146,14 +146,19 @@ DistanceResult distance(const Model& a, const Transform& pose_a, const Model& b,
     m.sphere_center = rot * nodes_b[ib].sphere.center + trans;
     m.has_box = false;
   };
-  // Lower bound for a node pair; the OBB gap is only computed when the sphere gap cannot prune.
+  // A node pair's bound: `lb` a lower bound of the distance between the contents (>= 0), `key`
+  // the signed gap of the volumes, which also ranks overlapping pairs (the deeper overlap first).
+  // The OBB gap is only computed when the sphere gap cannot prune.
+  struct Bound {
+    Scalar lb, key;
+  };
   const auto bound = [&](std::uint32_t ia, MappedNode& mb) {
     ++result.node_pairs;
     const BvhNode& na = nodes_a[ia];
     const BvhNode& nb = nodes_b[mb.index];
     const Scalar sphere =
         detail::sphere_gap(na.sphere, mb.sphere_center, nb.sphere.radius) - frame.margin;
-    if (search.prune(sphere)) return sphere;
+    if (search.prune(std::max(sphere, Scalar{0}))) return Bound{std::max(sphere, Scalar{0}), sphere};
     if (!mb.has_box) {
       mb.axes = rot * nb.obb.axes;
       mb.center = rot * nb.obb.center + trans;
@@ -162,7 +167,8 @@ DistanceResult distance(const Model& a, const Transform& pose_a, const Model& b,
     const Scalar obb = detail::obb_gap(na.obb, mb.axes, mb.center, nb.obb.half_extents,
                                        search.cutoff() + frame.margin) -
                        frame.margin;
-    return std::max(sphere, obb);
+    const Scalar key = std::max(sphere, obb);
+    return Bound{std::max(key, Scalar{0}), key};
   };
 
   // B's leaf triangles in A's frame with their boxes and unit normals, in chunks of kCached,
@@ -230,7 +236,7 @@ DistanceResult distance(const Model& a, const Transform& pose_a, const Model& b,
   std::size_t top = 0;
   MappedNode mapped[2];
   map_node(0, mapped[0]);
-  if (const Scalar lb = bound(0, mapped[0]); !search.prune(lb)) stack[top++] = {0, 0, lb};
+  if (const Bound b = bound(0, mapped[0]); !search.prune(b.lb)) stack[top++] = {0, 0, b.lb};
   while (top > 0 && !search.done()) {
     const Item item = stack[--top];
     if (search.prune(item.lb)) continue;  // the best distance may have dropped since the push
@@ -250,14 +256,17 @@ DistanceResult distance(const Model& a, const Transform& pose_a, const Model& b,
       second = {item.ia, nb.first_or_right, 0};
     }
     map_node(first.ib, mapped[0]);
-    first.lb = bound(first.ia, mapped[0]);
+    const Bound b1 = bound(first.ia, mapped[0]);
+    Bound b2;
     if (second.ib != first.ib) {
       map_node(second.ib, mapped[1]);
-      second.lb = bound(second.ia, mapped[1]);
+      b2 = bound(second.ia, mapped[1]);
     } else {
-      second.lb = bound(second.ia, mapped[0]);
+      b2 = bound(second.ia, mapped[0]);
     }
-    if (second.lb < first.lb) std::swap(first, second);
+    first.lb = b1.lb;
+    second.lb = b2.lb;
+    if (b2.key < b1.key) std::swap(first, second);
     // The farther pair is pushed first so that the nearer one is examined first.
     if (!search.prune(second.lb)) stack[top++] = second;
     if (!search.prune(first.lb)) stack[top++] = first;

@@ -6,27 +6,32 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace antcd::detail {
 
-/// Gap between two spheres (0 when they overlap); `cb` is B's centre already in A's frame.
+/// Signed gap between two spheres: the distance between their surfaces when apart, minus the
+/// depth of their overlap otherwise; `cb` is B's centre already in A's frame. Its positive part is
+/// a lower bound of the distance between their contents; the signed value orders node pairs.
 inline Scalar sphere_gap(const Sphere& a, const Vec3& cb, Scalar rb) {
-  return std::max(Scalar{0}, (cb - a.center).norm() - a.radius - rb);
+  return (cb - a.center).norm() - a.radius - rb;
 }
 
 /// Largest gap between the two boxes' projections over the 15 separating-axis candidates (the
-/// face normals of each box and the 9 cross products of their edges), each axis normalised, 0 when
-/// no axis separates them. Projection onto a unit axis never lengthens a segment, so this is a
-/// lower bound of the distance between any point of `a` and any point of `b`. B's box is given in
-/// A's frame (axes as columns, centre) with its half extents `eb`. Returns as soon as the gap
-/// exceeds `stop` (the caller only needs to know that it does).
+/// face normals of each box and the 9 cross products of their edges), each axis normalised.
+/// Projection onto a unit axis never lengthens a segment, so its positive part is a lower bound of
+/// the distance between any point of `a` and any point of `b`. When no axis separates the boxes
+/// the result is the (negative) largest face-axis gap: not a bound, a measure of overlap that
+/// orders node pairs. B's box is given in A's frame (axes as columns, centre) with its half
+/// extents `eb`. Returns as soon as the gap exceeds `stop` (the caller only needs to know that it
+/// does).
 inline Scalar obb_gap(const Obb& a, const Mat3& b_axes, const Vec3& b_center, const Vec3& eb,
                       Scalar stop) {
   const Mat3 r = a.axes.transpose() * b_axes;
   const Vec3 t = a.axes.transpose() * (b_center - a.center);
   const Vec3& ea = a.half_extents;
   const Mat3 abs_r = r.cwiseAbs();
-  Scalar gap = 0;
+  Scalar gap = -std::numeric_limits<Scalar>::infinity();
   for (int i = 0; i < 3; ++i) gap = std::max(gap, std::abs(t[i]) - ea[i] - abs_r.row(i).dot(eb));
   if (gap > stop) return gap;
   for (int j = 0; j < 3; ++j) {
@@ -46,7 +51,7 @@ inline Scalar obb_gap(const Obb& a, const Mat3& b_axes, const Vec3& b_center, co
       const Scalar ra = ea[i1] * abs_r(i2, j) + ea[i2] * abs_r(i1, j);
       const Scalar rb = eb[j1] * abs_r(i, j2) + eb[j2] * abs_r(i, j1);
       const Scalar d = std::abs(t[i2] * r(i1, j) - t[i1] * r(i2, j)) - ra - rb;
-      if (d > 0 && d * d > gap * gap * len2) gap = d / std::sqrt(len2);
+      if (d > 0 && (gap <= 0 || d * d > gap * gap * len2)) gap = d / std::sqrt(len2);
     }
   }
   return gap;
