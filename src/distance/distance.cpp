@@ -230,8 +230,9 @@ DistanceResult distance(const Model& a, const Transform& pose_a, const Model& b,
     std::uint32_t ia, ib;
     Scalar lb;
   };
-  // Each step pops one pair and pushes at most two, descending one tree by one level, so the stack
-  // never holds more than depth(A) + depth(B) entries; the build caps each depth far below.
+  // Each step pops one pair and pushes at most four, its children one level down in each tree, so
+  // the stack holds at most three siblings per level of the current path: 3 (depth(A) + depth(B))
+  // + 1 entries; the build caps each depth at about 40 + log2(triangles), far below.
   std::array<Item, 512> stack;
   std::size_t top = 0;
   MappedNode mapped[2];
@@ -246,30 +247,32 @@ DistanceResult distance(const Model& a, const Transform& pose_a, const Model& b,
       leaf_pair(item.ia, item.ib);
       continue;
     }
-    // Descend the larger volume (or the only internal one).
-    Item first, second;
-    if (nb.is_leaf() || (!na.is_leaf() && na.sphere.radius >= nb.sphere.radius)) {
-      first = {item.ia + 1, item.ib, 0};
-      second = {na.first_or_right, item.ib, 0};
-    } else {
-      first = {item.ia, item.ib + 1, 0};
-      second = {item.ia, nb.first_or_right, 0};
+    // Descend both nodes at once (a leaf stays): up to four child pairs, ranked by signed gap.
+    std::uint32_t kids_a[2] = {item.ia, item.ia};
+    std::uint32_t kids_b[2] = {item.ib, item.ib};
+    const int n_a = na.is_leaf() ? 1 : 2;
+    const int n_b = nb.is_leaf() ? 1 : 2;
+    if (n_a == 2) kids_a[0] = item.ia + 1, kids_a[1] = na.first_or_right;
+    if (n_b == 2) kids_b[0] = item.ib + 1, kids_b[1] = nb.first_or_right;
+    Item kids[4];
+    Scalar keys[4];
+    int n = 0;
+    for (int j = 0; j < n_b; ++j) {
+      map_node(kids_b[j], mapped[j]);
+      for (int i = 0; i < n_a; ++i) {
+        const Bound bd = bound(kids_a[i], mapped[j]);
+        if (search.prune(bd.lb)) continue;
+        // Insertion by key, farthest first, so the nearest pair is pushed last.
+        int k = n++;
+        for (; k > 0 && keys[k - 1] < bd.key; --k) {
+          kids[k] = kids[k - 1];
+          keys[k] = keys[k - 1];
+        }
+        kids[k] = {kids_a[i], kids_b[j], bd.lb};
+        keys[k] = bd.key;
+      }
     }
-    map_node(first.ib, mapped[0]);
-    const Bound b1 = bound(first.ia, mapped[0]);
-    Bound b2;
-    if (second.ib != first.ib) {
-      map_node(second.ib, mapped[1]);
-      b2 = bound(second.ia, mapped[1]);
-    } else {
-      b2 = bound(second.ia, mapped[0]);
-    }
-    first.lb = b1.lb;
-    second.lb = b2.lb;
-    if (b2.key < b1.key) std::swap(first, second);
-    // The farther pair is pushed first so that the nearer one is examined first.
-    if (!search.prune(second.lb)) stack[top++] = second;
-    if (!search.prune(first.lb)) stack[top++] = first;
+    for (int k = 0; k < n; ++k) stack[top++] = kids[k];
   }
   search.finish(pose_a, a.leaf_triangles(), b.leaf_triangles(), result);
   return result;
