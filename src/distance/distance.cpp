@@ -175,7 +175,7 @@ DistanceResult distance(const Model& a, const Transform& pose_a, const Model& b,
   // kept while consecutive leaf pairs share the chunk (the walk descends A under a fixed B node).
   struct Mapped {
     std::array<Vec3, 3> v;
-    Vec3 lo, hi, n;
+    Vec3 lo, hi, n, c;  // box, unit normal, centroid
   };
   constexpr std::uint32_t kCached = 8;
   std::array<Mapped, kCached> chunk;
@@ -198,6 +198,7 @@ DistanceResult distance(const Model& a, const Transform& pose_a, const Model& b,
           m.lo = m.v[0].cwiseMin(m.v[1]).cwiseMin(m.v[2]);
           m.hi = m.v[0].cwiseMax(m.v[1]).cwiseMax(m.v[2]);
           m.n = unit_normal(m.v.data());
+          m.c = (m.v[0] + m.v[1] + m.v[2]) / 3;
         }
         chunk_first = first;
       }
@@ -206,16 +207,23 @@ DistanceResult distance(const Model& a, const Transform& pose_a, const Model& b,
         const Vec3 lo_a = ta[0].cwiseMin(ta[1]).cwiseMin(ta[2]);
         const Vec3 hi_a = ta[0].cwiseMax(ta[1]).cwiseMax(ta[2]);
         const Vec3 n_a = unit_normal(ta);
+        const Vec3 c_a = (ta[0] + ta[1] + ta[2]) / 3;
         for (std::uint32_t k = 0; k < count; ++k) {
           const Mapped& m = chunk[k];
-          // The box gap is exact in its sign (monotone rounding); the plane gaps are rounded, so
-          // they are left out while an exact intersection is being looked for.
+          // The box gap is exact in its sign (monotone rounding). The plane and centroid-axis
+          // gaps are rounded: they are lowered by the frame's rounding allowance, so that no pair
+          // whose computed distance could beat the best is skipped, and left out while an exact
+          // intersection is being looked for. The cheaper ones go first.
           Scalar lb = detail::box_gap(lo_a, hi_a, m.lo, m.hi);
-          if (!search.hunting()) {
-            lb = std::max({lb, detail::plane_gap(n_a, ta[0], m.v.data()),
-                           detail::plane_gap(m.n, m.v[0], ta)});
-          }
           if (search.prune(lb)) continue;
+          if (!search.hunting()) {
+            lb = std::max({lb,
+                           detail::plane_gap(n_a, ta[0], m.v.data()) - frame.margin,
+                           detail::plane_gap(m.n, m.v[0], ta) - frame.margin});
+            if (search.prune(lb)) continue;
+            lb = std::max(lb, detail::centroid_axis_gap(c_a, m.c, ta, m.v.data()) - frame.margin);
+            if (search.prune(lb)) continue;
+          }
           ++result.triangle_tests;
           search.offer(
               geometry::triangle_distance(ta[0], ta[1], ta[2], m.v[0], m.v[1], m.v[2]), ta,

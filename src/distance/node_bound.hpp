@@ -73,4 +73,18 @@ inline Scalar plane_gap(const Vec3& n, const Vec3& p0, const Vec3* q) {
   return std::max({Scalar{0}, std::min({d0, d1, d2}), -std::max({d0, d1, d2})});
 }
 
+/// Lower bound from the line through the two triangles' centroids `ca`, `cb`: the gap between
+/// the projections of `p` (three points) and `q` onto the unit axis from ca to cb, or a negative
+/// value when they overlap. It separates triangles that lie side by side, which the box and plane
+/// gaps miss when the boxes are tilted. (Rounded like plane_gap.)
+inline Scalar centroid_axis_gap(const Vec3& ca, const Vec3& cb, const Vec3* p, const Vec3* q) {
+  const Vec3 d = cb - ca;
+  const Scalar len = d.norm();
+  if (!(len > 0)) return 0;
+  const Vec3 u = d / len;
+  const Scalar p_max = std::max({u.dot(p[0]), u.dot(p[1]), u.dot(p[2])});
+  const Scalar q_min = std::min({u.dot(q[0]), u.dot(q[1]), u.dot(q[2])});
+  return q_min - p_max;
+}
+
 }  // namespace antcd::detail
