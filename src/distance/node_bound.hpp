@@ -17,8 +17,9 @@ inline Scalar sphere_gap(const Sphere& a, const Vec3& cb, Scalar rb) {
   return (cb - a.center).norm() - a.radius - rb;
 }
 
-/// Largest gap between the two boxes' projections over the 15 separating-axis candidates (the
-/// face normals of each box and the 9 cross products of their edges), each axis normalised.
+/// Largest gap between the two boxes' projections over 16 separating-axis candidates (the face
+/// normals of each box, the line through their centres and the 9 cross products of their edges),
+/// each axis normalised.
 /// Projection onto a unit axis never lengthens a segment, so its positive part is a lower bound of
 /// the distance between any point of `a` and any point of `b`. When no axis separates the boxes
 /// the result is the (negative) largest face-axis gap: not a bound, a measure of overlap that
@@ -38,6 +39,13 @@ inline Scalar obb_gap(const Obb& a, const Mat3& b_axes, const Vec3& b_center, co
     gap = std::max(gap, std::abs(t.dot(r.col(j))) - abs_r.col(j).dot(ea) - eb[j]);
   }
   if (gap > stop) return gap;
+  // The axis through the two centres: it separates boxes side by side on a tilted line, which
+  // no face axis and only some edge axis does.
+  if (const Scalar len = t.norm(); len > 0) {
+    const Vec3 u = t / len;
+    gap = std::max(gap, len - u.cwiseAbs().dot(ea) - (r.transpose() * u).cwiseAbs().dot(eb));
+    if (gap > stop) return gap;
+  }
   for (int i = 0; i < 3; ++i) {
     const int i1 = (i + 1) % 3;
     const int i2 = (i + 2) % 3;
