@@ -147,8 +147,10 @@ DistanceResult distance(const Model& a, const Transform& pose_a, const Model& b,
     m.has_box = false;
   };
   // A node pair's bound: `lb` a lower bound of the distance between the contents (>= 0), `key`
-  // the signed gap of the volumes, which also ranks overlapping pairs (the deeper overlap first).
-  // The OBB gap is only computed when the sphere gap cannot prune.
+  // the order of visit: the gap when the volumes are apart, else the signed sphere gap, which
+  // ranks overlapping pairs by how far their centres are apart for their size (the boxes'
+  // overlap depth ranks them worse: it favours large boxes). The OBB gap is only computed when
+  // the sphere gap cannot prune.
   struct Bound {
     Scalar lb, key;
   };
@@ -167,7 +169,7 @@ DistanceResult distance(const Model& a, const Transform& pose_a, const Model& b,
     const Scalar obb = detail::obb_gap(na.obb, mb.axes, mb.center, nb.obb.half_extents,
                                        search.cutoff() + frame.margin) -
                        frame.margin;
-    const Scalar key = std::max(sphere, obb);
+    const Scalar key = obb > 0 ? std::max(sphere, obb) : sphere;
     return Bound{std::max(key, Scalar{0}), key};
   };
 
