@@ -3,8 +3,9 @@
 //
 // Every node pair carries a lower bound of the distance between its contents (the larger of the
 // sphere gap and the OBB separating-axis gap, minus a rounding allowance). The walk is depth
-// first, nearer child pair first, so a close leaf pair is reached early and its distance prunes
-// most of the rest. A pair is pruned when its bound cannot beat the best distance found (minus
+// first, descending both nodes of a pair at once, nearest child pair first (by signed gap), so a
+// close leaf pair is reached early and its distance prunes most of the rest; at the leaves, cheap
+// box, plane and centroid-axis gaps screen the exact triangle distances. A pair is pruned when its bound cannot beat the best distance found (minus
 // the request's tolerance) or exceeds the request's upper bound; the smallest bound pruned below
 // the best distance is kept, which makes DistanceResult::lower_bound a proof.
 #include <antcd/distance.hpp>
