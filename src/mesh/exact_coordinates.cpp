@@ -4,6 +4,7 @@
 
 #include "mesh/polygon_soup.hpp"
 
+#include <algorithm>
 #include <array>
 #include <bit>
 #include <charconv>
@@ -181,9 +182,9 @@ std::optional<std::vector<Vec3>> off_coordinates(const std::string& text) {
   OffWalk w(text);
   const std::optional<OffHeader> header = read_off_header(w);
   if (!header || header->unusual_vertices) return std::nullopt;
-  // Each vertex line holds at least one byte, so a count beyond the file's size gives up here
-  // before anything is allocated.
-  if (header->vertices > text.size()) return std::nullopt;
+  // A vertex line takes at least 6 bytes ("0 0 0\n"): a count beyond that gives up here, before
+  // anything is allocated for it.
+  if (header->vertices > text.size() / 6) return std::nullopt;
   std::vector<Vec3> out(header->vertices);
   std::string_view line;
   std::array<std::string_view, 3> tokens;
@@ -311,9 +312,11 @@ std::optional<std::vector<Vec3>> ply_coordinates(const std::string& text) {
     }
   }
   if (!found[0] || !found[1] || !found[2]) return std::nullopt;
-  // Every vertex takes at least two bytes of text ("0\n") or one of binary: a count beyond the
-  // file's size gives up before anything is allocated.
-  if (vertex.count > text.size()) return std::nullopt;
+  // A vertex takes at least two bytes of text per property ("0 0 0\n") and 24 of binary (three
+  // doubles): a count beyond that gives up before anything is allocated for it.
+  const std::size_t rest = text.size() - std::min(pos, text.size());
+  const std::size_t least = ascii ? 2 * vertex.properties.size() : 24;
+  if (vertex.count > rest / least) return std::nullopt;
   std::vector<Vec3> out(static_cast<std::size_t>(vertex.count));
 
   if (ascii) {
