@@ -95,8 +95,7 @@ std::optional<OffHeader> read_off_header(OffWalk& w) {
     w.advance(3);
     w.next_token();
   } else {
-    h.unusual_vertices = false;  // assimp: without the keyword, plain x y z
-    dimension_given = false;
+    h.unusual_vertices = false;  // assimp: without the keyword, no w (but an 'n' still counts)
     w.next_token();
     if (!w.at_digit()) return std::nullopt;  // assimp: "Header is invalid"
   }
