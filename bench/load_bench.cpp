@@ -1,8 +1,9 @@
-// bench/load_bench.cpp — loading a 5-million-triangle OBJ: antcd::load_mesh (double precision,
-// tinyobjloader plus exact coordinates) against assimp's import of the same file (single
-// precision, the reader antcd used before), in one binary and one run: the ratio is the figure.
+// bench/load_bench.cpp — loading a 5-million-triangle OBJ, OFF and ASCII PLY: antcd::load_mesh
+// (double precision: tinyobjloader for OBJ, assimp plus re-read coordinates for OFF and PLY)
+// against assimp's import of the same file (single precision, the reader antcd used before), in
+// one binary and one run: the ratio per format is the figure.
 //
-// The file is generated at start-up into a fresh temporary folder and removed at exit: a height
+// The files are generated at start-up into a fresh temporary folder and removed at exit: a height
 // field of 2000 x 1250 cells, two triangles each (5,000,000 triangles on 2,503,251 vertices),
 // coordinates printed as the shortest text that reads back to their double (none is a float
 // value). assimp_import runs assimp's reader with the post-processing antcd's assimp path used
@@ -40,18 +41,43 @@ void append_number(std::string& out, double x) {
   out.append(buffer, end);
 }
 
-/// The generated file, written once, removed at exit.
-class GridObj {
+enum class Format { Obj, Off, Ply };
+
+/// The generated files (the same grid as OBJ, OFF and ASCII PLY), written once, removed at exit.
+class GridFiles {
  public:
-  GridObj() {
+  GridFiles() {
     dir_ = fs::temp_directory_path() / ("antcd_load_bench_" + std::to_string(::getpid()));
     fs::create_directories(dir_);
-    path_ = dir_ / "grid.obj";
-    std::ofstream out(path_, std::ios::binary);
-    std::string chunk;
+    const std::uint32_t vertices = (kCellsX + 1) * (kCellsY + 1);
+    const std::uint32_t faces = 2 * kCellsX * kCellsY;
+    write(Format::Obj, "grid.obj", "", "v ", "f ", 1);
+    write(Format::Off, "grid.off",
+          "OFF\n" + std::to_string(vertices) + ' ' + std::to_string(faces) + " 0\n", "", "3 ", 0);
+    write(Format::Ply, "grid.ply",
+          "ply\nformat ascii 1.0\nelement vertex " + std::to_string(vertices) +
+              "\nproperty double x\nproperty double y\nproperty double z\nelement face " +
+              std::to_string(faces) + "\nproperty list uchar int vertex_indices\nend_header\n",
+          "", "3 ", 0);
+  }
+  ~GridFiles() {
+    std::error_code ec;
+    fs::remove_all(dir_, ec);
+  }
+  GridFiles(const GridFiles&) = delete;
+  GridFiles& operator=(const GridFiles&) = delete;
+  [[nodiscard]] const fs::path& path(Format f) const { return paths_[static_cast<int>(f)]; }
+
+ private:
+  void write(Format format, const char* name, const std::string& header, const char* vertex,
+             const char* face, std::uint32_t base) {
+    fs::path& path = paths_[static_cast<int>(format)];
+    path = dir_ / name;
+    std::ofstream out(path, std::ios::binary);
+    std::string chunk = header;
     for (std::uint32_t i = 0; i <= kCellsX; ++i) {
       for (std::uint32_t j = 0; j <= kCellsY; ++j) {
-        chunk += "v ";
+        chunk += vertex;
         append_number(chunk, i * 0.1 + 1e-7);
         chunk += ' ';
         append_number(chunk, j * 0.1 - 123456.789012345);
@@ -62,40 +88,32 @@ class GridObj {
       out.write(chunk.data(), static_cast<std::streamsize>(chunk.size()));
       chunk.clear();
     }
-    auto index = [](std::uint32_t i, std::uint32_t j) { return i * (kCellsY + 1) + j + 1; };
+    auto index = [&](std::uint32_t i, std::uint32_t j) { return i * (kCellsY + 1) + j + base; };
     for (std::uint32_t i = 0; i < kCellsX; ++i) {
       for (std::uint32_t j = 0; j < kCellsY; ++j) {
         const std::uint32_t a = index(i, j), b = index(i + 1, j), c = index(i + 1, j + 1),
                             d = index(i, j + 1);
-        chunk += "f " + std::to_string(a) + ' ' + std::to_string(b) + ' ' + std::to_string(c) +
-                 "\nf " + std::to_string(a) + ' ' + std::to_string(c) + ' ' + std::to_string(d) +
-                 '\n';
+        chunk += face + std::to_string(a) + ' ' + std::to_string(b) + ' ' + std::to_string(c) +
+                 '\n' + face + std::to_string(a) + ' ' + std::to_string(c) + ' ' +
+                 std::to_string(d) + '\n';
       }
       out.write(chunk.data(), static_cast<std::streamsize>(chunk.size()));
       chunk.clear();
     }
-    if (!out) throw std::runtime_error("cannot write " + path_.string());
+    if (!out) throw std::runtime_error("cannot write " + path.string());
   }
-  ~GridObj() {
-    std::error_code ec;
-    fs::remove_all(dir_, ec);
-  }
-  GridObj(const GridObj&) = delete;
-  GridObj& operator=(const GridObj&) = delete;
-  [[nodiscard]] const fs::path& path() const { return path_; }
 
- private:
   fs::path dir_;
-  fs::path path_;
+  fs::path paths_[3];
 };
 
-const GridObj& grid() {
-  static const GridObj file;
-  return file;
+const GridFiles& grid() {
+  static const GridFiles files;
+  return files;
 }
 
-void load_mesh_double(benchmark::State& state) {
-  const fs::path& path = grid().path();
+void load_mesh_double(benchmark::State& state, Format format) {
+  const fs::path& path = grid().path(format);
   std::size_t triangles = 0;
   for (auto _ : state) {
     const antcd::Mesh mesh = antcd::load_mesh(path);
@@ -106,8 +124,8 @@ void load_mesh_double(benchmark::State& state) {
   if (triangles != 2ULL * kCellsX * kCellsY) state.SkipWithError("wrong triangle count");
 }
 
-void assimp_import(benchmark::State& state) {
-  const fs::path& path = grid().path();
+void assimp_import(benchmark::State& state, Format format) {
+  const fs::path& path = grid().path(format);
   std::size_t triangles = 0;
   for (auto _ : state) {
     Assimp::Importer importer;
@@ -124,8 +142,12 @@ void assimp_import(benchmark::State& state) {
   state.counters["triangles"] = static_cast<double>(triangles);
 }
 
-BENCHMARK(load_mesh_double)->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();
-BENCHMARK(assimp_import)->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();
+BENCHMARK_CAPTURE(load_mesh_double, obj, Format::Obj)->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();
+BENCHMARK_CAPTURE(assimp_import, obj, Format::Obj)->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();
+BENCHMARK_CAPTURE(load_mesh_double, off, Format::Off)->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();
+BENCHMARK_CAPTURE(assimp_import, off, Format::Off)->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();
+BENCHMARK_CAPTURE(load_mesh_double, ply, Format::Ply)->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();
+BENCHMARK_CAPTURE(assimp_import, ply, Format::Ply)->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();
 
 }  // namespace
 

@@ -34,8 +34,10 @@ struct ANTCD_API Mesh {
 /// Loads every triangle of every mesh in a file (OBJ, STL ASCII/binary, PLY, OFF, glTF/GLB and the
 /// other formats assimp reads), with node transforms of the file's scene graph applied, polygons
 /// triangulated and identical vertices joined. Points and lines are ignored.
-/// Precision: OBJ coordinates are the nearest doubles to the file's text; the other formats are
-/// read by assimp in single precision (docs/guarantees.md).
+/// Precision: OBJ, OFF and PLY (ASCII, and binary little-endian doubles) coordinates are the
+/// nearest doubles to the file's text (a binary double bit for bit); OFF/PLY layouts the loader
+/// does not follow, and the other formats, are read by assimp in single precision
+/// (docs/guarantees.md).
 /// Throws MeshError (naming the path) when the file is missing, is not a readable mesh, holds no
 /// triangle, has non-finite coordinates or out-of-range indices.
 ANTCD_API Mesh load_mesh(const std::filesystem::path& path);

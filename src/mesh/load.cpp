@@ -1,6 +1,14 @@
 // load_mesh: reads any mesh file assimp understands into an antcd::Mesh; OBJ is read in double
 // precision instead (polygon_soup.hpp, load_obj.cpp), the other formats through assimp.
 //
+// OFF and PLY keep their file's precision although assimp reads them into floats: assimp reads
+// the structure (faces, corners, vertex count), the coordinates are re-read from the file's bytes
+// along the same layout (exact_coordinates.hpp), and each re-read coordinate must agree with
+// assimp's float for the same vertex before any is used. Vertices are paired by position in the
+// scene assimp builds before any post-processing, where its OFF and PLY readers keep the file's
+// vertex order (joining or sorting would break the pairing), and that scene's polygons go the OBJ
+// way (soup_to_mesh). Whenever the pairing is not certain, the file loads as before, in floats.
+//
 // Every call uses its own Assimp::Importer, so concurrent loads share no state. antcd never
 // creates assimp's DefaultLogger (a process-wide object): while no logger exists assimp logs into
 // its NullLogger, so loading prints nothing. The one exception seen over all of assimp-testmodels:
@@ -8,6 +16,7 @@
 // stderr for OpenGEX/empty_camera.ogex, past assimp's logger.
 #include <antcd/mesh.hpp>
 
+#include "mesh/exact_coordinates.hpp"
 #include "mesh/polygon_soup.hpp"
 
 #include <assimp/config.h>
@@ -18,12 +27,16 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cerrno>
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <exception>
 #include <limits>
 #include <new>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <system_error>
@@ -252,112 +265,71 @@ std::string unterminated_ply_header(const std::filesystem::path& path, std::stri
   return "the PLY header has no end_header line";
 }
 
-/// assimp 5.2's OFF reader drops a face line whose corner count is 0 or above 9 by decrementing
-/// the mesh's face count, without bound: with more such lines than the header has faces the count
-/// wraps around to about 4 billion and assimp reads far past its face array (a crash found by
-/// fuzzing: "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n0\n0\n3 0 1 2\n"). Its counts are also read from
-/// files without the OFF keyword, which implausible_off_header does not see. This walks a file
-/// the OFF reader would get (extension .off, or content starting with "off") the way that reader
-/// does: its header tokens, then one line per vertex, then face lines until the header's count of
-/// faces is read. Returns the problem, or an empty string.
-std::string unsafe_off_body(const std::filesystem::path& path, std::string_view head,
-                            std::uintmax_t file_size) {
-  std::string ext = path.extension().string();
-  for (char& c : ext) c = static_cast<char>(c | 0x20);
-  const bool off_content = head.size() >= 3 && (head[0] | 0x20) == 'o' && (head[1] | 0x20) == 'f' &&
-                           (head[2] | 0x20) == 'f';
-  if (ext != ".off" && (!off_content || ext == ".stl")) return {};
-  std::string text;
-  {
-    std::FILE* file = std::fopen(path.c_str(), "rb");
-    if (file == nullptr) return {};  // assimp will report it
-    std::array<char, 16384> chunk{};
-    std::size_t n = 0;
-    while ((n = std::fread(chunk.data(), 1, chunk.size(), file)) > 0) text.append(chunk.data(), n);
-    std::fclose(file);
-  }
-  text.push_back('\0');  // as assimp's TextFileToBuffer
-  const char* p = text.data();
-  const char* const end = p + text.size();
-  const auto line_end = [](char c) { return c == '\r' || c == '\n' || c == '\0' || c == '\f'; };
-  const auto skip_spaces_and_line_ends = [&] {
-    while (*p == ' ' || *p == '\t' || *p == '\r' || *p == '\n') ++p;
+/// How many floats lie between a and b (0 when equal; -0 and +0 are equal), both finite.
+std::int64_t float_steps(float a, float b) {
+  const auto ordered = [](float x) {
+    const auto bits = std::bit_cast<std::int32_t>(x);
+    return bits >= 0 ? std::int64_t{bits} : -std::int64_t{bits & 0x7FFFFFFF};
   };
-  const auto next_token = [&] {  // blanks, line ends and '#' comment lines
-    skip_spaces_and_line_ends();
-    while (p < end && (*p == '#' || *p == '\n' || *p == '\r')) {
-      while (*p != '\r' && *p != '\n' && *p != '\0') ++p;
-      while (*p == '\r' || *p == '\n') ++p;
-      skip_spaces_and_line_ends();
-    }
-  };
-  const auto number = [&] {  // assimp's strtoul10, wrapping like it
-    std::uint32_t value = 0;
-    while (*p >= '0' && *p <= '9') value = value * 10 + static_cast<std::uint32_t>(*p++ - '0');
-    return value;
-  };
-  const auto next_line = [&] {  // assimp's GetNextLine: lines of at most 4096 characters
-    if (*p == '\0') return false;
-    for (std::size_t k = 0; k < 4096 && !line_end(*p); ++k) ++p;
-    while (line_end(*p) && *p != '\0') ++p;
-    return true;
-  };
+  return std::abs(ordered(a) - ordered(b));
+}
 
-  next_token();
-  bool dimension = false;
-  if (p + 2 < end && p[0] == 'S' && p[1] == 'T') p += 2;
-  if (p + 1 < end && p[0] == 'C') ++p;
-  if (p + 1 < end && p[0] == 'N') ++p;
-  if (p + 1 < end && p[0] == '4') ++p;
-  if (p + 1 < end && p[0] == 'n') {
-    dimension = true;
-    ++p;
+/// The float nearest to x, infinity beyond float's range (where a cast would be undefined).
+float round_to_float(double x) {
+  constexpr double overflow = 0x1.ffffffp127;  // halfway between FLT_MAX and 2^128: rounds up
+  if (std::abs(x) >= overflow) {
+    return x > 0 ? std::numeric_limits<float>::infinity() : -std::numeric_limits<float>::infinity();
   }
-  if (p + 3 < end && p[0] == 'O' && p[1] == 'F' && p[2] == 'F') {
-    p += 3;
-    next_token();
-  } else {
-    next_token();
-    if (p + 1 >= end || *p < '0' || *p > '9') return {};  // assimp: "Header is invalid"
+  return static_cast<float>(x);
+}
+
+/// A re-read coordinate stands for assimp's float of the same vertex when, rounded to float, it
+/// lies at most this many floats away. assimp's text-to-float conversion is not correctly
+/// rounded: on 3.6 million numbers printed with %.9g, %.12g and %.17g over every magnitude a
+/// float holds (1e-37 .. 1e38), 21 % were 1 float and 0.13 % 2 floats from the nearest float,
+/// none further. Twice that bound still fails a re-reading out of step with assimp (another
+/// vertex, another property, a misread token), whose values differ by far more; whatever passes
+/// is at most 4 floats from assimp's value for that vertex.
+constexpr std::int64_t kFloatStepsTolerated = 4;
+
+/// The mesh from assimp's freshly read, validated and not post-processed scene of an OFF or PLY
+/// file, with the file's own coordinates (`exact`, in file order) in place of assimp's floats;
+/// std::nullopt, so that assimp's floats are used, unless the scene is the single untransformed
+/// mesh those readers build, with one vertex per re-read vertex and every coordinate in agreement
+/// (kFloatStepsTolerated). The polygons are assimp's, triangulated and joined like OBJ's.
+std::optional<Mesh> mesh_with_exact_coordinates(const aiScene& scene, std::vector<Vec3> exact,
+                                                const std::string& source) {
+  const std::vector<Instance> instances = collect_instances(scene, source);
+  if (instances.size() != 1 || instances[0].transform != Affine::Identity()) return std::nullopt;
+  const aiMesh& mesh = *instances[0].mesh;
+  if (mesh.mVertices == nullptr || mesh.mFaces == nullptr || mesh.mNumVertices != exact.size()) {
+    return std::nullopt;
   }
-  if (dimension) {
-    if (number() > 3) return {};  // assimp refuses more than 3 coordinates
-    next_token();
-  }
-  next_token();
-  const std::uint32_t vertices = number();
-  next_token();
-  const std::uint32_t faces = number();
-  next_token();
-  (void)number();  // edges
-  next_token();
-  if (vertices == 0 || faces == 0) return {};  // assimp refuses these
-  if (std::uint64_t{vertices} * 6 + std::uint64_t{faces} * 2 > file_size) {
-    return "the OFF header announces " + std::to_string(vertices) + " vertices and " +
-           std::to_string(faces) + " faces but the file has only " + std::to_string(file_size) +
-           " bytes";
-  }
-  for (std::uint32_t i = 0; i < vertices && next_line(); ++i) {
-  }
-  std::uint64_t skipped = 0;
-  for (std::uint32_t read = 0; read < faces;) {
-    const char* line = p;
-    if (!next_line()) break;
-    while (*line == ' ' || *line == '\t') ++line;
-    std::uint32_t corners = 0;
-    while (*line >= '0' && *line <= '9') {
-      corners = corners * 10 + static_cast<std::uint32_t>(*line++ - '0');
-    }
-    if (corners == 0 || corners > 9) {
-      if (++skipped > faces) {
-        return "more face lines with 0 or over 9 corners than faces in the OFF header (" +
-               std::to_string(faces) + ")";
-      }
-    } else {
-      ++read;
+  for (std::size_t i = 0; i < exact.size(); ++i) {
+    const aiVector3D& theirs = mesh.mVertices[i];
+    for (int k = 0; k < 3; ++k) {
+      const float f = theirs[static_cast<unsigned>(k)];
+      const double d = exact[i][k];
+      // Beyond float's range assimp has an infinity: only the same infinity pairs with it.
+      const float rounded = round_to_float(d);
+      const bool agree = std::isfinite(f) && std::isfinite(rounded)
+                             ? float_steps(rounded, f) <= kFloatStepsTolerated
+                             : rounded == f;
+      if (!agree) return std::nullopt;
     }
   }
-  return {};
+  detail::PolygonSoup soup;
+  soup.points = std::move(exact);
+  for (unsigned f = 0; f < mesh.mNumFaces; ++f) {
+    const aiFace& face = mesh.mFaces[f];
+    if (face.mNumIndices > 0 && face.mIndices == nullptr) return std::nullopt;
+    for (unsigned k = 0; k < face.mNumIndices; ++k) {
+      if (face.mIndices[k] >= mesh.mNumVertices) return std::nullopt;
+      soup.corners.push_back(face.mIndices[k]);
+    }
+    soup.corner_counts.push_back(face.mNumIndices);
+  }
+  return detail::soup_to_mesh(soup, source);
 }
 
 }  // namespace
@@ -395,10 +367,22 @@ Mesh load_mesh(const std::filesystem::path& path) {
       !problem.empty()) {
     throw MeshError(source, "not a readable mesh: " + problem);
   }
-  if (const std::string problem =
-          unsafe_off_body(path, std::string_view(head.data(), head_size), size);
-      !problem.empty()) {
-    throw MeshError(source, "not a readable mesh: " + problem);
+  // The whole text, for assimp's OFF reader's check and for the coordinates of OFF and PLY. The
+  // OFF reader gets a file by extension, or by content starting with "off" (unless .stl).
+  const detail::CoordinateFormat coordinates = detail::coordinate_format(path);
+  std::string ext = path.extension().string();
+  for (char& c : ext) c = static_cast<char>(c | 0x20);
+  const bool off_content = head_size >= 3 && (head[0] | 0x20) == 'o' &&
+                           (head[1] | 0x20) == 'f' && (head[2] | 0x20) == 'f';
+  const bool off_reader = ext == ".off" || (off_content && ext != ".stl");
+  std::string text;
+  if (off_reader || coordinates != detail::CoordinateFormat::None) {
+    text = detail::read_whole_file(path, source);
+  }
+  if (off_reader) {
+    if (const std::string problem = detail::unsafe_off_body(text, size); !problem.empty()) {
+      throw MeshError(source, "not a readable mesh: " + problem);
+    }
   }
   if (const std::string problem =
           unterminated_ply_header(path, std::string_view(head.data(), head_size));
@@ -435,7 +419,23 @@ Mesh load_mesh(const std::filesystem::path& path) {
     scene = importer.ReadFile(source, 0);
     if (scene != nullptr) {
       if (!has_polygon(*scene)) throw MeshError(source, "contains no triangles");
-      scene = importer.ApplyPostProcessing(flags);
+      // OFF and PLY: the file's own coordinates when they can be paired with assimp's vertices
+      // (exact_coordinates.hpp); otherwise, and for every other format, assimp's floats.
+      std::optional<std::vector<Vec3>> exact;
+      if (coordinates == detail::CoordinateFormat::Off) exact = detail::off_coordinates(text);
+      if (coordinates == detail::CoordinateFormat::Ply) exact = detail::ply_coordinates(text);
+      if (exact) {
+        std::string{}.swap(text);
+        scene = importer.ApplyPostProcessing(aiProcess_ValidateDataStructure);
+        if (scene != nullptr) {
+          if (std::optional<Mesh> mesh =
+                  mesh_with_exact_coordinates(*scene, std::move(*exact), source)) {
+            return std::move(*mesh);
+          }
+        }
+      }
+      std::string{}.swap(text);
+      if (scene != nullptr) scene = importer.ApplyPostProcessing(flags);
     }
   } catch (const MeshError&) {
     throw;

@@ -93,15 +93,12 @@ std::vector<Vec3> read_vertex_lines(std::string_view text, const std::string& so
       if (token.empty()) {
         throw MeshError(source, where + " has fewer than 3 coordinates");
       }
-      double& value = p[k];
-      const char* first = token.data();
-      if (*first == '+') ++first;  // from_chars takes no plus sign; OBJ writers may
-      const auto [ptr, ec] = std::from_chars(first, token.data() + token.size(), value);
-      if (ec == std::errc::result_out_of_range || (ec == std::errc{} && !std::isfinite(value))) {
+      const std::errc ec = parse_coordinate(token, p[k]);
+      if (ec == std::errc::result_out_of_range) {
         throw MeshError(source, where + " has a non-finite coordinate '" +
                                     one_line(std::string(token.substr(0, 40))) + "'");
       }
-      if (ec != std::errc{} || ptr != token.data() + token.size()) {
+      if (ec != std::errc{}) {
         throw MeshError(source, where + " has a coordinate that is not a number: '" +
                                     one_line(std::string(token.substr(0, 40))) + "'");
       }

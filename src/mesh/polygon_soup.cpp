@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <cerrno>
+#include <charconv>
 #include <cmath>
 #include <cstring>
 #include <fstream>
@@ -115,6 +116,18 @@ struct PositionHash {
 };
 
 }  // namespace
+
+std::errc parse_coordinate(std::string_view token, double& value) {
+  const char* first = token.data();
+  const char* const last = token.data() + token.size();
+  if (first != last && *first == '+') ++first;
+  const auto [ptr, ec] = std::from_chars(first, last, value);
+  if (ec == std::errc::result_out_of_range || (ec == std::errc{} && !std::isfinite(value))) {
+    return std::errc::result_out_of_range;
+  }
+  if (ec != std::errc{} || ptr != last) return std::errc::invalid_argument;
+  return {};
+}
 
 std::string one_line(std::string text) {
   for (char& c : text) {

@@ -1,5 +1,6 @@
-// Internal to the mesh layer: the double-precision reader (OBJ) produces a polygon
-// soup of double coordinates, turned into a Mesh here the same way for every format.
+// Internal to the mesh layer: the double-precision readers (OBJ; OFF and PLY through assimp with
+// their coordinates re-read) produce a polygon soup of double coordinates, turned into a Mesh
+// here the same way for every format.
 #pragma once
 
 #include <antcd/mesh.hpp>
@@ -8,6 +9,7 @@
 #include <filesystem>
 #include <string>
 #include <string_view>
+#include <system_error>
 #include <vector>
 
 namespace antcd::detail {
@@ -25,8 +27,9 @@ struct PolygonSoup {
 /// The formats read in double precision; anything else goes to assimp.
 enum class TextFormat { None, Obj };
 
-/// Decides by extension (.obj). OFF and PLY stay with assimp: CGAL's OFF and PLY readers were
-/// tried and read past their arrays or call through null pointers on malformed files (found by
+/// Decides by extension (.obj). OFF and PLY stay with assimp for their structure, their
+/// coordinates are re-read (exact_coordinates.hpp): CGAL's OFF and PLY readers were tried and
+/// read past their arrays or call through null pointers on malformed files (found by
 /// fuzz/fuzz_mesh_load).
 TextFormat text_format(const std::filesystem::path& path);
 
@@ -45,6 +48,13 @@ void join_identical_positions(Mesh& mesh);
 
 /// The file's bytes. Throws MeshError naming `source` when it cannot be opened or read.
 std::string read_whole_file(const std::filesystem::path& path, const std::string& source);
+
+/// Reads one coordinate token in full: an optional '+' (which std::from_chars does not take),
+/// then a number as std::from_chars reads it, the nearest double to the text. Returns std::errc{}
+/// on success, std::errc::result_out_of_range when the value is not finite ("inf", "nan",
+/// "1e999"), std::errc::invalid_argument when the token is empty, not a number or has characters
+/// after it. Shared by every text reader, so all of them round the same way.
+std::errc parse_coordinate(std::string_view token, double& value);
 
 /// One line, no surrounding blanks: library messages sometimes carry newlines.
 std::string one_line(std::string text);

@@ -445,8 +445,9 @@ TEST(BadMeshFile, NonFiniteCoordinatesInEveryFormat) {
        "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty "
        "float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 "
        "0\n0 inf 0\n3 0 1 2\n"},
-      // assimp's OFF reader reads "nan" as 0, but an overflowing number as infinity.
-      {"inf.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 0 1e39\n3 0 1 2\n"},
+      // assimp's OFF reader reads "nan" as 0, but an overflowing number as infinity. OFF keeps
+      // double precision too: 1e39 is finite there, 1e999 is not.
+      {"inf.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 0 1e999\n3 0 1 2\n"},
   };
   for (const auto& [name, text] : files) {
     SCOPED_TRACE(name);

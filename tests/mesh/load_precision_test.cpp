@@ -1,8 +1,10 @@
-// OBJ keeps its coordinates in double precision: each loaded coordinate is
-// the nearest double to the file's text (std::strtod is the reference), polygons are triangulated
-// into triangles that tile them, the real assimp-testmodels files give the triangles and vertices
-// assimp gives (within float rounding), and a distance on a real file matches brute force over
-// the file's own coordinates to ~1e-12 relative. assimp is linked here as a reference only.
+// OBJ, OFF and PLY keep their coordinates in double precision: each loaded coordinate is
+// the nearest double to the file's text (std::strtod is the reference; a binary PLY's doubles bit
+// for bit), in every OFF and PLY layout the re-reading follows, while layouts it does not follow
+// load assimp's floats; polygons are triangulated into triangles that tile them, the real
+// assimp-testmodels files give the triangles and vertices assimp gives (within float rounding),
+// and a distance on a real file matches brute force over the file's own coordinates to ~1e-12
+// relative. assimp is linked here as a reference only.
 #include "support/mesh_files.hpp"
 #include "support/test_support.hpp"
 
@@ -20,6 +22,7 @@
 #include <array>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <random>
@@ -68,6 +71,26 @@ struct TextMesh {
     }
     return s;
   }
+  [[nodiscard]] std::string faces_off() const {
+    std::string s;
+    for (const auto& t : triangles) {
+      s += "3 " + std::to_string(t[0]) + ' ' + std::to_string(t[1]) + ' ' + std::to_string(t[2]) + '\n';
+    }
+    return s;
+  }
+  [[nodiscard]] std::string off() const {
+    std::string s = "OFF\n" + std::to_string(text.size()) + ' ' + std::to_string(triangles.size()) + " 0\n";
+    for (const auto& p : text) s += p[0] + ' ' + p[1] + ' ' + p[2] + '\n';
+    return s + faces_off();
+  }
+  [[nodiscard]] std::string ply() const {
+    std::string s = "ply\nformat ascii 1.0\nelement vertex " + std::to_string(text.size()) +
+                    "\nproperty double x\nproperty double y\nproperty double z\nelement face " +
+                    std::to_string(triangles.size()) +
+                    "\nproperty list uchar int vertex_indices\nend_header\n";
+    for (const auto& p : text) s += p[0] + ' ' + p[1] + ' ' + p[2] + '\n';
+    return s + faces_off();
+  }
 };
 
 std::string shortest(double x) {
@@ -87,6 +110,8 @@ void expect_every_format_reproduces(const TextMesh& m, const std::string& name) 
   const auto expected = m.expected();
   const std::vector<std::pair<std::string, std::string>> files = {
       {name + ".obj", m.obj()},
+      {name + ".off", m.off()},
+      {name + ".ply", m.ply()},
   };
   for (const auto& [file, text] : files) {
     SCOPED_TRACE(file);
@@ -136,6 +161,158 @@ TEST(LoadPrecision, RandomDoublesRoundTripExactly) {
   expect_every_format_reproduces(m, "random");
 }
 
+/// 300 random doubles over many magnitudes (float's range and beyond), as printf's %.17g or
+/// %.16e (scientific) writes them, on 100 triangles.
+TextMesh random_text_mesh(const char* format, std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> mantissa(-1, 1);
+  std::uniform_int_distribution<int> exponent(-60, 60);
+  TextMesh m;
+  for (int i = 0; i < 100; ++i) {
+    std::array<std::string, 3> p;
+    for (auto& x : p) {
+      char buffer[64];
+      std::snprintf(buffer, sizeof buffer, format, std::ldexp(mantissa(rng), exponent(rng)));
+      x = buffer;
+    }
+    m.text.push_back(p);
+  }
+  for (int i = 0; i + 2 < 100; i += 3) m.triangles.push_back({i, i + 1, i + 2});
+  return m;
+}
+
+TEST(LoadPrecision, PrintfDoublesRoundTripExactly) {
+  expect_every_format_reproduces(random_text_mesh("%.17g", 11), "g17");
+  expect_every_format_reproduces(random_text_mesh("%.16e", 12), "e16");
+}
+
+std::string with_crlf(const std::string& text) {
+  std::string out;
+  for (const char c : text) {
+    if (c == '\n') out += '\r';
+    out += c;
+  }
+  return out;
+}
+
+void append_le(std::string& out, const void* value, std::size_t size) {
+  out.append(static_cast<const char*>(value), size);  // the test machines are little-endian
+}
+
+TEST(LoadPrecision, OffAndPlyLayoutsKeepTheFileCoordinates) {
+  const TextMesh m = random_text_mesh("%.17g", 13);
+  const std::string n = std::to_string(m.text.size());
+  const std::string f = std::to_string(m.triangles.size());
+  auto vertex_lines = [&](const std::string& before, const std::string& after) {
+    std::string s;
+    for (const auto& p : m.text) s += before + p[0] + ' ' + p[1] + "\t" + p[2] + after + '\n';
+    return s;
+  };
+  std::vector<std::pair<std::string, std::string>> files = {
+      // OFF: comments before and after the keyword, CRLF line ends.
+      {"comments_crlf.off", with_crlf("# made by a test\n  OFF\n# counts next\n\n" + n + ' ' + f +
+                                      " 0\n# vertices\n" + vertex_lines(" ", "  ") + m.faces_off())},
+      // Colours and normals after the coordinates, no keyword at all, counts on the keyword line.
+      {"colours.off", "COFF\n" + n + ' ' + f + " 0\n" + vertex_lines("", " 255 0 0 255") + m.faces_off()},
+      {"normals.off", "NOFF\n" + n + ' ' + f + " 0\n" + vertex_lines("", " 0 0 1") + m.faces_off()},
+      {"no_keyword.off", n + ' ' + f + " 0\n" + vertex_lines("", "") + m.faces_off()},
+      {"one_line.off", "OFF " + n + ' ' + f + " 0\n" + vertex_lines("", "") + m.faces_off()},
+      // PLY: comments, obj_info, normals before and colours after x/y/z, CRLF line ends.
+      {"properties_crlf.ply",
+       with_crlf("ply\nformat ascii 1.0\ncomment made by a test\nobj_info none\nelement vertex " + n +
+                 "\nproperty float nx\nproperty float ny\nproperty float nz\nproperty double x\n"
+                 "property double y\nproperty double z\nproperty uchar red\nproperty uchar green\n"
+                 "property uchar blue\nelement face " + f +
+                 "\nproperty list uchar int vertex_indices\nend_header\n" +
+                 vertex_lines("0 0 1 ", " 10 20 30") + m.faces_off())},
+      // Properties in another order (z, x, y).
+      {"zxy.ply",
+       [&] {
+         std::string s = "ply\nformat ascii 1.0\nelement vertex " + n +
+                         "\nproperty double z\nproperty double x\nproperty double y\nelement face " +
+                         f + "\nproperty list uchar int vertex_indices\nend_header\n";
+         for (const auto& p : m.text) s += p[2] + ' ' + p[0] + ' ' + p[1] + '\n';
+         return s + m.faces_off();
+       }()},
+  };
+  // Binary little-endian PLY with double coordinates between float normals.
+  {
+    std::string s = "ply\nformat binary_little_endian 1.0\nelement vertex " + n +
+                    "\nproperty float nx\nproperty double x\nproperty double y\nproperty double z\n"
+                    "property float nz\nelement face " + f +
+                    "\nproperty list uchar int vertex_indices\nend_header\n";
+    for (const auto& p : m.text) {
+      const float normal = 1;
+      append_le(s, &normal, sizeof normal);
+      for (const auto& x : p) {
+        const double v = std::strtod(x.c_str(), nullptr);
+        append_le(s, &v, sizeof v);
+      }
+      append_le(s, &normal, sizeof normal);
+    }
+    for (const auto& t : m.triangles) {
+      s += '\3';
+      for (const int i : t) append_le(s, &i, sizeof i);
+    }
+    files.emplace_back("binary_double.ply", s);
+  }
+  const auto dir = fresh_temp_dir("precision_layouts");
+  const auto expected = m.expected();
+  for (const auto& [file, text] : files) {
+    SCOPED_TRACE(file);
+    write_file(dir / file, text);
+    const Mesh loaded = load_mesh(dir / file);
+    EXPECT_EQ(corners(loaded), expected);  // bit-exact
+  }
+}
+
+TEST(LoadPrecision, LayoutsNotFollowedLoadAssimpFloats) {
+  // Layouts the re-reading does not follow load as before, with assimp's floats, never with
+  // other numbers of the file: a homogeneous OFF (assimp divides x, y, z by w) and a big-endian
+  // binary PLY.
+  const TextMesh m = random_text_mesh("%.17g", 14);
+  const auto expected = m.expected();
+  const auto dir = fresh_temp_dir("precision_fallback");
+  std::string off = "4OFF\n" + std::to_string(m.text.size()) + ' ' +
+                    std::to_string(m.triangles.size()) + " 0\n";
+  for (const auto& p : m.text) off += p[0] + ' ' + p[1] + ' ' + p[2] + " 2\n";
+  write_file(dir / "homogeneous.off", off + m.faces_off());
+  std::string ply = "ply\nformat binary_big_endian 1.0\nelement vertex " + std::to_string(m.text.size()) +
+                    "\nproperty double x\nproperty double y\nproperty double z\nelement face " +
+                    std::to_string(m.triangles.size()) + "\nproperty list uchar int vertex_indices\nend_header\n";
+  auto big_endian = [&](const void* value, std::size_t size) {
+    const auto* bytes = static_cast<const char*>(value);
+    for (std::size_t i = size; i-- > 0;) ply += bytes[i];
+  };
+  for (const auto& p : m.text) {
+    for (const auto& x : p) {
+      const double v = std::strtod(x.c_str(), nullptr);
+      big_endian(&v, sizeof v);
+    }
+  }
+  for (const auto& t : m.triangles) {
+    ply += '\3';
+    for (const int i : t) big_endian(&i, sizeof i);
+  }
+  write_file(dir / "big_endian.ply", ply);
+  for (const auto& [file, divisor] : std::vector<std::pair<std::string, double>>{
+           {"homogeneous.off", 2.0}, {"big_endian.ply", 1.0}}) {
+    SCOPED_TRACE(file);
+    const auto loaded = corners(load_mesh(dir / file));
+    ASSERT_EQ(loaded.size(), expected.size());
+    for (std::size_t t = 0; t < loaded.size(); ++t) {
+      for (int k = 0; k < 3; ++k) {
+        for (int a = 0; a < 3; ++a) {
+          const double v = loaded[t][static_cast<std::size_t>(k)][a];
+          const double want = expected[t][static_cast<std::size_t>(k)][a] / divisor;
+          EXPECT_EQ(to_float_value(v), v);  // a float, as assimp read it
+          EXPECT_LE(std::abs(v - want), 3e-7 * std::abs(want));
+        }
+      }
+    }
+  }
+}
+
 // ---- triangulation ----
 
 /// Sum of the triangles' areas and whether each one faces +z (all in the z = 0.25 plane).
@@ -181,8 +358,20 @@ TEST(LoadPrecision, PolygonsAreTriangulatedIntoTheirArea) {
       obj += "v " + shortest(poly.xy[k][0]) + ' ' + shortest(poly.xy[k][1]) + " 0.25\n";
     }
     obj += "f" + indices1 + '\n';
-    for (const auto& [ext, text] :
-         std::vector<std::pair<std::string, std::string>>{{".obj", obj}}) {
+    // The same polygon as one OFF face and one PLY face.
+    std::string points;
+    for (std::size_t k = 0; k < n; ++k) {
+      points += shortest(poly.xy[k][0]) + ' ' + shortest(poly.xy[k][1]) + " 0.25\n";
+    }
+    std::string face = std::to_string(n);
+    for (std::size_t k = 0; k < n; ++k) face += ' ' + std::to_string(k);
+    const std::string off = "OFF\n" + std::to_string(n) + " 1 0\n" + points + face + '\n';
+    const std::string ply = "ply\nformat ascii 1.0\nelement vertex " + std::to_string(n) +
+                            "\nproperty double x\nproperty double y\nproperty double z\n"
+                            "element face 1\nproperty list uchar int vertex_indices\nend_header\n" +
+                            points + face + '\n';
+    for (const auto& [ext, text] : std::vector<std::pair<std::string, std::string>>{
+             {".obj", obj}, {".off", off}, {".ply", ply}}) {
       SCOPED_TRACE("polygon " + std::to_string(i) + ext);
       const auto path = dir / ("polygon" + std::to_string(i) + ext);
       write_file(path, text);
@@ -233,7 +422,9 @@ AssimpMesh assimp_reference(const std::filesystem::path& path) {
 
 TEST(LoadPrecision, RealFilesAgreeWithAssimpWithinFloatRounding) {
   for (const char* name : {"OBJ/spider.obj", "OBJ/box.obj", "OBJ/concave_polygon.obj",
-                           "OBJ/WusonOBJ.obj", "OBJ/regr01.obj"}) {
+                           "OBJ/WusonOBJ.obj", "OBJ/regr01.obj", "OFF/Cube.off", "OFF/Wuson.off",
+                           "PLY/Wuson.ply", "PLY/cube.ply", "PLY/cube_binary.ply",
+                           "PLY/cube_uv.ply", "PLY/float-color.ply"}) {
     SCOPED_TRACE(name);
     const auto path = assimp_model(name);
     if (!std::filesystem::exists(path)) GTEST_SKIP() << path << " is absent";
@@ -257,6 +448,31 @@ TEST(LoadPrecision, RealFilesAgreeWithAssimpWithinFloatRounding) {
       }
     }
     EXPECT_LE(worst, 2.5e-7);
+  }
+}
+
+TEST(LoadPrecision, WusonOffAndPlyGiveTheFilesOwnNumbers) {
+  // The same model in both formats, coordinates printed with 6 decimals (none a float value):
+  // both load the same doubles, the nearest to the text.
+  const auto off_path = assimp_model("OFF/Wuson.off");
+  const auto ply_path = assimp_model("PLY/Wuson.ply");
+  if (!std::filesystem::exists(off_path) || !std::filesystem::exists(ply_path)) {
+    GTEST_SKIP() << "assimp-testmodels' Wuson files are absent";
+  }
+  auto sorted_vertices = [](const Mesh& m) {
+    std::vector<std::array<double, 3>> v;
+    for (const Vec3& p : m.vertices) v.push_back({p.x(), p.y(), p.z()});
+    std::sort(v.begin(), v.end());
+    return v;
+  };
+  const auto off = sorted_vertices(load_mesh(off_path));
+  const auto ply = sorted_vertices(load_mesh(ply_path));
+  EXPECT_EQ(off, ply);
+  // Lines of both files, as text.
+  for (const auto& p : {std::array<double, 3>{0.0, 0.498178, -0.278300},
+                        std::array<double, 3>{0.163313, 0.540615, -0.268688}}) {
+    EXPECT_TRUE(std::binary_search(off.begin(), off.end(), p));
+    EXPECT_TRUE(std::binary_search(ply.begin(), ply.end(), p));
   }
 }
 
