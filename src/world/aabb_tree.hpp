@@ -129,16 +129,29 @@ class AabbTree {
     if (task.a != task.b && !near(nodes_[task.a], nodes_[task.b], gap)) return;
     // Every entry on the stack is a subtree (a == b) or a pair of nodes already found near: the
     // children are tested before they are pushed, while their parent's cache line is warm.
+    // Pushing an entry starts loading the children it will read when popped (the traversal waits
+    // on memory: a large world's tree does not fit the caches).
     Stack<PairTask> stack;
-    stack.push(task);
+    const auto push = [&](std::int32_t a, std::int32_t b) {
+      stack.push({a, b});
+      for (const std::int32_t i : {a, b}) {
+        const Node& n = nodes_[i];
+        if (n.child1 != kNull) {
+          __builtin_prefetch(&nodes_[n.child1]);
+          __builtin_prefetch(&nodes_[n.child2]);
+        }
+        if (a == b) break;
+      }
+    };
+    push(task.a, task.b);
     while (!stack.empty()) {
       const PairTask t = stack.pop();
       const Node& a = nodes_[t.a];
       if (t.a == t.b) {  // pairs within one subtree
         if (a.child1 == kNull) continue;
-        if (nodes_[a.child1].child1 != kNull) stack.push({a.child1, a.child1});
-        if (nodes_[a.child2].child1 != kNull) stack.push({a.child2, a.child2});
-        if (near(nodes_[a.child1], nodes_[a.child2], gap)) stack.push({a.child1, a.child2});
+        if (nodes_[a.child1].child1 != kNull) push(a.child1, a.child1);
+        if (nodes_[a.child2].child1 != kNull) push(a.child2, a.child2);
+        if (near(nodes_[a.child1], nodes_[a.child2], gap)) push(a.child1, a.child2);
         continue;
       }
       const Node& b = nodes_[t.b];
@@ -147,11 +160,11 @@ class AabbTree {
       if (a_leaf && b_leaf) {
         visit(static_cast<std::uint32_t>(a.child2), static_cast<std::uint32_t>(b.child2));
       } else if (b_leaf || (!a_leaf && span(a) >= span(b))) {
-        if (near(nodes_[a.child1], b, gap)) stack.push({a.child1, t.b});
-        if (near(nodes_[a.child2], b, gap)) stack.push({a.child2, t.b});
+        if (near(nodes_[a.child1], b, gap)) push(a.child1, t.b);
+        if (near(nodes_[a.child2], b, gap)) push(a.child2, t.b);
       } else {
-        if (near(a, nodes_[b.child1], gap)) stack.push({t.a, b.child1});
-        if (near(a, nodes_[b.child2], gap)) stack.push({t.a, b.child2});
+        if (near(a, nodes_[b.child1], gap)) push(t.a, b.child1);
+        if (near(a, nodes_[b.child2], gap)) push(t.a, b.child2);
       }
     }
   }

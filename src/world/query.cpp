@@ -37,16 +37,15 @@ void check_delta(Scalar delta, const char* function, const char* argument) {
   }
 }
 
-// Every admitted pair (i, j) of live slots, i < j, whose tree boxes are within `gap` of each other
-// and for which accept(i, j) holds; sorted by (i, j). One traversal of the tree against itself,
-// split into independent tasks on a large world; the order of the answer never depends on them.
-template <class Accept>
-std::vector<SlotPair> self_pairs(const World::Impl& w, Scalar gap, Accept&& accept) {
-  const auto emit_into = [&](std::vector<SlotPair>& out) {
-    return [&w, &accept, &out](std::uint32_t a, std::uint32_t b) {
-      const std::uint32_t i = std::min(a, b);
-      const std::uint32_t j = std::max(a, b);
-      if (accept(i, j) && w.admits(i, j)) out.emplace_back(i, j);
+// Every pair (i, j) of live slots, i < j, whose tree boxes are within `gap` of each other, sorted
+// by (i, j); the callers filter them (filters, exact boxes) afterwards, in slot order: during the
+// traversal each pair's object data would be a cache miss of its own. One traversal of the tree
+// against itself, split into independent tasks on a large world; the order of the answer never
+// depends on them.
+std::vector<SlotPair> self_pairs(const World::Impl& w, Scalar gap) {
+  const auto emit_into = [](std::vector<SlotPair>& out) {
+    return [&out](std::uint32_t a, std::uint32_t b) {
+      out.emplace_back(std::min(a, b), std::max(a, b));
     };
   };
   std::vector<SlotPair> out;
@@ -134,10 +133,10 @@ std::vector<ObjectPair> World::candidate_pairs(Scalar delta) const {
     const Scalar margin = delta + 1e-9 * (reach + std::max(ca.norm(), cb.norm()));
     return geometry::obb_overlap(posed_obb(a), posed_obb(b), margin);
   };
-  const std::vector<SlotPair> slots = self_pairs(w, gap, accept);
   std::vector<ObjectPair> out;
-  out.reserve(slots.size());
-  for (const auto& [i, j] : slots) out.push_back({w.id_of(i), w.id_of(j)});
+  for (const auto& [i, j] : self_pairs(w, gap)) {
+    if (w.admits(i, j) && accept(i, j)) out.push_back({w.id_of(i), w.id_of(j)});
+  }
   return out;
 }
 
@@ -145,18 +144,20 @@ std::vector<PairContacts> World::collide_all(const CollisionRequest& request) co
   check_delta(request.delta, "World::collide_all", "request.delta");
   const Impl& w = *impl_;
   const Scalar delta = request.delta;
-  // Tree boxes contain the objects' boxes grown by their rounding allowances, so pairs whose boxes
-  // pass the test below have tree boxes within delta of each other.
-  const std::vector<SlotPair> candidates =
-      self_pairs(w, delta * (1 + 1e-12), [&](std::uint32_t i, std::uint32_t j) {
-        const Bounds& a = w.bounds[i];
-        return detail::boxes_overlap(grown(a.box, exact_growth(a, delta)), w.bounds[j].box);
-      });
+  // Tree boxes contain the objects' boxes grown by their rounding allowances, so every pair whose
+  // boxes pass the box test below has tree boxes within delta of each other.
+  const std::vector<SlotPair> candidates = self_pairs(w, delta * (1 + 1e-12));
   std::vector<PairContacts> results(candidates.size());
   std::vector<char> hit(candidates.size(), 0);
   for_each_pair(candidates.size(), [&](std::size_t k) {
-    const Object& a = w.objects[candidates[k].first];
-    const Object& b = w.objects[candidates[k].second];
+    const auto [i, j] = candidates[k];
+    const Bounds& bi = w.bounds[i];
+    if (!detail::boxes_overlap(grown(bi.box, exact_growth(bi, delta)), w.bounds[j].box) ||
+        !w.admits(i, j)) {
+      return;
+    }
+    const Object& a = w.objects[i];
+    const Object& b = w.objects[j];
     if (spheres_apart(a, b, delta)) return;
     CollisionResult r;
     if (collide(*a.model, a.pose, *b.model, b.pose, request, r)) {
