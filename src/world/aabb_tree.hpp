@@ -66,6 +66,12 @@ class AabbTree {
   }
   /// The box stored for `object` (its box rounded outward to single precision).
   [[nodiscard]] Aabb box(std::uint32_t object) const { return to_aabb(nodes_[leaf_of_[object]]); }
+  /// Starts loading the leaf of `object` (if any), for a later box() or set_box().
+  void prefetch(std::uint32_t object) const {
+    if (object < leaf_of_.size() && leaf_of_[object] != kNull) {
+      __builtin_prefetch(&nodes_[leaf_of_[object]], 1);
+    }
+  }
   [[nodiscard]] std::size_t size() const { return leaves_; }
   [[nodiscard]] std::size_t memory_bytes() const {
     return nodes_.capacity() * sizeof(Node) +

@@ -213,10 +213,21 @@ void World::set_poses(std::span<const ObjectId> ids, std::span<const Transform> 
                                                         : Impl::kEscaped | Impl::kJumped;
     w.tree.set_box(slot, tight);
   };
+  // The leaves are in the tree's order, not the arguments': each one is a cache miss on a large
+  // world unless loaded a few objects ahead.
+  constexpr std::size_t kAhead = 8;
+  const auto fit_range = [&](std::size_t first, std::size_t last) {
+    for (std::size_t k = first; k < std::min(last, first + kAhead); ++k) w.tree.prefetch(ids[k].slot);
+    for (std::size_t k = first; k < last; ++k) {
+      if (k + kAhead < last) w.tree.prefetch(ids[k + kAhead].slot);
+      fit(k);
+    }
+  };
   if (ids.size() < kParallelBatch) {
-    for (std::size_t k = 0; k < ids.size(); ++k) fit(k);
+    fit_range(0, ids.size());
   } else {
-    tbb::parallel_for(std::size_t{0}, ids.size(), fit);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, ids.size()),
+                      [&](const tbb::blocked_range<std::size_t>& r) { fit_range(r.begin(), r.end()); });
   }
   std::size_t escaped = 0;
   for (const ObjectId id : ids) escaped += w.flags[id.slot] != 0;
