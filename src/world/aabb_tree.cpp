@@ -21,14 +21,16 @@ namespace antcd::detail {
 
 namespace {
 
-// The largest float <= x, and the smallest float >= x (boxes rounded outward). Finite x only:
-// one step of the float's bit pattern (its magnitude grows by one unit in the last place).
+// A float <= x, and a float >= x (boxes rounded outward), at most two units in the last place away;
+// finite x only. The nearest float moved outward by at least one unit in the last place
+// (|f| 2^-23 is one or two of them) plus the smallest normal float (for f = 0; still a step under
+// flush-to-zero): no branch on which way the conversion rounded, which is a coin toss and was
+// mispredicted for every leaf box of a moving world. Beyond the float range: -infinity, or the
+// largest float.
 float down(Scalar x) {
-  const auto f = static_cast<float>(x);
-  if (static_cast<Scalar>(f) <= x) return f;
-  return f > 0 ? std::bit_cast<float>(std::bit_cast<std::uint32_t>(f) - 1)
-               : (f == 0 ? -std::numeric_limits<float>::denorm_min()
-                         : std::bit_cast<float>(std::bit_cast<std::uint32_t>(f) + 1));
+  constexpr Scalar kMax = std::numeric_limits<float>::max();
+  const auto f = static_cast<float>(std::min(std::max(x, -kMax), kMax));
+  return f - (std::abs(f) * 0x1p-23F + std::numeric_limits<float>::min());
 }
 float up(Scalar x) { return -down(-x); }
 
