@@ -62,10 +62,12 @@ Aabb posed_box(const Model& model, const Transform& pose, Scalar& tolerance) {
   const Vec3 ext = (pose.rotation * root.obb.axes).cwiseAbs() * root.obb.half_extents;
   // The root box's axis-aligned bounds (not cut by the root sphere: World::candidate_pairs
   // relies on the tree boxes containing the posed root box).
-  const Scalar sphere_reach = root.sphere.radius + pose.apply(root.sphere.center).norm();
-  // Relative allowance for the box fit and for rounding in the pose applied here; the same scale
-  // as the hierarchy traversal's (bvh/traverse.hpp).
-  tolerance = 1e-9 * (sphere_reach + c.norm() + ext.norm()) + 1e-300;
+  // Magnitudes by their 1-norms (bounds on the 2-norms, no square roots: this runs for every object
+  // of every frame).
+  const Scalar sphere_reach = root.sphere.radius + pose.apply(root.sphere.center).lpNorm<1>();
+  // Relative allowance for the box fit and for rounding in the pose applied here; at least the
+  // scale of the hierarchy traversal's (bvh/traverse.hpp).
+  tolerance = 1e-9 * (sphere_reach + c.lpNorm<1>() + ext.lpNorm<1>()) + 1e-300;
   Aabb box;
   box.min = c - ext;
   box.max = c + ext;
