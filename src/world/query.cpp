@@ -104,14 +104,28 @@ std::vector<SlotPair> self_pairs(const World::Impl& w, Scalar gap) {
   return out;
 }
 
-// Runs test(k) for k in [0, m), in parallel when worth it.
+// Runs test(k) for k in [0, m), in parallel when worth it; warm(k) (which may only prefetch) is
+// called a few indices ahead of test(k), on the same thread.
+template <class Test, class Warm>
+void for_each_pair(std::size_t m, Test&& test, Warm&& warm) {
+  constexpr std::size_t kAhead = 8;
+  const auto run = [&](std::size_t first, std::size_t last) {
+    for (std::size_t k = first; k < std::min(last, first + kAhead); ++k) warm(k);
+    for (std::size_t k = first; k < last; ++k) {
+      if (k + kAhead < last) warm(k + kAhead);
+      test(k);
+    }
+  };
+  if (m < kParallelPairs) {
+    run(0, m);
+  } else {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, m),
+                      [&](const tbb::blocked_range<std::size_t>& r) { run(r.begin(), r.end()); });
+  }
+}
 template <class Test>
 void for_each_pair(std::size_t m, Test&& test) {
-  if (m < kParallelPairs) {
-    for (std::size_t k = 0; k < m; ++k) test(k);
-  } else {
-    tbb::parallel_for(std::size_t{0}, m, test);
-  }
+  for_each_pair(m, test, [](std::size_t) {});
 }
 
 // The box grown for an exact query at distance delta: every point within delta of the object's
@@ -198,6 +212,12 @@ std::vector<PairContacts> World::collide_all(const CollisionRequest& request) co
       hit[k] = 1;
       results[k].contacts = std::move(r.contacts);
     }
+  }, [&](std::size_t k) {
+    // The second objects of the sorted pairs are scattered through memory: load them ahead.
+    const std::uint32_t j = candidates[k].second;
+    __builtin_prefetch(&w.bounds[j]);
+    __builtin_prefetch(&w.objects[j]);
+    __builtin_prefetch(&w.objects[j].pose.translation);
   });
   std::vector<PairContacts> out;
   for (std::size_t k = 0; k < candidates.size(); ++k) {
