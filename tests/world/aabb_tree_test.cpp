@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <random>
 #include <set>
 #include <utility>
@@ -155,6 +156,34 @@ TEST(AabbTree, StaysTightOnManyObjectsSpreadThroughAVolume) {
     }
     tree.refit();
     EXPECT_LT(tree.relative_area(), 200);
+  }
+}
+
+TEST(AabbTree, StoredBoxesContainTheirBoxesAndStayWithinFourUlps) {
+  // Leaf boxes are stored in single precision rounded outward without branches: whatever way the
+  // conversion rounds, at zero, near the denormals, at float binade boundaries and beyond the float
+  // range, the stored box must contain the given one, and not be much looser.
+  const Scalar big = static_cast<Scalar>(std::numeric_limits<float>::max());
+  const std::vector<Scalar> values = {0.0,  -0.0,     1e-300,     -1e-300, 1e-40,    -1e-40,
+                                      1.0,  -1.0,     1 + 1e-12,  1 - 1e-12, -(1 + 1e-12),
+                                      0.1,  -0.1,     1.0 / 3.0,  -2.0 / 3.0, 16777217.0,
+                                      1e30, -1e30,    big,        -big,    1e39,     -1e39};
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<Scalar> u(-1e4, 1e4);
+  std::vector<Scalar> all = values;
+  for (int k = 0; k < 2000; ++k) all.push_back(u(rng));
+  for (const Scalar lo : all) {
+    const Aabb b{Vec3::Constant(lo), Vec3::Constant(lo)};
+    AabbTree tree;  // one leaf: the rounding alone
+    tree.insert(0, b);
+    const Aabb stored = tree.box(0);
+    EXPECT_TRUE((stored.min.array() <= b.min.array()).all()) << lo;
+    EXPECT_TRUE((stored.max.array() >= b.max.array()).all()) << lo;
+    if (std::abs(lo) < 1e38) {
+      const Scalar ulp = std::max(std::abs(lo) * 0x1p-23, Scalar{1e-37});
+      EXPECT_LE(b.min.x() - stored.min.x(), 4 * ulp) << lo;
+      EXPECT_LE(stored.max.x() - b.max.x(), 4 * ulp) << lo;
+    }
   }
 }
 
