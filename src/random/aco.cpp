@@ -81,7 +81,6 @@ namespace antcd::detail {
   return summary;
 }
 
-
 namespace {
 
 struct Cell {
@@ -117,11 +116,10 @@ inline float from_order_key(std::int32_t key) {
 /// order), then alpha' log2 tau - beta' log2(d_oj + d_ij + max(0, f - reach)) into `out`.
 /// Returns the largest of the 16 lanes (padding lanes repeat the first candidate, so it is the
 /// real lanes' largest).
-inline float remaining_log_weights(const Recorder::Lanes& l, float cax, float cay,
-                                                float caz, float cbx, float cby, float cbz,
-                                                const float* log_tau, float travelled,
-                                                float alpha, float beta, float denom_floor,
-                                                float* step, float* out) {
+inline float remaining_log_weights(const Recorder::Lanes& l, float cax, float cay, float caz,
+                                   float cbx, float cby, float cbz, const float* log_tau,
+                                   float travelled, float alpha, float beta, float denom_floor,
+                                   float* step, float* out) {
   std::int32_t best = std::numeric_limits<std::int32_t>::min();
   for (std::uint32_t k = 0; k < Recorder::kLanes; ++k) {
     const float sa = std::abs(cax - l.ax[k]) + std::abs(cay - l.ay[k]) + std::abs(caz - l.az[k]);
@@ -149,18 +147,18 @@ inline float lane_max(const float* v) {
 
 /// Roulette weights 2^(l - top) of the first `count` lanes, 0 for the padding.
 inline void roulette_weights(const float* log_weight, float top, std::uint32_t count,
-                                          float* weight) {
+                             float* weight) {
   for (std::uint32_t k = 0; k < Recorder::kLanes; ++k) {
     const float w = fast_exp2(log_weight[k] - top);
     weight[k] = k < count ? w : 0.0f;
   }
 }
 
-/// log2 tau of the 16 lanes' pheromone blocks (row offset of i plus column of j): vector gathers
-/// in the AVX2 clone.
+/// log2 tau of the 16 lanes' pheromone blocks (row offset of i plus column of j), inlined into
+/// run_colony's clones.
 inline void gather_log_tau(const float* log_tau, const std::uint32_t* block_row,
-                                        const std::uint32_t* block_col, const std::uint32_t* ci,
-                                        const std::uint32_t* cj, float* out) {
+                           const std::uint32_t* block_col, const std::uint32_t* ci,
+                           const std::uint32_t* cj, float* out) {
   for (std::uint32_t k = 0; k < Recorder::kLanes; ++k) {
     out[k] = log_tau[block_row[ci[k]] + block_col[cj[k]]];
   }
