@@ -5,9 +5,10 @@
 // sphere gap and the OBB separating-axis gap, minus a rounding allowance). The walk is depth
 // first, descending both nodes of a pair at once, nearest child pair first (by signed gap), so a
 // close leaf pair is reached early and its distance prunes most of the rest; at the leaves, cheap
-// box, plane and centroid-axis gaps screen the exact triangle distances. A pair is pruned when its bound cannot beat the best distance found (minus
-// the request's tolerance) or exceeds the request's upper bound; the smallest bound pruned below
-// the best distance is kept, which makes DistanceResult::lower_bound a proof.
+// box, plane and centroid-axis gaps screen the exact triangle distances. A pair is pruned when
+// its bound cannot beat the best distance found (minus the request's tolerance) or exceeds the
+// request's upper bound; the smallest bound pruned below the best distance is kept, which makes
+// DistanceResult::lower_bound a proof.
 #include <antcd/distance.hpp>
 
 #include "bvh/traverse.hpp"
@@ -161,7 +162,8 @@ DistanceResult distance(const Model& a, const Transform& pose_a, const Model& b,
     const BvhNode& nb = nodes_b[mb.index];
     const Scalar sphere =
         detail::sphere_gap(na.sphere, mb.sphere_center, nb.sphere.radius) - frame.margin;
-    if (search.prune(std::max(sphere, Scalar{0}))) return Bound{std::max(sphere, Scalar{0}), sphere};
+    if (search.prune(std::max(sphere, Scalar{0})))
+      return Bound{std::max(sphere, Scalar{0}), sphere};
     if (!mb.has_box) {
       mb.axes = rot * nb.obb.axes;
       mb.center = rot * nb.obb.center + trans;

@@ -337,7 +337,8 @@ ANTCD_VECTOR_CLONES void run_colony(const FeatureSpace& space, const SearchReque
             // J_k: cells not yet on this ant's path (the tabu list of Eq. 7).
             const std::uint32_t h = filter_bit(ui, uj);
             if ((filter[h >> 6] >> (h & 63)) & 1) {
-              for (std::uint32_t t = len; t-- > 0 && ok;) ok = !(path[t].i == ui && path[t].j == uj);
+              for (std::uint32_t t = len; t-- > 0 && ok;)
+                ok = !(path[t].i == ui && path[t].j == uj);
             }
           }
           cand_i[count] = ui;
