@@ -2,6 +2,7 @@
 // PLY readers follow (exact_coordinates.hpp); and the OFF face-count check.
 #include "mesh/exact_coordinates.hpp"
 
+#include "mesh/ply_layout.hpp"
 #include "mesh/polygon_soup.hpp"
 
 #include <algorithm>
@@ -116,57 +117,6 @@ std::optional<OffHeader> read_off_header(OffWalk& w) {
   return h;
 }
 
-bool blank(char c) { return c == ' ' || c == '\t' || c == '\r'; }
-
-/// Splits `line` at blanks (space, tab, a CR before the line end) into at most `max` tokens;
-/// returns how many there were (counting on past `max`).
-std::size_t split(std::string_view line, std::string_view* tokens, std::size_t max) {
-  std::size_t n = 0;
-  while (true) {
-    while (!line.empty() && blank(line.front())) line.remove_prefix(1);
-    if (line.empty()) return n;
-    std::size_t k = 0;
-    while (k < line.size() && !blank(line[k])) ++k;
-    if (n < max) tokens[n] = line.substr(0, k);
-    ++n;
-    line.remove_prefix(k);
-  }
-}
-
-bool parse_count(std::string_view token, std::uint64_t& value) {
-  const auto [ptr, ec] = std::from_chars(token.data(), token.data() + token.size(), value);
-  return ec == std::errc{} && ptr == token.data() + token.size();
-}
-
-/// The byte size of a PLY scalar type, 0 for a name this reader does not know.
-std::size_t ply_type_size(std::string_view type) {
-  if (type == "char" || type == "uchar" || type == "int8" || type == "uint8") return 1;
-  if (type == "short" || type == "ushort" || type == "int16" || type == "uint16") return 2;
-  if (type == "int" || type == "uint" || type == "int32" || type == "uint32" || type == "float" ||
-      type == "float32") {
-    return 4;
-  }
-  if (type == "double" || type == "float64") return 8;
-  return 0;
-}
-
-struct PlyProperty {
-  std::string_view name;
-  std::string_view type;  // "list" for a list property
-};
-
-struct PlyElement {
-  std::string_view name;
-  std::uint64_t count = 0;
-  std::vector<PlyProperty> properties;
-  [[nodiscard]] bool has_list() const {
-    for (const PlyProperty& p : properties) {
-      if (p.type == "list") return true;
-    }
-    return false;
-  }
-};
-
 }  // namespace
 
 CoordinateFormat coordinate_format(const std::filesystem::path& path) {
@@ -191,7 +141,7 @@ std::optional<std::vector<Vec3>> off_coordinates(const std::string& text) {
     // A vertex line cut at assimp's line limit, a comment line, fewer than three numbers:
     // assimp reads these differently or not at all.
     if (!w.next_line(line) || line.size() >= OffWalk::kLineLimit) return std::nullopt;
-    if (split(line, tokens.data(), tokens.size()) < 3) return std::nullopt;
+    if (split_blanks(line, tokens.data(), tokens.size()) < 3) return std::nullopt;
     for (int k = 0; k < 3; ++k) {
       if (parse_coordinate(tokens[static_cast<std::size_t>(k)], p[k]) != std::errc{}) {
         return std::nullopt;
@@ -235,59 +185,17 @@ std::string unsafe_off_body(const std::string& text, std::uintmax_t file_size) {
 
 std::optional<std::vector<Vec3>> ply_coordinates(const std::string& text) {
   const std::string_view all(text);
-  std::size_t pos = 0;
-  // The next line without its "\n" (and without a CR before it); false at the end.
-  auto next_line = [&](std::string_view& line) {
-    if (pos >= all.size()) return false;
-    std::size_t end = all.find('\n', pos);
-    if (end == std::string_view::npos) end = all.size();
-    line = all.substr(pos, end - pos);
-    pos = end + 1;
-    if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
-    return true;
-  };
-
-  // ---- header ----
+  PlyHeader header;
+  if (!parse_ply_header(all, header).empty()) return std::nullopt;
+  const bool foreign_order =
+      header.format == PlyFormat::BinaryBigEndian ||
+      (header.format == PlyFormat::BinaryLittleEndian && std::endian::native != std::endian::little);
+  if (foreign_order) return std::nullopt;
+  const bool ascii = header.format == PlyFormat::Ascii;
+  const std::vector<PlyElement>& elements = header.elements;
+  const std::size_t pos = header.body;
+  BodyLines lines(all, pos);
   std::string_view line;
-  std::array<std::string_view, 6> t;
-  if (!next_line(line) || split(line, t.data(), t.size()) != 1 || (t[0] != "ply" && t[0] != "PLY")) {
-    return std::nullopt;
-  }
-  bool ascii = false;
-  bool format_seen = false;
-  std::vector<PlyElement> elements;
-  bool ended = false;
-  while (!ended && next_line(line)) {
-    const std::size_t n = split(line, t.data(), t.size());
-    // assimp passes over lines it does not know (comment, obj_info, free text such as
-    // Blender 2.47's "Created by ..."); so does this reader.
-    if (n == 0 || (t[0] != "end_header" && t[0] != "format" && t[0] != "element" &&
-                   t[0] != "property")) {
-      continue;
-    }
-    if (t[0] == "end_header" && n == 1) {
-      ended = true;
-    } else if (t[0] == "format" && n == 3 && !format_seen) {
-      format_seen = true;
-      if (t[1] == "ascii") {
-        ascii = true;
-      } else if (t[1] != "binary_little_endian" || std::endian::native != std::endian::little) {
-        return std::nullopt;
-      }
-    } else if (t[0] == "element" && n == 3) {
-      PlyElement e;
-      e.name = t[1];
-      if (!parse_count(t[2], e.count)) return std::nullopt;
-      elements.push_back(e);
-    } else if (t[0] == "property" && !elements.empty() && n == 3 && ply_type_size(t[1]) != 0) {
-      elements.back().properties.push_back({t[2], t[1]});
-    } else if (t[0] == "property" && !elements.empty() && n == 5 && t[1] == "list") {
-      elements.back().properties.push_back({t[4], "list"});
-    } else {
-      return std::nullopt;
-    }
-  }
-  if (!ended || !format_seen) return std::nullopt;
 
   // ---- the vertex element: one, without lists, with x, y and z ----
   std::size_t vertex_element = elements.size();
@@ -303,7 +211,7 @@ std::optional<std::vector<Vec3>> ply_coordinates(const std::string& text) {
   std::array<bool, 3> found{};
   for (std::size_t i = 0; i < vertex.properties.size(); ++i) {
     for (std::size_t k = 0; k < 3; ++k) {
-      if (vertex.properties[i].name == std::string_view("xyz" + k, 1)) {
+      if (vertex.properties[i].name == std::string_view("xyz").substr(k, 1)) {
         if (found[k]) return std::nullopt;
         found[k] = true;
         column[k] = i;
@@ -322,12 +230,12 @@ std::optional<std::vector<Vec3>> ply_coordinates(const std::string& text) {
     // One line per element instance (as assimp reads them); blank lines are not expected.
     for (std::size_t e = 0; e < vertex_element; ++e) {
       for (std::uint64_t i = 0; i < elements[e].count; ++i) {
-        if (!next_line(line)) return std::nullopt;
+        if (!lines.next(line)) return std::nullopt;
       }
     }
     std::vector<std::string_view> tokens(vertex.properties.size());
     for (Vec3& p : out) {
-      if (!next_line(line) || split(line, tokens.data(), tokens.size()) < tokens.size()) {
+      if (!lines.next(line) || split_blanks(line, tokens.data(), tokens.size()) < tokens.size()) {
         return std::nullopt;
       }
       for (int k = 0; k < 3; ++k) {

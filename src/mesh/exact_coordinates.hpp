@@ -4,9 +4,9 @@
 // assimp (built for float here) stays the reader of these formats' structure: which faces, their
 // corners, how many vertices. These readers follow the same layout only as far as needed to find
 // each vertex's x, y and z: OFF's header then one line per vertex, PLY's header (element order,
-// the vertex element's properties) then its body. They give up (std::nullopt) on any layout they
-// do not follow exactly, and load.cpp uses their values only when every one of them agrees with
-// the float assimp read for the same vertex (see load.cpp).
+// the vertex element's properties; parsed by ply_layout.hpp) then its body. They give up
+// (std::nullopt) on any layout they do not follow exactly, and load.cpp uses their values only
+// when every one of them agrees with the float assimp read for the same vertex (see load.cpp).
 #pragma once
 
 #include <antcd/mesh.hpp>

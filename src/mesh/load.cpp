@@ -17,6 +17,7 @@
 #include <antcd/mesh.hpp>
 
 #include "mesh/exact_coordinates.hpp"
+#include "mesh/ply_layout.hpp"
 #include "mesh/polygon_soup.hpp"
 
 #include <assimp/config.h>
@@ -375,8 +376,20 @@ Mesh load_mesh(const std::filesystem::path& path) {
   const bool off_content = head_size >= 3 && (head[0] | 0x20) == 'o' &&
                            (head[1] | 0x20) == 'f' && (head[2] | 0x20) == 'f';
   const bool off_reader = ext == ".off" || (off_content && ext != ".stl");
+  // assimp's PLY reader gets a file by extension, or by content starting with "ply" when no
+  // reader of its extension takes it.
+  const bool ply_content = head_size >= 3 && (head[0] | 0x20) == 'p' &&
+                           (head[1] | 0x20) == 'l' && (head[2] | 0x20) == 'y';
+  const bool ply_reader =
+      ext == ".ply" || (ply_content && !off_reader && ext != ".stl" &&
+                        detail::text_format(path) != detail::TextFormat::Obj);
+  if (const std::string problem =
+          unterminated_ply_header(path, std::string_view(head.data(), head_size));
+      !problem.empty()) {
+    throw MeshError(source, "not a readable mesh: " + problem);
+  }
   std::string text;
-  if (off_reader || coordinates != detail::CoordinateFormat::None) {
+  if (off_reader || ply_reader || coordinates != detail::CoordinateFormat::None) {
     text = detail::read_whole_file(path, source);
   }
   if (off_reader) {
@@ -384,10 +397,10 @@ Mesh load_mesh(const std::filesystem::path& path) {
       throw MeshError(source, "not a readable mesh: " + problem);
     }
   }
-  if (const std::string problem =
-          unterminated_ply_header(path, std::string_view(head.data(), head_size));
-      !problem.empty()) {
-    throw MeshError(source, "not a readable mesh: " + problem);
+  if (ply_reader) {
+    if (const std::string problem = detail::unsafe_ply_layout(text); !problem.empty()) {
+      throw MeshError(source, "not a readable mesh: " + problem);
+    }
   }
 
   // OBJ is read in double precision; assimp (single precision) reads the rest.

@@ -21,6 +21,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
@@ -485,6 +486,112 @@ TEST(LoadMeshErrors, OffHeaderAnnouncingTooMuch) {
              "COFF\n3 1 0\n0 0 0 255 0 0 255\n1 0 0 255 0 0 255\n"
              "0 1 0 255 0 0 255\n3 0 1 2\n");
   EXPECT_EQ(load_mesh(dir / "honest.off").triangles.size(), 1u);
+}
+
+TEST(LoadMeshErrors, PlyBodyThatDoesNotHoldItsHeader) {
+  // assimp's PLY reader trusts the header and corrupted its heap on this input (found by
+  // fuzzing): 4 vertices of 28 bytes announced, 77 bytes of body, and "face" declared twice.
+  const auto dir = fresh_temp_dir("err_ply_layout");
+  const std::string header =
+      "ply\nformat binary_little_endian 1.0\nelement vertex 4\nproperty float nx\n"
+      "property double x\nproperty double y\nproperty double z\nelement face 2\n"
+      "property list uchar int vertex_indices\n";
+  write_file(dir / "twice.ply", header + "property double y\nelement face 4\n"
+                                         "property list uchar int vertex_indices\nend_header\n" +
+                                    std::string(77, '\x01'));
+  expect_load_error(dir / "twice.ply", "declares element 'face' a second time");
+  // The same without the second element: the body ends inside the third vertex.
+  write_file(dir / "short.ply", header + "end_header\n" + std::string(77, '\x01'));
+  expect_load_error(dir / "short.ply", "the PLY body ends inside element 'vertex' #2 (of 4)");
+
+  // A binary triangle (x y z as float, then one face), whole and with its face list cut short.
+  std::string tri = "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\n"
+                    "property float y\nproperty float z\nelement face 1\n"
+                    "property list uchar int vertex_indices\nproperty uchar flags\nend_header\n";
+  for (const float c : {0.f, 0.f, 0.f, 1.f, 0.f, 0.f, 0.f, 1.f, 0.f}) test::append_f32(tri, c);
+  const std::string vertices_only = tri;
+  tri.push_back('\x03');
+  for (const std::uint32_t i : {0u, 1u, 2u}) test::append_u32(tri, i);
+  tri.push_back('\x00');  // flags, after the list
+  write_file(dir / "tri.ply", tri);
+  EXPECT_EQ(load_mesh(dir / "tri.ply").triangles.size(), 1u);
+  write_file(dir / "cut.ply", tri.substr(0, tri.size() - 2));
+  expect_load_error(dir / "cut.ply", "the PLY body ends inside element 'face' #0 (of 1)");
+  std::string far = vertices_only + '\x03';
+  for (const std::uint32_t i : {0u, 1u, 7u}) test::append_u32(far, i);
+  far.push_back('\x00');
+  write_file(dir / "far.ply", far);
+  expect_load_error(dir / "far.ply",
+                    "element 'face' #0 names vertex 7 but the file has 3 vertices");
+  // A signed list length below zero.
+  std::string negative = vertices_only;
+  negative.replace(negative.find("list uchar"), 10, "list char");
+  negative += std::string(1, '\xff') + std::string(13, '\0');  // length -1, then 13 bytes
+  write_file(dir / "negative.ply", negative);
+  expect_load_error(dir / "negative.ply", "gives list 'vertex_indices' a negative length");
+
+  // The same triangle big-endian is read (counts and indices in the file's byte order).
+  std::string be = "ply\nformat binary_big_endian 1.0\nelement vertex 3\nproperty float x\n"
+                   "property float y\nproperty float z\nelement face 1\n"
+                   "property list ushort int vertex_indices\nend_header\n";
+  const auto append_be = [&](std::uint32_t bits, int bytes) {
+    for (int shift = 8 * (bytes - 1); shift >= 0; shift -= 8) {
+      be.push_back(static_cast<char>(bits >> shift));
+    }
+  };
+  for (const float c : {0.f, 0.f, 0.f, 1.f, 0.f, 0.f, 0.f, 1.f, 0.f}) {
+    append_be(std::bit_cast<std::uint32_t>(c), 4);
+  }
+  append_be(3, 2);
+  for (const std::uint32_t i : {0u, 1u, 2u}) append_be(i, 4);
+  write_file(dir / "be.ply", be);
+  EXPECT_EQ(load_mesh(dir / "be.ply").triangles.size(), 1u);
+  be.back() = '\x03';
+  write_file(dir / "be_far.ply", be);
+  expect_load_error(dir / "be_far.ply", "names vertex 3 but the file has 3 vertices");
+}
+
+TEST(LoadMeshErrors, PlyAsciiThatDoesNotHoldItsHeader) {
+  const auto dir = fresh_temp_dir("err_ply_ascii");
+  const std::string header =
+      "ply\nformat ascii 1.0\ncomment made by hand\nelement vertex 3\nproperty double x\n"
+      "property double y\nproperty double z\nelement face 1\n"
+      "property list uchar int vertex_indices\nend_header\n";
+  write_file(dir / "ok.ply", header + "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
+  EXPECT_EQ(load_mesh(dir / "ok.ply").triangles.size(), 1u);
+  write_file(dir / "short_line.ply", header + "0 0 0\n1 0\n0 1 0\n3 0 1 2\n");
+  expect_load_error(dir / "short_line.ply",
+                    "element 'vertex' #1 has fewer values than its properties");
+  write_file(dir / "short_list.ply", header + "0 0 0\n1 0 0\n0 1 0\n4 0 1 2\n");
+  expect_load_error(dir / "short_list.ply",
+                    "element 'face' #0 has fewer values than its properties");
+  write_file(dir / "no_face.ply", header + "0 0 0\n1 0 0\n0 1 0\n");
+  expect_load_error(dir / "no_face.ply", "the PLY body ends before element 'face' #0 (of 1)");
+  write_file(dir / "far.ply", header + "0 0 0\n1 0 0\n0 1 0\n3 0 1 -1\n");
+  expect_load_error(dir / "far.ply", "names vertex -1 but the file has 3 vertices");
+  write_file(dir / "length.ply", header + "0 0 0\n1 0 0\n0 1 0\nthree 0 1 2\n");
+  expect_load_error(dir / "length.ply", "gives list 'vertex_indices' the length 'three'");
+  // A header announcing billions is refused at once, before anything is allocated for it.
+  const auto start = std::chrono::steady_clock::now();
+  std::string liar = header;
+  liar.replace(liar.find("vertex 3"), 8, "vertex 4000000000");
+  write_file(dir / "liar.ply", liar + "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
+  expect_load_error(dir / "liar.ply", "the PLY header announces 4000000000 of element 'vertex'");
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 5.0);
+  // Content starting with "ply" under an extension no reader claims gets the same check.
+  write_file(dir / "short_line.dat", header + "0 0 0\n1 0\n0 1 0\n3 0 1 2\n");
+  expect_load_error(dir / "short_line.dat", "has fewer values than its properties");
+  // Unknown types and malformed lines in the header are named.
+  std::string typo = header;
+  typo.replace(typo.find("double y"), 8, "dubble y");
+  write_file(dir / "typo.ply", typo + "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
+  expect_load_error(dir / "typo.ply",
+                    "the PLY header's line 6 ('property dubble y') is not understood");
+  // Two packaged files assimp read as empty are now refused with the reason.
+  expect_load_error(assimp_model("PLY/pond.0.ply"),
+                    "the PLY body ends inside element 'vertex' #70048 (of 70051)");
+  expect_load_error(assimp_model("PLY/issue623.ply"),
+                    "element 'vertex' #0 has fewer values than its properties");
 }
 
 TEST(LoadMeshErrors, PackagedInvalidFilesDoNotCrash) {
