@@ -174,6 +174,36 @@ std::string unsafe_ply_layout(std::string_view text) {
     return element_label(e, i) + " names vertex " + std::to_string(index) + " but the file has " +
            std::to_string(vertices) + " vertices";
   };
+  // assimp knows these element names; for any other it reads the count from the start of the
+  // name itself (its leading digits, as a wrapping 32-bit number, so usually 0): it skips no
+  // instance of such an element and misreads every element after it. "4999999999vertex 4" made
+  // it allocate 17 GB (found by fuzzing). Such an element is accepted only last (or empty), where
+  // assimp's 0 instances change nothing, and not walked.
+  const auto known = [](std::string_view name) {
+    return name == "vertex" || name == "face" || name == "tristrips" || name == "edge" ||
+           name == "material";
+  };
+  std::vector<PlyElement> walked;
+  for (std::size_t k = 0; k < header.elements.size(); ++k) {
+    const PlyElement& e = header.elements[k];
+    if (known(e.name)) {
+      walked.push_back(e);
+      continue;
+    }
+    if (!e.name.empty() && e.name.front() >= '0' && e.name.front() <= '9') {
+      return "the PLY element name '" + std::string(e.name.substr(0, 40)) +
+             "' starts with a digit";
+    }
+    for (std::size_t later = k + 1; later < header.elements.size(); ++later) {
+      if (e.count > 0 && known(header.elements[later].name)) {
+        return "the PLY element '" + std::string(e.name.substr(0, 40)) +
+               "' comes before element '" + std::string(header.elements[later].name) +
+               "': assimp reads no instance of an element it does not know (it knows vertex, "
+               "face, tristrips, edge, material) and would misread the rest";
+      }
+    }
+  }
+  header.elements = std::move(walked);
   const std::size_t body_size = text.size() - std::min(header.body, text.size());
   for (const PlyElement& e : header.elements) {
     if (e.count > body_size) {

@@ -587,6 +587,23 @@ TEST(LoadMeshErrors, PlyAsciiThatDoesNotHoldItsHeader) {
   write_file(dir / "typo.ply", typo + "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
   expect_load_error(dir / "typo.ply",
                     "the PLY header's line 6 ('property dubble y') is not understood");
+  // An element assimp does not know: it reads none of its instances (the count is taken from the
+  // name), so one before the vertices would shift them; last, it changes nothing.
+  std::string blob = header;
+  blob.replace(blob.find("element vertex"), 0, "element blob 1\nproperty uchar r\n");
+  write_file(dir / "blob_first.ply", blob + "7\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
+  expect_load_error(dir / "blob_first.ply",
+                    "the PLY element 'blob' comes before element 'vertex': assimp reads no "
+                    "instance");
+  std::string last = header;
+  last.replace(last.find("end_header"), 0, "element camera 1\nproperty float view_px\n");
+  write_file(dir / "camera_last.ply", last + "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n0.5\n");
+  EXPECT_EQ(load_mesh(dir / "camera_last.ply").triangles.size(), 1u);
+  std::string digits = header;
+  digits.replace(digits.find("element vertex 3"), 16, "element 4999999999vertex 3");
+  write_file(dir / "digits.ply", digits + "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
+  expect_load_error(dir / "digits.ply",
+                    "the PLY element name '4999999999vertex' starts with a digit");
   // Two packaged files assimp read as empty are now refused with the reason.
   expect_load_error(assimp_model("PLY/pond.0.ply"),
                     "the PLY body ends inside element 'vertex' #70048 (of 70051)");
