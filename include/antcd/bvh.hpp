@@ -110,6 +110,9 @@ struct TraversalStats {
   std::uint64_t sphere_rejects = 0;  ///< pairs culled by the sphere test
   std::uint64_t obb_rejects = 0;     ///< pairs culled by the OBB test (after passing spheres)
   std::uint64_t leaf_pairs = 0;      ///< leaf pairs whose volumes overlap
+  /// Pairs culled because no triangle of a large leaf meets the other (smaller) node's box, each
+  /// triangle tested alone (exact queries only; see collide.hpp).
+  std::uint64_t triangle_rejects = 0;
 };
 
 /// A pair of leaves (node indices) whose bounding volumes overlap.

@@ -58,7 +58,9 @@ bool collide(const Model& a, const Transform& pose_a, const Model& b, const Tran
   std::array<Vec3, kCached> hi_b;
   std::uint32_t cached_leaf = UINT32_MAX;
 
-  const auto on_leaf = [&](std::uint32_t la, std::uint32_t lb) {
+  // live_a / live_b: the leaves' triangles the traversal has not ruled out (dual_traverse).
+  const auto on_leaf = [&](std::uint32_t la, std::uint32_t lb, std::uint32_t live_a,
+                           std::uint32_t live_b) {
     const BvhNode& na = nodes_a[la];
     const BvhNode& nb = nodes_b[lb];
     const bool cached = nb.count <= kCached;
@@ -72,12 +74,15 @@ bool collide(const Model& a, const Transform& pose_a, const Model& b, const Tran
       cached_leaf = lb;
     }
     for (std::uint32_t ia = na.first_or_right; ia < na.first_or_right + na.count; ++ia) {
+      const std::uint32_t ka = ia - na.first_or_right;
+      if (ka < detail::kMaskedLeaf && (live_a >> ka & 1u) == 0) continue;
       const Vec3& a0 = verts_a[3 * ia];
       const Vec3& a1 = verts_a[3 * ia + 1];
       const Vec3& a2 = verts_a[3 * ia + 2];
       const Vec3 lo_a = a0.cwiseMin(a1).cwiseMin(a2);
       const Vec3 hi_a = a0.cwiseMax(a1).cwiseMax(a2);
       for (std::uint32_t k = 0; k < nb.count; ++k) {
+        if (k < detail::kMaskedLeaf && (live_b >> k & 1u) == 0) continue;
         const std::uint32_t jb = nb.first_or_right + k;
         Vec3 tb[3];
         const Vec3* b0 = nullptr;

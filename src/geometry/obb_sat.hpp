@@ -1,9 +1,12 @@
 // Private: the 15-axis separating-axis test between two oriented boxes, inline so that the
-// hierarchy's traversal (src/bvh/traverse.hpp) and geometry::obb_overlap share one definition.
+// hierarchy's traversal (src/bvh/traverse.hpp) and geometry::obb_overlap share one definition;
+// and the 13-axis test between a triangle and a box the traversal uses to drop a large leaf's
+// triangles one by one.
 #pragma once
 
 #include <antcd/math.hpp>
 
+#include <algorithm>
 #include <cmath>
 
 namespace antcd::geometry::detail {
@@ -35,6 +38,44 @@ inline bool obb_separated(const Vec3& ea, const Vec3& eb, const Mat3& r, const V
       const Scalar rb = eb[j1] * abs_r(i, j2) + eb[j2] * abs_r(i, j1);
       const Scalar dist = std::abs(t[i2] * r(i1, j) - t[i1] * r(i2, j));
       if (dist > ra + rb) return true;
+    }
+  }
+  return false;
+}
+
+/// True when a separating axis exists between the triangle (u0, u1, u2) and the box centred at
+/// the origin with the coordinate axes and half extents `e` (the triangle given in the box's
+/// coordinates). Axes: the box's three, the triangle's normal, and the nine products of a box
+/// axis with a triangle edge (Akenine-Möller's triangle/box overlap test). Every vertex is
+/// projected on every axis (nothing is assumed about vertices that should project alike), so
+/// rounding only moves projections by about 1e-16 of |axis| times the coordinates' magnitude: a
+/// caller that widens `e` by more than that (the traversal's margin, 1e-9 of the scene's scale)
+/// never sees a false separation, whatever the axis' length.
+inline bool triangle_box_separated(const Vec3& u0, const Vec3& u1, const Vec3& u2, const Vec3& e) {
+  // Axes of the box.
+  for (int k = 0; k < 3; ++k) {
+    if (std::min({u0[k], u1[k], u2[k]}) > e[k] || std::max({u0[k], u1[k], u2[k]}) < -e[k]) {
+      return true;
+    }
+  }
+  const auto separated_along = [&](const Vec3& axis) {
+    const Scalar p0 = axis.dot(u0);
+    const Scalar p1 = axis.dot(u1);
+    const Scalar p2 = axis.dot(u2);
+    const Scalar r = e.dot(axis.cwiseAbs());
+    return std::min({p0, p1, p2}) > r || std::max({p0, p1, p2}) < -r;
+  };
+  const Vec3 f0 = u1 - u0;
+  const Vec3 f1 = u2 - u1;
+  const Vec3 f2 = u0 - u2;
+  // The triangle's normal.
+  if (separated_along(f0.cross(f1))) return true;
+  // Box axis x triangle edge: e_x x f = (0, -f.z, f.y), e_y x f = (f.z, 0, -f.x),
+  // e_z x f = (-f.y, f.x, 0).
+  for (const Vec3* f : {&f0, &f1, &f2}) {
+    if (separated_along(Vec3(0, -f->z(), f->y())) || separated_along(Vec3(f->z(), 0, -f->x())) ||
+        separated_along(Vec3(-f->y(), f->x(), 0))) {
+      return true;
     }
   }
   return false;

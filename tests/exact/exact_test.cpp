@@ -131,6 +131,50 @@ TEST(ExactCollide, LeafSizesAndCovarianceMethodsGiveTheSameAnswers) {
   }
 }
 
+TEST(ExactCollide, LargeLeavesAroundASmallMeshMatchBruteForce) {
+  // A coarse box (2 x 2 triangles per face, leaves of several big triangles) against a small fine
+  // sphere near its surface: the traversal tests the big leaves' triangles one by one against the
+  // sphere's nodes (dual_traverse's masks). Answers must equal brute force from both sides, with
+  // leaves small enough to be masked and too large to be (over 32 triangles).
+  const Mesh box = make_box(Vec3(1.0, 0.7, 0.5), 2);
+  const Model sphere(make_sphere(0.06, 16, 8), {}, "small sphere");
+  std::mt19937_64 rng(21);
+  std::uniform_real_distribution<Scalar> u(-1, 1);
+  for (const std::uint32_t leaf : {4u, 8u, 48u}) {
+    const Model big(box, {leaf, CovarianceMethod::AreaWeightedCentroid}, "coarse box");
+    std::uint64_t triangle_rejects = 0;
+    int colliding = 0;
+    const int poses = 150;
+    for (int i = 0; i < poses; ++i) {
+      // A point on a random face of the box, pushed in or out by up to 0.09.
+      const int axis = static_cast<int>(rng() % 3);
+      Vec3 c(u(rng) * 1.0, u(rng) * 0.7, u(rng) * 0.5);
+      const Vec3 half(1.0, 0.7, 0.5);
+      c[axis] = (u(rng) < 0 ? -1 : 1) * (half[axis] + 0.09 * u(rng));
+      Transform pb = test::random_pose(rng, 0.0);
+      pb.translation = c;
+      const std::string what = "leaf " + std::to_string(leaf) + " pose " + std::to_string(i);
+      for (const Scalar delta : {0.0, 0.02}) {
+        expect_matches_brute_force(big, Transform::identity(), sphere, pb, delta, what);
+        expect_matches_brute_force(sphere, pb, big, Transform::identity(), delta,
+                                   what + " swapped");
+        if (HasFatalFailure()) return;
+      }
+      const CollisionResult r = collide(big, Transform::identity(), sphere, pb);
+      triangle_rejects += r.traversal.triangle_rejects;
+      colliding += r.colliding ? 1 : 0;
+    }
+    EXPECT_GT(colliding, poses / 10) << "leaf " << leaf;
+    EXPECT_LT(colliding, poses - poses / 10) << "leaf " << leaf;
+    // The masks are used for leaves of 2 to 32 triangles, never above.
+    if (leaf <= 32) {
+      EXPECT_GT(triangle_rejects, 0u) << "leaf " << leaf;
+    } else {
+      EXPECT_EQ(triangle_rejects, 0u) << "leaf " << leaf;
+    }
+  }
+}
+
 // Two unit boxes (half extent 1) side by side along x, at exactly representable offsets.
 class BoxContact : public ::testing::Test {
  protected:
