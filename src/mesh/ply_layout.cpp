@@ -118,6 +118,10 @@ std::string parse_ply_header(std::string_view text, PlyHeader& header) {
     const std::string where = "the PLY header's line " + std::to_string(lines.number());
     if (t[0] == "end_header" && n == 1) {
       if (!format_seen) return "the PLY header has no format line";
+      // Nothing after end_header: no body, so no mesh. (assimp 5.2 never returned on some such
+      // files, e.g. a 15-character unknown header line before an end_header that ends the file;
+      // found by fuzzing.)
+      if (lines.pos() > text.size()) return "the PLY file ends on its end_header line (no body)";
       header.body = lines.pos();
       return {};
     }

@@ -604,6 +604,9 @@ TEST(LoadMeshErrors, PlyAsciiThatDoesNotHoldItsHeader) {
   write_file(dir / "digits.ply", digits + "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
   expect_load_error(dir / "digits.ply",
                     "the PLY element name '4999999999vertex' starts with a digit");
+  // A header that ends the file (assimp never returned on this one).
+  write_file(dir / "no_body.ply", "ply\nformat ascii 1.0\nabcdefghijklmnopqrstuvwxyz\nend_header");
+  expect_load_error(dir / "no_body.ply", "the PLY file ends on its end_header line (no body)");
   // Two packaged files assimp read as empty are now refused with the reason.
   expect_load_error(assimp_model("PLY/pond.0.ply"),
                     "the PLY body ends inside element 'vertex' #70048 (of 70051)");
