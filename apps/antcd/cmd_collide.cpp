@@ -80,6 +80,7 @@ int run_collide(const CollideOptions& o) {
                   {"sphere_rejects", result.traversal.sphere_rejects},
                   {"obb_rejects", result.traversal.obb_rejects},
                   {"leaf_pairs", result.traversal.leaf_pairs},
+                  {"triangle_rejects", result.traversal.triangle_rejects},
                   {"triangle_tests", result.triangle_tests}};
     std::cout << j.dump(2) << '\n';
     return 0;

@@ -95,10 +95,12 @@ void bind_collide(py::module_& m) {
             d["sphere_rejects"] = r.traversal.sphere_rejects;
             d["obb_rejects"] = r.traversal.obb_rejects;
             d["leaf_pairs"] = r.traversal.leaf_pairs;
+            d["triangle_rejects"] = r.traversal.triangle_rejects;
             d["triangle_tests"] = r.triangle_tests;
             return d;
           },
-          "Traversal counters: node_pairs, sphere_rejects, obb_rejects, leaf_pairs, triangle_tests.")
+          "Traversal counters: node_pairs, sphere_rejects, obb_rejects, leaf_pairs, "
+          "triangle_rejects, triangle_tests.")
       .def("__repr__", [](const CollisionResult& r) {
         return std::string("<antcd.CollisionResult colliding=") + (r.colliding ? "True" : "False") +
                " contacts=" + std::to_string(r.contacts.size()) + ">";

@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 import antcd
-from conftest import box_mesh, quaternion_matrix, random_quaternion, run_cli
+from conftest import box_mesh, quaternion_matrix, random_quaternion, run_cli, sphere_mesh
 
 PAIRS = [("PLY/Wuson.ply", "STL/Spider_binary.stl"), ("OFF/Wuson.off", "PLY/Wuson.ply"),
          ("OBJ/spider.obj", "OFF/Cube.off"), ("STL/sphereWithHole.stl", "PLY/cube.ply")]
@@ -172,3 +172,21 @@ def test_normals_and_depths_equal_the_cli(models_dir, cli):
     assert checked >= 2
     with pytest.raises(ValueError, match="manifold_points"):
         antcd.collide(a, None, b, None, manifold_points=-1)
+
+
+def test_large_leaves_are_culled_triangle_by_triangle():
+    """A small sphere just inside a big box's +x face: the box's leaves (4 big triangles each) are
+    tested triangle by triangle against the sphere's nodes (stats['triangle_rejects']); the
+    verdict follows the gap to the face."""
+    v, f = box_mesh((10.0, 10.0, 10.0))
+    big = antcd.Model(v, f)
+    sv, sf = sphere_mesh(0.2, 16, 8)
+    small = antcd.Model(sv, sf)
+    pose = np.eye(4)
+    pose[:3, 3] = (9.7, 1.0, 2.0)  # 0.1 from the face x = 10
+    apart = antcd.collide(big, None, small, pose)
+    assert not apart.colliding
+    assert apart.stats["triangle_rejects"] > 0
+    assert antcd.collide(big, None, small, pose, delta=0.11).colliding
+    pose[0, 3] = 9.85  # crosses the face
+    assert antcd.collide(big, None, small, pose).colliding
