@@ -18,6 +18,7 @@
 
 #include "mesh/exact_coordinates.hpp"
 #include "mesh/ply_layout.hpp"
+#include "mesh/stl_binary.hpp"
 #include "mesh/polygon_soup.hpp"
 
 #include <assimp/config.h>
@@ -368,11 +369,16 @@ Mesh load_mesh(const std::filesystem::path& path) {
       !problem.empty()) {
     throw MeshError(source, "not a readable mesh: " + problem);
   }
+  std::string ext = path.extension().string();
+  for (char& c : ext) c = static_cast<char>(c | 0x20);
+  // Binary STL is read natively (stl_binary.hpp), for the files assimp's STL reader would take as
+  // binary (its extension; its size rule).
+  if (ext == ".stl" && detail::is_binary_stl(std::string_view(head.data(), head_size), size)) {
+    return detail::read_binary_stl(path, source);
+  }
   // The whole text, for assimp's OFF reader's check and for the coordinates of OFF and PLY. The
   // OFF reader gets a file by extension, or by content starting with "off" (unless .stl).
   const detail::CoordinateFormat coordinates = detail::coordinate_format(path);
-  std::string ext = path.extension().string();
-  for (char& c : ext) c = static_cast<char>(c | 0x20);
   const bool off_content = head_size >= 3 && (head[0] | 0x20) == 'o' &&
                            (head[1] | 0x20) == 'f' && (head[2] | 0x20) == 'f';
   const bool off_reader = ext == ".off" || (off_content && ext != ".stl");

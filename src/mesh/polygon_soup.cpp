@@ -103,19 +103,28 @@ void triangulate(const std::vector<Vec3>& p, Triangles& tri) {
 }
 
 struct PositionHash {
-  std::size_t operator()(const Vec3& p) const {
-    std::size_t h = 0;
-    for (int k = 0; k < 3; ++k) {
-      const double x = p[k] == 0 ? 0.0 : p[k];  // -0 and +0 are the same position
-      std::uint64_t bits = 0;
-      std::memcpy(&bits, &x, sizeof bits);
-      h ^= std::hash<std::uint64_t>{}(bits) + 0x9E3779B97F4A7C15ULL + (h << 6) + (h >> 2);
-    }
-    return h;
-  }
+  std::size_t operator()(const Vec3& p) const { return position_hash(p); }
 };
 
 }  // namespace
+
+std::size_t position_hash(const Vec3& p) {
+  // Each coordinate's bits folded in through MurmurHash3's 64-bit finaliser: round coordinates
+  // (integers, halves) differ only in their high bits, and every output bit must depend on them.
+  std::uint64_t h = 0x9E3779B97F4A7C15ULL;
+  for (int k = 0; k < 3; ++k) {
+    const double x = p[k] == 0 ? 0.0 : p[k];  // -0 and +0 are the same position
+    std::uint64_t bits = 0;
+    std::memcpy(&bits, &x, sizeof bits);
+    h ^= bits;
+    h ^= h >> 33;
+    h *= 0xFF51AFD7ED558CCDULL;
+    h ^= h >> 33;
+    h *= 0xC4CEB9FE1A85EC53ULL;
+    h ^= h >> 33;
+  }
+  return static_cast<std::size_t>(h);
+}
 
 std::errc parse_coordinate(std::string_view token, double& value) {
   const char* first = token.data();

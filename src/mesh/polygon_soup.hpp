@@ -43,6 +43,9 @@ PolygonSoup read_obj(const std::filesystem::path& path, const std::string& sourc
 /// or a soup without triangles.
 Mesh soup_to_mesh(const PolygonSoup& soup, const std::string& source);
 
+/// A hash of a position that gives -0 and +0 the same value (equal positions, equal hashes).
+std::size_t position_hash(const Vec3& p);
+
 /// Joins vertices at bit-identical positions (-0 and +0 alike), renumbering the triangles.
 void join_identical_positions(Mesh& mesh);
 

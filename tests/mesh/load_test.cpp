@@ -223,6 +223,50 @@ TEST(LoadMesh, BinaryStlCubeJoinsCorners) {
   EXPECT_EQ(corner_positions(m), corner_positions(cube));
 }
 
+TEST(LoadMesh, BinaryStlNativeReaderKeepsFileOrderAndJoinsOnlyEqualPositions) {
+  // Binary STL is read without assimp (src/mesh/stl_binary.cpp): vertices numbered in order of
+  // first use, corners in file order, -0 and +0 joined, positions 1e-6 apart kept apart (assimp
+  // joined corners closer than 1e-5), a facet with two equal corners kept (zero area), and a
+  // header starting with "solid" still read as binary when the size says so.
+  const auto dir = fresh_temp_dir("load_stl_native");
+  std::string data(80, '\0');
+  const std::string solid = "solid but binary";
+  data.replace(0, solid.size(), solid);
+  append_u32(data, 4);
+  append_stl_facet(data, {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0)});
+  append_stl_facet(data, {Vec3(1, 0, 0), Vec3(1, 1, 0), Vec3(0, 1, 0)});
+  append_stl_facet(data, {Vec3(-0.0, 1, 0), Vec3(1, 1, 0), Vec3(1, 1, 1e-6)});
+  append_stl_facet(data, {Vec3(2, 2, 2), Vec3(2, 2, 2), Vec3(3, 2, 2)});
+  write_file(dir / "mixed.STL", data);
+  const Mesh m = load_mesh(dir / "mixed.STL");
+  ASSERT_EQ(m.vertices.size(), 7u);
+  const std::vector<Vec3> expected = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(1, 1, 0),
+                                      Vec3(1, 1, static_cast<float>(1e-6)), Vec3(2, 2, 2),
+                                      Vec3(3, 2, 2)};
+  EXPECT_EQ(m.vertices, expected);
+  const std::vector<TriangleIndices> triangles = {{0, 1, 2}, {1, 3, 2}, {2, 3, 4}, {5, 5, 6}};
+  EXPECT_EQ(m.triangles, triangles);
+  EXPECT_EQ(m.degenerate_triangle_count(), 1u);
+}
+
+TEST(LoadMesh, BinaryStlTestModelsKeepTheirCounts) {
+  // The counts assimp's reader gave for the packaged binary STL files (same meshes, checked bit
+  // for bit when the native reader replaced it).
+  struct Expected {
+    const char* file;
+    std::size_t vertices;
+    std::size_t triangles;
+  };
+  for (const Expected& e : {Expected{"STL/Wuson.stl", 2117, 3732},
+                            Expected{"STL/3DSMaxExport.STL", 1042, 2000},
+                            Expected{"STL/Spider_binary.stl", 722, 1368}}) {
+    SCOPED_TRACE(e.file);
+    const Mesh m = load_mesh(assimp_model(e.file));
+    EXPECT_EQ(m.vertices.size(), e.vertices);
+    EXPECT_EQ(m.triangles.size(), e.triangles);
+  }
+}
+
 TEST(LoadMesh, AsciiStlCubeJoinsCorners) {
   const auto dir = fresh_temp_dir("load_ascii_stl_cube");
   const Mesh cube = make_box(Vec3(0.5, 0.25, 2));
@@ -409,6 +453,31 @@ TEST(LoadMeshErrors, TruncatedBinaryStlWithSolidHeader) {
   data.resize(84 + 50 * 10);
   write_file(dir / "truncated.stl", data);
   expect_load_error(dir / "truncated.stl", "contains no triangles");
+}
+
+TEST(LoadMeshErrors, BinaryStlNonFiniteCoordinateNamesTheFacet) {
+  const auto dir = fresh_temp_dir("err_stl_nan");
+  std::string data(80, '\0');
+  append_u32(data, 3);
+  append_stl_facet(data, {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0)});
+  append_stl_facet(data, {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0)});
+  append_stl_facet(data, {Vec3(0, 0, 0), Vec3(1, std::numeric_limits<double>::infinity(), 0),
+                          Vec3(0, 1, 0)});
+  write_file(dir / "inf.stl", data);
+  expect_load_error(dir / "inf.stl", "facet 2 has a non-finite coordinate");
+  std::string nan = data;
+  const float quiet_nan = std::numeric_limits<float>::quiet_NaN();
+  std::memcpy(&nan[84 + 12], &quiet_nan, 4);  // facet 0, first corner's x
+  write_file(dir / "nan.stl", nan);
+  expect_load_error(dir / "nan.stl", "facet 0 has a non-finite coordinate");
+}
+
+TEST(LoadMeshErrors, BinaryStlWithoutFacets) {
+  const auto dir = fresh_temp_dir("err_stl_zero");
+  std::string data(80, '\0');
+  append_u32(data, 0);
+  write_file(dir / "zero.stl", data);
+  expect_load_error(dir / "zero.stl", "contains no triangles");
 }
 
 TEST(LoadMeshErrors, ObjIndexOutOfRange) {
