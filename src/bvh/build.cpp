@@ -6,28 +6,133 @@
 #include "bvh/model_cache.hpp"
 #include "bvh/split.hpp"
 #include "geometry/obb_fit.hpp"
+#include "util/huge_pages.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <span>
 #include <stdexcept>
+
+#include <memory>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_invoke.h>
 
 namespace antcd {
 
 namespace {
 
 using BuildTriangle = geometry::detail::FitTriangle;
+using detail::SplitCentroid;
+
+// Large trees are built by parallel tasks (oneTBB) over the subtrees of the top levels. A node's
+// box and sphere are fitted from its triangles in the order they have when the node is reached,
+// and the split that orders them is decided by the centroids alone, so each subtree is the same
+// whatever thread builds it, and the tree is the same as a one-thread build, bit for bit. Each
+// task writes its nodes straight into their final places: a first pass over the centroids alone
+// (the same splits, 24 bytes per triangle instead of 112) counts every top subtree's nodes.
+constexpr std::size_t kTaskLevels = 6;       // tasks for the nodes of depth < 6 (64 subtrees)
+constexpr std::size_t kTaskMinimum = 16384;  // smaller ranges are built by the task that has them
+
+/// Triangle `i` of `mesh` for the build; area 0 marks a triangle left out (zero area).
+BuildTriangle make_build_triangle(const Mesh& mesh, std::size_t i) {
+  const auto& t = mesh.triangles[i];
+  BuildTriangle bt{static_cast<std::uint32_t>(i),
+                   {mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]]},
+                   Vec3::Zero(),
+                   0};
+  if (geometry::is_degenerate_triangle(bt.v[0], bt.v[1], bt.v[2])) return bt;
+  // The centroid of a triangle (its static moments over its area) is its vertex mean.
+  bt.centroid = (bt.v[0] + bt.v[1] + bt.v[2]) / 3.0;
+  bt.area = 0.5 * (bt.v[1] - bt.v[0]).cross(bt.v[2] - bt.v[0]).norm();
+  return bt;
+}
+
+bool is_task_node(std::size_t size, std::size_t depth, std::size_t leaf_size) {
+  return depth < kTaskLevels && size >= kTaskMinimum && size > leaf_size;
+}
+
+/// Nodes of the subtree over `items` at `depth`, counted with the build's own splits.
+std::size_t count_nodes(std::span<SplitCentroid> items, std::size_t depth, std::size_t leaf_size) {
+  if (items.size() <= leaf_size) return 1;
+  const std::size_t mid = detail::split_triangles(items, depth);
+  return 1 + count_nodes(items.first(mid), depth + 1, leaf_size) +
+         count_nodes(items.subspan(mid), depth + 1, leaf_size);
+}
+
+/// The node counts of the top levels' subtrees, indexed like a heap (root 0, children 2h+1 and
+/// 2h+2), for the nodes the build splits in tasks and their children.
+class NodeCounts {
+ public:
+  NodeCounts(std::span<SplitCentroid> items, std::size_t leaf_size)
+      : leaf_size_(leaf_size), counts_((std::size_t{2} << kTaskLevels) - 1, 0) {
+    total_ = count(items, 0, 0);
+  }
+  [[nodiscard]] std::size_t total() const { return total_; }
+  [[nodiscard]] std::size_t operator[](std::size_t heap) const { return counts_[heap]; }
+
+ private:
+  std::size_t count(std::span<SplitCentroid> items, std::size_t depth, std::size_t heap) {
+    std::size_t n = 0;
+    if (!is_task_node(items.size(), depth, leaf_size_)) {
+      n = count_nodes(items, depth, leaf_size_);
+    } else {
+      const std::size_t mid = detail::split_triangles(items, depth);
+      std::size_t left = 0;
+      std::size_t right = 0;
+      tbb::parallel_invoke([&] { left = count(items.first(mid), depth + 1, 2 * heap + 1); },
+                           [&] { right = count(items.subspan(mid), depth + 1, 2 * heap + 2); });
+      n = 1 + left + right;
+    }
+    counts_[heap] = n;
+    return n;
+  }
+
+  std::size_t leaf_size_;
+  std::vector<std::size_t> counts_;
+  std::size_t total_ = 0;
+};
 
 class Builder {
  public:
-  Builder(std::vector<BuildTriangle>& tris, const BuildOptions& options,
+  Builder(std::span<BuildTriangle> tris, const BuildOptions& options, const NodeCounts& counts,
           std::vector<BvhNode>& nodes)
-      : tris_(tris), options_(options), nodes_(nodes) {}
+      : tris_(tris), options_(options), counts_(counts), nodes_(nodes) {}
 
-  std::size_t build(std::size_t begin, std::size_t end, std::size_t depth) {
-    const std::size_t index = nodes_.size();
-    nodes_.emplace_back();
+  /// Builds the subtree over tris[begin, end) at `depth` (heap position `heap` while in the top
+  /// levels) into nodes [index, index + its node count). Returns its height.
+  std::size_t build_task(std::size_t begin, std::size_t end, std::size_t depth, std::size_t heap,
+                         std::size_t index) const {
+    if (!is_task_node(end - begin, depth, options_.leaf_size)) {
+      std::size_t cursor = index;
+      const std::size_t height = build(begin, end, depth, cursor);
+      if (cursor - index != counts_[heap]) {
+        throw std::logic_error("hierarchy build: a subtree's node count differs from its count");
+      }
+      return height;
+    }
+    BvhNode node = fit_node(begin, end);
+    const std::size_t mid = begin + detail::split_triangles(range(begin, end), depth);
+    const std::size_t right_index = index + 1 + counts_[2 * heap + 1];
+    std::size_t left_height = 0;
+    std::size_t right_height = 0;
+    tbb::parallel_invoke(
+        [&] { left_height = build_task(begin, mid, depth + 1, 2 * heap + 1, index + 1); },
+        [&] { right_height = build_task(mid, end, depth + 1, 2 * heap + 2, right_index); });
+    node.first_or_right = static_cast<std::uint32_t>(right_index);
+    nodes_[index] = node;
+    return 1 + std::max(left_height, right_height);
+  }
+
+ private:
+  /// One task's subtree, depth first: the node at `cursor`, then its left subtree, then its
+  /// right one; `cursor` ends past the subtree's last node.
+  std::size_t build(std::size_t begin, std::size_t end, std::size_t depth,
+                    std::size_t& cursor) const {
+    const std::size_t index = cursor++;
     BvhNode node = fit_node(begin, end);
     std::size_t height = 1;
     if (end - begin <= options_.leaf_size) {
@@ -35,18 +140,17 @@ class Builder {
       node.count = static_cast<std::uint32_t>(end - begin);
     } else {
       const std::size_t mid = begin + detail::split_triangles(range(begin, end), depth);
-      const std::size_t left_height = build(begin, mid, depth + 1);
-      node.first_or_right = static_cast<std::uint32_t>(nodes_.size());
-      const std::size_t right_height = build(mid, end, depth + 1);
+      const std::size_t left_height = build(begin, mid, depth + 1, cursor);
+      node.first_or_right = static_cast<std::uint32_t>(cursor);
+      const std::size_t right_height = build(mid, end, depth + 1, cursor);
       height += std::max(left_height, right_height);
     }
     nodes_[index] = node;
     return height;
   }
 
- private:
   std::span<BuildTriangle> range(std::size_t begin, std::size_t end) const {
-    return std::span<BuildTriangle>(tris_).subspan(begin, end - begin);
+    return tris_.subspan(begin, end - begin);
   }
 
   BvhNode fit_node(std::size_t begin, std::size_t end) const {
@@ -65,8 +169,9 @@ class Builder {
     return node;
   }
 
-  std::vector<BuildTriangle>& tris_;
+  std::span<BuildTriangle> tris_;
   const BuildOptions& options_;
+  const NodeCounts& counts_;
   std::vector<BvhNode>& nodes_;
 };
 
@@ -82,38 +187,79 @@ Model::Model(Mesh mesh, const BuildOptions& options, std::string source)
     throw antcd::ArgumentError(source_ + ": leaf size must be at least 1");
   }
   validate_mesh(mesh_, source_);
-  closed_ = antcd::is_closed(mesh_);
 
-  std::vector<BuildTriangle> tris;
-  tris.reserve(mesh_.triangles.size());
-  for (std::uint32_t i = 0; i < mesh_.triangles.size(); ++i) {
-    const auto& t = mesh_.triangles[i];
-    BuildTriangle bt{
-        i, {mesh_.vertices[t[0]], mesh_.vertices[t[1]], mesh_.vertices[t[2]]}, Vec3::Zero(), 0};
-    if (geometry::is_degenerate_triangle(bt.v[0], bt.v[1], bt.v[2])) {
-      ++stats_.degenerate_triangles;
-      continue;
-    }
-    // The centroid of a triangle (its static moments over its area) is its vertex mean.
-    bt.centroid = (bt.v[0] + bt.v[1] + bt.v[2]) / 3.0;
-    bt.area = 0.5 * (bt.v[1] - bt.v[0]).cross(bt.v[2] - bt.v[0]).norm();
-    tris.push_back(bt);
-  }
-  if (tris.empty()) {
+  // Every triangle with its corners, centroid and area; zero-area ones are left out of the tree.
+  // The large arrays below are filled by parallel loops (each element on its own, so the result
+  // does not depend on the threads) and allocated without being written first, so that their
+  // first-write page faults, a large part of a multi-million-triangle build, are shared too.
+  const std::size_t n = mesh_.triangles.size();
+  std::unique_ptr<BuildTriangle[]> tris_storage(new BuildTriangle[n]);
+  std::size_t kept = n;
+  std::atomic<bool> some_zero_area{false};
+  tbb::parallel_invoke(
+      // Independent of the tree: decided while the triangles are prepared.
+      [&] { closed_ = antcd::is_closed(mesh_); },
+      [&] {
+        detail::advise_huge_pages(tris_storage.get(), n);
+        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096),
+                          [&](const tbb::blocked_range<std::size_t>& r) {
+                            bool zero = false;
+                            for (std::size_t i = r.begin(); i < r.end(); ++i) {
+                              tris_storage[i] = make_build_triangle(mesh_, i);
+                              zero = zero || tris_storage[i].area == 0;
+                            }
+                            if (zero) some_zero_area.store(true, std::memory_order_relaxed);
+                          });
+        if (!some_zero_area.load()) return;
+        // Left-packing of the triangles with an area, in mesh order.
+        kept = 0;
+        for (std::size_t i = 0; i < n; ++i) {
+          if (tris_storage[i].area == 0) continue;
+          if (kept != i) tris_storage[kept] = tris_storage[i];
+          ++kept;
+        }
+      });
+  stats_.degenerate_triangles = n - kept;
+  if (kept == 0) {
     throw MeshError(source_, "has no triangle of non-zero area");
   }
+  const std::span<BuildTriangle> tris(tris_storage.get(), kept);
 
-  nodes_.reserve(2 * (tris.size() / options_.leaf_size + 1));
-  Builder builder(tris, options_, nodes_);
-  stats_.depth = builder.build(0, tris.size(), 0);
-  nodes_.shrink_to_fit();
-
-  leaf_triangles_.resize(tris.size());
-  leaf_vertices_.resize(3 * tris.size());
-  for (std::size_t i = 0; i < tris.size(); ++i) {
-    leaf_triangles_[i] = tris[i].index;
-    for (int k = 0; k < 3; ++k) leaf_vertices_[3 * i + k] = tris[i].v[k];
+  {
+    std::unique_ptr<SplitCentroid[]> centroids(new SplitCentroid[kept]);
+    detail::advise_huge_pages(centroids.get(), kept);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, kept, 4096),
+                      [&](const tbb::blocked_range<std::size_t>& r) {
+                        for (std::size_t i = r.begin(); i < r.end(); ++i) {
+                          centroids[i].centroid = tris[i].centroid;
+                        }
+                      });
+    const NodeCounts counts(std::span<SplitCentroid>(centroids.get(), kept), options_.leaf_size);
+    centroids.reset();
+    nodes_.reserve(counts.total());
+    detail::advise_huge_pages(nodes_.data(), nodes_.capacity());
+    nodes_.resize(counts.total());
+    const Builder builder(tris, options_, counts, nodes_);
+    stats_.depth = builder.build_task(0, kept, 0, 0, 0);
   }
+
+  // The leaf order, then the triangles' corners in it (copies of the mesh's vertices), after the
+  // build's copies are freed: a 5-million-triangle build peaks at about 1.2 GB this way.
+  leaf_triangles_.resize(kept);
+  for (std::size_t i = 0; i < kept; ++i) leaf_triangles_[i] = tris[i].index;
+  tris_storage.reset();
+  leaf_vertices_.reserve(3 * kept);
+  detail::advise_huge_pages(leaf_vertices_.data(), leaf_vertices_.capacity());
+  leaf_vertices_.resize(3 * kept);  // Vec3's default constructor writes nothing
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, kept, 4096),
+                    [&](const tbb::blocked_range<std::size_t>& r) {
+                      for (std::size_t i = r.begin(); i < r.end(); ++i) {
+                        const TriangleIndices& t = mesh_.triangles[leaf_triangles_[i]];
+                        for (int k = 0; k < 3; ++k) {
+                          leaf_vertices_[3 * i + k] = mesh_.vertices[t[k]];
+                        }
+                      }
+                    });
 
   stats_.triangles = mesh_.triangles.size();
   stats_.nodes = nodes_.size();

@@ -16,4 +16,14 @@ constexpr std::size_t kMedianDepth = 40;
 /// the size of the left part (0 < size < tris.size()).
 std::size_t split_triangles(std::span<geometry::detail::FitTriangle> tris, std::size_t depth);
 
+/// A triangle as the split sees it: its centroid only.
+struct SplitCentroid {
+  Vec3 centroid;
+};
+
+/// The same split of the same centroids in the same order: it moves the items exactly as the
+/// FitTriangle overload moves the triangles, so a pass over these lighter items predicts the
+/// tree's shape (the build counts its nodes this way before it writes them).
+std::size_t split_triangles(std::span<SplitCentroid> tris, std::size_t depth);
+
 }  // namespace antcd::detail

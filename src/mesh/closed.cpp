@@ -25,12 +25,15 @@ bool is_closed(const Mesh& mesh) {
   }
   if (edges.empty()) return false;
   std::sort(edges.begin(), edges.end());
-  for (std::size_t i = 0; i < edges.size(); ++i) {
-    if (i + 1 < edges.size() && edges[i + 1] == edges[i]) return false;  // edge used twice
-    const std::uint64_t reverse = (edges[i] << 32) | (edges[i] >> 32);
-    if (!std::binary_search(edges.begin(), edges.end(), reverse)) return false;  // open edge
-  }
-  return true;
+  if (std::adjacent_find(edges.begin(), edges.end()) != edges.end()) return false;  // used twice
+  // Every edge's reverse is an edge exactly when the reversed edges, sorted, are the same list
+  // (both lists are free of repeats): two sorts instead of a binary search per edge, which on a
+  // multi-million-triangle mesh missed the cache at every step.
+  std::vector<std::uint64_t> reversed(edges.size());
+  std::transform(edges.begin(), edges.end(), reversed.begin(),
+                 [](std::uint64_t e) { return (e << 32) | (e >> 32); });
+  std::sort(reversed.begin(), reversed.end());
+  return reversed == edges;
 }
 
 }  // namespace antcd
