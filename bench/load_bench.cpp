@@ -1,7 +1,10 @@
-// bench/load_bench.cpp — loading a 5-million-triangle OBJ, OFF and ASCII PLY: antcd::load_mesh
-// (double precision: tinyobjloader for OBJ, assimp plus re-read coordinates for OFF and PLY)
-// against assimp's import of the same file (single precision, the reader antcd used before), in
-// one binary and one run: the ratio per format is the figure.
+// bench/load_bench.cpp — loading a 5-million-triangle OBJ, OFF, ASCII PLY and binary STL:
+// antcd::load_mesh (double precision: tinyobjloader for OBJ, assimp plus re-read coordinates for
+// OFF and PLY, its own reader for binary STL) against assimp's import of the same file (single
+// precision, the reader antcd used before), in one binary and one run: the ratio per format is the
+// figure. load_and_build/stl is issue 12's target: the binary STL loaded and its Model built
+// (<= 10 s, <= 1.5 GB peak), with the peak resident memory of that step as a counter (peak_mib,
+// Linux: the process's high-water mark is reset before the step and read after it).
 //
 // The files are generated at start-up into a fresh temporary folder and removed at exit: a height
 // field of 2000 x 1250 cells, two triangles each (5,000,000 triangles on 2,503,251 vertices),
@@ -10,6 +13,7 @@
 // (triangulate, join identical vertices): antcd's conversion to a Mesh is not in it, so it is
 // the lower bound of that path. Each benchmark reports `triangles`.
 // Medians: --benchmark_repetitions=3 --benchmark_report_aggregates_only=true.
+#include <antcd/bvh.hpp>
 #include <antcd/mesh.hpp>
 
 #include <assimp/postprocess.h>
@@ -41,7 +45,7 @@ void append_number(std::string& out, double x) {
   out.append(buffer, end);
 }
 
-enum class Format { Obj, Off, Ply };
+enum class Format { Obj, Off, Ply, Stl };
 
 /// The generated files (the same grid as OBJ, OFF and ASCII PLY), written once, removed at exit.
 class GridFiles {
@@ -59,6 +63,7 @@ class GridFiles {
               "\nproperty double x\nproperty double y\nproperty double z\nelement face " +
               std::to_string(faces) + "\nproperty list uchar int vertex_indices\nend_header\n",
           "", "3 ", 0);
+    write_binary_stl("grid.stl");
   }
   ~GridFiles() {
     std::error_code ec;
@@ -103,8 +108,42 @@ class GridFiles {
     if (!out) throw std::runtime_error("cannot write " + path.string());
   }
 
+  // The same grid as binary STL: each triangle's corners as floats, the normal left zero.
+  void write_binary_stl(const char* name) {
+    fs::path& path = paths_[static_cast<int>(Format::Stl)];
+    path = dir_ / name;
+    std::ofstream out(path, std::ios::binary);
+    std::string chunk(80, '\0');
+    const std::uint32_t faces = 2 * kCellsX * kCellsY;
+    append_bytes(chunk, &faces, 4);
+    auto corner = [&](std::uint32_t i, std::uint32_t j) {
+      const float xyz[3] = {static_cast<float>(i * 0.1 + 1e-7),
+                            static_cast<float>(j * 0.1 - 123456.789012345),
+                            static_cast<float>(0.3 * ((i * 7 + j * 13) % 11) / 7.0)};
+      append_bytes(chunk, xyz, sizeof xyz);
+    };
+    const char zero[14] = {};
+    for (std::uint32_t i = 0; i < kCellsX; ++i) {
+      for (std::uint32_t j = 0; j < kCellsY; ++j) {
+        append_bytes(chunk, zero, 12);
+        corner(i, j), corner(i + 1, j), corner(i + 1, j + 1);
+        append_bytes(chunk, zero, 2);
+        append_bytes(chunk, zero, 12);
+        corner(i, j), corner(i + 1, j + 1), corner(i, j + 1);
+        append_bytes(chunk, zero, 2);
+      }
+      out.write(chunk.data(), static_cast<std::streamsize>(chunk.size()));
+      chunk.clear();
+    }
+    if (!out) throw std::runtime_error("cannot write " + path.string());
+  }
+
+  static void append_bytes(std::string& out, const void* data, std::size_t n) {
+    out.append(static_cast<const char*>(data), n);
+  }
+
   fs::path dir_;
-  fs::path paths_[3];
+  fs::path paths_[4];
 };
 
 const GridFiles& grid() {
@@ -122,6 +161,39 @@ void load_mesh_double(benchmark::State& state, Format format) {
   }
   state.counters["triangles"] = static_cast<double>(triangles);
   if (triangles != 2ULL * kCellsX * kCellsY) state.SkipWithError("wrong triangle count");
+}
+
+// Linux: VmHWM (peak resident memory) of this process in MiB, and its reset; -1 when unavailable.
+double peak_mib() {
+  std::ifstream status("/proc/self/status");
+  std::string line;
+  while (std::getline(status, line)) {
+    if (line.rfind("VmHWM:", 0) == 0) return std::stod(line.substr(6)) / 1024.0;
+  }
+  return -1;
+}
+
+void reset_peak() {
+  std::ofstream clear("/proc/self/clear_refs");
+  clear << "5";
+}
+
+void load_and_build(benchmark::State& state, Format format) {
+  const fs::path& path = grid().path(format);
+  std::size_t triangles = 0;
+  double peak = 0;
+  double bytes_per_triangle = 0;
+  for (auto _ : state) {
+    reset_peak();
+    const antcd::Model model(antcd::load_mesh(path));
+    peak = std::max(peak, peak_mib());
+    triangles = model.mesh().triangles.size();
+    bytes_per_triangle = static_cast<double>(model.stats().memory_bytes) / triangles;
+    benchmark::DoNotOptimize(model.nodes().data());
+  }
+  state.counters["triangles"] = static_cast<double>(triangles);
+  state.counters["peak_mib"] = peak;
+  state.counters["model_B_per_triangle"] = bytes_per_triangle;
 }
 
 void assimp_import(benchmark::State& state, Format format) {
@@ -148,6 +220,9 @@ BENCHMARK_CAPTURE(load_mesh_double, off, Format::Off)->Unit(benchmark::kSecond)-
 BENCHMARK_CAPTURE(assimp_import, off, Format::Off)->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();
 BENCHMARK_CAPTURE(load_mesh_double, ply, Format::Ply)->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();
 BENCHMARK_CAPTURE(assimp_import, ply, Format::Ply)->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();
+BENCHMARK_CAPTURE(load_mesh_double, stl, Format::Stl)->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();
+BENCHMARK_CAPTURE(assimp_import, stl, Format::Stl)->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();
+BENCHMARK_CAPTURE(load_and_build, stl, Format::Stl)->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();
 
 }  // namespace
 
