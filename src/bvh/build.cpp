@@ -51,6 +51,29 @@ BuildTriangle make_build_triangle(const Mesh& mesh, std::size_t i) {
   return bt;
 }
 
+/// body(begin, end) over [0, n): in oneTBB tasks for a large model, on this thread otherwise
+/// (a small model gains nothing from tasks, and stays out of oneTBB's scheduler entirely).
+template <class Body>
+void for_blocks(std::size_t n, const Body& body) {
+  if (n < kTaskMinimum) {
+    body(std::size_t{0}, n);
+    return;
+  }
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096),
+                    [&](const tbb::blocked_range<std::size_t>& r) { body(r.begin(), r.end()); });
+}
+
+/// f() and g(), at once in oneTBB tasks when `large`.
+template <class F, class G>
+void invoke_both(bool large, const F& f, const G& g) {
+  if (large) {
+    tbb::parallel_invoke(f, g);
+  } else {
+    f();
+    g();
+  }
+}
+
 bool is_task_node(std::size_t size, std::size_t depth, std::size_t leaf_size) {
   return depth < kTaskLevels && size >= kTaskMinimum && size > leaf_size;
 }
@@ -196,20 +219,20 @@ Model::Model(Mesh mesh, const BuildOptions& options, std::string source)
   std::unique_ptr<BuildTriangle[]> tris_storage(new BuildTriangle[n]);
   std::size_t kept = n;
   std::atomic<bool> some_zero_area{false};
-  tbb::parallel_invoke(
+  invoke_both(
+      n >= kTaskMinimum,
       // Independent of the tree: decided while the triangles are prepared.
       [&] { closed_ = antcd::is_closed(mesh_); },
       [&] {
         detail::advise_huge_pages(tris_storage.get(), n);
-        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096),
-                          [&](const tbb::blocked_range<std::size_t>& r) {
-                            bool zero = false;
-                            for (std::size_t i = r.begin(); i < r.end(); ++i) {
-                              tris_storage[i] = make_build_triangle(mesh_, i);
-                              zero = zero || tris_storage[i].area == 0;
-                            }
-                            if (zero) some_zero_area.store(true, std::memory_order_relaxed);
-                          });
+        for_blocks(n, [&](std::size_t begin, std::size_t end) {
+          bool zero = false;
+          for (std::size_t i = begin; i < end; ++i) {
+            tris_storage[i] = make_build_triangle(mesh_, i);
+            zero = zero || tris_storage[i].area == 0;
+          }
+          if (zero) some_zero_area.store(true, std::memory_order_relaxed);
+        });
         if (!some_zero_area.load()) return;
         // Left-packing of the triangles with an area, in mesh order.
         kept = 0;
@@ -228,12 +251,9 @@ Model::Model(Mesh mesh, const BuildOptions& options, std::string source)
   {
     std::unique_ptr<SplitCentroid[]> centroids(new SplitCentroid[kept]);
     detail::advise_huge_pages(centroids.get(), kept);
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, kept, 4096),
-                      [&](const tbb::blocked_range<std::size_t>& r) {
-                        for (std::size_t i = r.begin(); i < r.end(); ++i) {
-                          centroids[i].centroid = tris[i].centroid;
-                        }
-                      });
+    for_blocks(kept, [&](std::size_t begin, std::size_t end) {
+      for (std::size_t i = begin; i < end; ++i) centroids[i].centroid = tris[i].centroid;
+    });
     const NodeCounts counts(std::span<SplitCentroid>(centroids.get(), kept), options_.leaf_size);
     centroids.reset();
     nodes_.reserve(counts.total());
@@ -251,15 +271,12 @@ Model::Model(Mesh mesh, const BuildOptions& options, std::string source)
   leaf_vertices_.reserve(3 * kept);
   detail::advise_huge_pages(leaf_vertices_.data(), leaf_vertices_.capacity());
   leaf_vertices_.resize(3 * kept);  // Vec3's default constructor writes nothing
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, kept, 4096),
-                    [&](const tbb::blocked_range<std::size_t>& r) {
-                      for (std::size_t i = r.begin(); i < r.end(); ++i) {
-                        const TriangleIndices& t = mesh_.triangles[leaf_triangles_[i]];
-                        for (int k = 0; k < 3; ++k) {
-                          leaf_vertices_[3 * i + k] = mesh_.vertices[t[k]];
-                        }
-                      }
-                    });
+  for_blocks(kept, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i) {
+      const TriangleIndices& t = mesh_.triangles[leaf_triangles_[i]];
+      for (int k = 0; k < 3; ++k) leaf_vertices_[3 * i + k] = mesh_.vertices[t[k]];
+    }
+  });
 
   stats_.triangles = mesh_.triangles.size();
   stats_.nodes = nodes_.size();
