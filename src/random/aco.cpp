@@ -254,17 +254,44 @@ ANTCD_VECTOR_CLONES void run_colony(const FeatureSpace& space, const SearchReque
 
   // J_k(c): the 8 neighbours at distance 1 (lanes 0–7), then the 8 at distance hop (8–15). The
   // directions are listed so that lane 7 - k (8 + 15 - k) is the opposite move of lane k.
+  // Offsets are kept as wrapping 32-bit integers: cur + offset is then below na (nb) exactly when
+  // the signed sum lies in [0, na) (na + hop_a < 2^32), so one unsigned compare checks a border.
   static constexpr std::array<std::array<int, 2>, 8> kDirections = {
       {{-1, -1}, {-1, 0}, {-1, 1}, {0, -1}, {0, 1}, {1, -1}, {1, 0}, {1, 1}}};
   constexpr std::uint32_t kNoLane = Recorder::kLanes;
-  std::array<std::int64_t, Recorder::kLanes> lane_di{}, lane_dj{};
+  alignas(64) std::array<std::uint32_t, Recorder::kLanes> lane_di{}, lane_dj{};
   for (std::uint32_t k = 0; k < 8; ++k) {
-    lane_di[k] = kDirections[k][0];
-    lane_dj[k] = kDirections[k][1];
-    lane_di[k + 8] = kDirections[k][0] * std::int64_t{hop_a};
-    lane_dj[k + 8] = kDirections[k][1] * std::int64_t{hop_b};
+    lane_di[k] = static_cast<std::uint32_t>(kDirections[k][0]);
+    lane_dj[k] = static_cast<std::uint32_t>(kDirections[k][1]);
+    lane_di[k + 8] = static_cast<std::uint32_t>(kDirections[k][0]) * hop_a;
+    lane_dj[k + 8] = static_cast<std::uint32_t>(kDirections[k][1]) * hop_b;
   }
   auto opposite_lane = [](std::uint32_t k) { return k < 8 ? 7 - k : 23 - k; };
+  // The usual candidate list: every lane but the one just left (came_from, or none at the start),
+  // in lane order, the padding repeating the first candidate. One table per came_from value, as
+  // offsets from the current cell, so that such a step builds its list with two vector adds.
+  struct LaneTable {
+    alignas(64) std::array<std::uint32_t, Recorder::kLanes> di, dj, lane;
+    std::uint32_t count = 0;
+    std::uint32_t mask = 0;  // the lanes it takes
+  };
+  std::array<LaneTable, Recorder::kLanes + 1> usual{};
+  for (std::uint32_t from = 0; from <= kNoLane; ++from) {
+    LaneTable& t = usual[from];
+    for (std::uint32_t k = 0; k < Recorder::kLanes; ++k) {
+      if (k == from) continue;
+      t.di[t.count] = lane_di[k];
+      t.dj[t.count] = lane_dj[k];
+      t.lane[t.count] = k;
+      t.mask |= 1U << k;
+      ++t.count;
+    }
+    for (std::uint32_t c = t.count; c < Recorder::kLanes; ++c) {
+      t.di[c] = t.di[0];
+      t.dj[c] = t.dj[0];
+      t.lane[c] = t.lane[0];
+    }
+  }
 
   // Same stream for Aco and Maco: Maco with every switch off runs exactly as Aco.
   Rng rng(seed ^ 0xAC0ULL);
@@ -308,49 +335,71 @@ ANTCD_VECTOR_CLONES void run_colony(const FeatureSpace& space, const SearchReque
       path[len++] = cur;
       // 1024-bit filter over the path's cells: most candidates are ruled off the tabu list
       // without scanning the path.
-      std::array<std::uint64_t, 16> filter{};
+      alignas(64) std::array<std::uint32_t, 32> filter{};
       // Cells near each other (a path's, a step's candidates) get different bits: 37 i + j
       // separates the 5 x 5 neighbourhood; a collision only costs a scan of the path.
       auto filter_bit = [](std::uint32_t i, std::uint32_t j) { return (i * 37U + j) & 1023U; };
       auto remember = [&](Cell c) {
         const std::uint32_t h = filter_bit(c.i, c.j);
-        filter[h >> 6] |= std::uint64_t{1} << (h & 63);
+        filter[h >> 5] |= 1U << (h & 31);
       };
       remember(cur);
       std::uint32_t came_from = kNoLane;  // lane of the cell just left, none at the start
 
       bool stopped = false;
       for (std::uint32_t step = 0; step < p.steps; ++step) {
-        // The candidates in lane order, compacted without a branch per lane. The cell just left
-        // (the opposite lane of the last move) is on the path: ruled out without a look-up, so
-        // the filter below almost never hits and its branch stays predictable.
-        const bool interior = cur.i >= hop_a && std::uint64_t{cur.i} + hop_a < na &&
-                              cur.j >= hop_b && std::uint64_t{cur.j} + hop_b < nb;
-        std::uint32_t count = 0;
+        // The 16 lanes' cells, whether each is inside the grid and not the cell just left (the
+        // opposite lane of the last move, always on the path: ruled out without a look-up), and
+        // whether its filter bit is set, in one branch-free pass that vectorises.
+        alignas(64) std::array<std::uint32_t, kCandidates> lane_i, lane_j;
+        std::uint32_t ok_mask = 0;
+        std::uint32_t suspect_mask = 0;
         for (std::uint32_t k = 0; k < kCandidates; ++k) {
-          const std::int64_t ci = std::int64_t{cur.i} + lane_di[k];
-          const std::int64_t cj = std::int64_t{cur.j} + lane_dj[k];
-          bool ok = k != came_from && (interior || (ci >= 0 && cj >= 0 && ci < na && cj < nb));
-          const auto ui = static_cast<std::uint32_t>(ci);
-          const auto uj = static_cast<std::uint32_t>(cj);
-          if (ok) {
-            // J_k: cells not yet on this ant's path (the tabu list of Eq. 7).
-            const std::uint32_t h = filter_bit(ui, uj);
-            if ((filter[h >> 6] >> (h & 63)) & 1) {
-              for (std::uint32_t t = len; t-- > 0 && ok;)
-                ok = !(path[t].i == ui && path[t].j == uj);
-            }
-          }
-          cand_i[count] = ui;
-          cand_j[count] = uj;
-          cand_lane[count] = k;
-          count += ok ? 1 : 0;
+          const std::uint32_t ui = cur.i + lane_di[k];
+          const std::uint32_t uj = cur.j + lane_dj[k];
+          lane_i[k] = ui;
+          lane_j[k] = uj;
+          const std::uint32_t h = filter_bit(ui, uj);
+          const std::uint32_t bit = (filter[h >> 5] >> (h & 31)) & 1U;
+          const std::uint32_t ok = (ui < na ? 1U : 0U) & (uj < nb ? 1U : 0U) &
+                                   (k != came_from ? 1U : 0U);
+          ok_mask |= ok << k;
+          suspect_mask |= (ok & bit) << k;
         }
-        if (count == 0) break;  // boxed in by its own path at a border
-        // Lanes past `count` repeat the first candidate: computed, never chosen.
-        for (std::uint32_t c = count; c < kCandidates; ++c) {
-          cand_i[c] = cand_i[0];
-          cand_j[c] = cand_j[0];
+        // J_k: cells not yet on this ant's path (the tabu list of Eq. 7); only the lanes whose
+        // filter bit is set scan the path.
+        while (suspect_mask != 0) {
+          const auto k = static_cast<std::uint32_t>(std::countr_zero(suspect_mask));
+          suspect_mask &= suspect_mask - 1;
+          std::uint32_t on_path = 0;
+          for (std::uint32_t t = 0; t < len; ++t) {
+            on_path |= (path[t].i == lane_i[k] ? 1U : 0U) & (path[t].j == lane_j[k] ? 1U : 0U);
+          }
+          ok_mask &= ~(on_path << k);
+        }
+        // The candidates in lane order; lanes past `count` repeat the first candidate: computed,
+        // never chosen.
+        const LaneTable& table = usual[came_from];
+        std::uint32_t count = 0;
+        if (ok_mask == table.mask) {
+          count = table.count;
+          for (std::uint32_t c = 0; c < kCandidates; ++c) {
+            cand_i[c] = cur.i + table.di[c];
+            cand_j[c] = cur.j + table.dj[c];
+            cand_lane[c] = table.lane[c];
+          }
+        } else {
+          for (std::uint32_t k = 0; k < kCandidates; ++k) {
+            cand_i[count] = lane_i[k];
+            cand_j[count] = lane_j[k];
+            cand_lane[count] = k;
+            count += (ok_mask >> k) & 1U;
+          }
+          if (count == 0) break;  // boxed in by its own path at a border
+          for (std::uint32_t c = count; c < kCandidates; ++c) {
+            cand_i[c] = cand_i[0];
+            cand_j[c] = cand_j[0];
+          }
         }
         rec.evaluate_batch(cand_i.data(), cand_j.data(), count, lanes);
         if (rec.stopped()) {
