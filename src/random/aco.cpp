@@ -173,6 +173,46 @@ inline void roulette_weights(const float* log_weight, float top, std::uint32_t m
   }
 }
 
+/// The roulette's count (Eq. 7): with the serial running totals c_k of the 16 lanes' weights
+/// (c_k = c_{k-1} + w_k in float, from 0) and target = u * c_15, the number of lanes with
+/// c_k <= target. The serial totals are a chain of 16 dependent additions; they are first summed
+/// as prefix sums in three vector steps per half (another association, hence another rounding:
+/// sums of at most 16 non-negative terms, within 15 x 2^-24 of the exact total either way, so the
+/// two totals and their targets differ by under 4e-6 of the total). A lane whose total lies
+/// further than total / 2^16 from the target compares the same way with both sums; when every
+/// lane does (almost always), their count is the answer. Otherwise the serial totals are computed
+/// into `cumulative` and counted: the result is always that of the serial sums.
+inline std::uint32_t roulette_below(const float* weight, float u, float* cumulative) {
+  const lanes::F8 zero{};
+  lanes::F8 lo = lanes::load(weight);
+  lanes::F8 hi = lanes::load(weight + 8);
+  lo += __builtin_shufflevector(lo, zero, 8, 0, 1, 2, 3, 4, 5, 6);
+  hi += __builtin_shufflevector(hi, zero, 8, 0, 1, 2, 3, 4, 5, 6);
+  lo += __builtin_shufflevector(lo, zero, 8, 8, 0, 1, 2, 3, 4, 5);
+  hi += __builtin_shufflevector(hi, zero, 8, 8, 0, 1, 2, 3, 4, 5);
+  lo += __builtin_shufflevector(lo, zero, 8, 8, 8, 8, 0, 1, 2, 3);
+  hi += __builtin_shufflevector(hi, zero, 8, 8, 8, 8, 0, 1, 2, 3);
+  hi += lanes::splat(lo[7]);
+  const float approx_total = hi[7];
+  const float approx_target = u * approx_total;
+  const float margin = approx_total * 0x1p-16f;
+  const lanes::F8 low = lanes::splat(approx_target - margin);
+  const lanes::F8 high = lanes::splat(approx_target + margin);
+  const auto near = ((lanes::U8)(lo > low) & (lanes::U8)(lo <= high)) |
+                    ((lanes::U8)(hi > low) & (lanes::U8)(hi <= high));
+  if (lanes::reduce_or(near) == 0) {
+    return lanes::reduce_add(((lanes::U8)(lo <= low) & 1U) + ((lanes::U8)(hi <= low) & 1U));
+  }
+  float total = 0;
+  for (std::uint32_t k = 0; k < Recorder::kLanes; ++k) {
+    total += weight[k];
+    cumulative[k] = total;
+  }
+  const lanes::F8 target = lanes::splat(u * total);
+  return lanes::reduce_add(((lanes::U8)(lanes::load(cumulative) <= target) & 1U) +
+                           ((lanes::U8)(lanes::load(cumulative + 8) <= target) & 1U));
+}
+
 /// Pheromone grid size along one side: at most `resolution` blocks, at most one per triangle.
 std::uint32_t grid_size(std::uint32_t resolution, std::uint32_t model_triangles) {
   return std::max<std::uint32_t>(1, std::min(resolution, model_triangles));
@@ -431,19 +471,11 @@ ANTCD_VECTOR_CLONES void run_colony(const FeatureSpace& space, const SearchReque
           // Roulette over weights scaled by the largest (2^(l - top) in (0, 1]); the other lanes
           // weigh 0, so the running totals at the candidates are those of the candidates alone.
           roulette_weights(cand_log.data(), top, ok_mask, cand_weight.data());
-          float total = 0;
-          for (std::uint32_t k = 0; k < kCandidates; ++k) {
-            total += cand_weight[k];
-            cand_cumulative[k] = total;
-          }
-          const float target = rng.unit_float() * total;
           // The first candidate whose running total exceeds the target, or the last candidate if
           // none does. The totals never decrease along the 16 lanes (the other lanes add 0), so
           // the lanes at or below the target are the first `below`.
-          const lanes::F8 t = lanes::splat(target);
-          const std::uint32_t below = lanes::reduce_add(
-              ((lanes::U8)(lanes::load(cand_cumulative.data()) <= t) & 1U) +
-              ((lanes::U8)(lanes::load(cand_cumulative.data() + 8) <= t) & 1U));
+          const std::uint32_t below =
+              roulette_below(cand_weight.data(), rng.unit_float(), cand_cumulative.data());
           const std::uint32_t after = ok_mask >> below;  // below <= 16
           pick = after != 0 ? below + static_cast<std::uint32_t>(std::countr_zero(after))
                             : static_cast<std::uint32_t>(31 - std::countl_zero(ok_mask));
