@@ -295,7 +295,6 @@ ANTCD_VECTOR_CLONES void run_colony(const FeatureSpace& space, const SearchReque
   alignas(64) std::array<float, kCandidates> cand_step{}, cand_tau{}, cand_log{}, cand_weight{},
       cand_cumulative{};
   const bool witness = rec.thresholds().verdict == Verdict::Witness;
-  alignas(64) std::array<std::uint8_t, 1024> filter{};
 
   const auto unit = static_cast<float>(space.centroid_delta);  // > 0: the length unit
   const float denom_floor = 1e-6f * unit;
@@ -360,54 +359,41 @@ ANTCD_VECTOR_CLONES void run_colony(const FeatureSpace& space, const SearchReque
       float travelled = 0;  // d_oj of the remaining-distance reading
       std::uint32_t len = 0;
       path[len++] = cur;
-      // 1024-entry filter over the path's cells (a byte each, read without shifts): most
-      // candidates are ruled off the tabu list without scanning the path.
-      filter.fill(0);
-      // Cells near each other (a path's, a step's candidates) get different entries: 37 i + j
-      // separates the 5 x 5 neighbourhood; a collision only costs a scan of the path.
-      auto remember = [&](Cell c) { filter[(c.i * 37U + c.j) & 1023U] = 1; };
-      remember(cur);
       std::uint32_t came_from = kNoLane;  // lane of the cell just left, none at the start
 
       bool stopped = false;
       for (std::uint32_t step = 0; step < p.steps; ++step) {
-        // The 16 lanes' cells, whether each is inside the grid and not the cell just left (the
-        // opposite lane of the last move, always on the path: ruled out without a look-up), and
-        // whether its filter bit is set, in one branch-free pass that vectorises.
-        alignas(64) std::array<std::uint32_t, kCandidates> lane_i, lane_j, lane_h;
-        lanes::U8 lane_ok[2];
+        // The 16 lanes' cells and whether each is inside the grid and not the cell just left (the
+        // opposite lane of the last move), in vectors of 8 lanes.
+        lanes::U8 lane_i[2], lane_j[2], lane_ok[2];
+        const lanes::U8 ci = lanes::splat(cur.i), cj = lanes::splat(cur.j);
+        const lanes::U8 size_a = lanes::splat(na), size_b = lanes::splat(nb);
+        const lanes::U8 last_a = lanes::splat(na - 1), last_b = lanes::splat(nb - 1);
         for (std::uint32_t half = 0; half < 2; ++half) {
-          const lanes::U8 ui = lanes::splat(cur.i) + lanes::load(lane_di.data() + 8 * half);
-          const lanes::U8 uj = lanes::splat(cur.j) + lanes::load(lane_dj.data() + 8 * half);
-          const auto in_a = (lanes::U8)(ui < lanes::splat(na));
-          const auto in_b = (lanes::U8)(uj < lanes::splat(nb));
+          const lanes::U8 ui = ci + lanes::load(lane_di.data() + 8 * half);
+          const lanes::U8 uj = cj + lanes::load(lane_dj.data() + 8 * half);
+          const auto in_a = (lanes::U8)(ui < size_a);
+          const auto in_b = (lanes::U8)(uj < size_b);
           const auto not_back =
               (lanes::U8)(lanes::load(kLaneIndex.data() + 8 * half) != lanes::splat(came_from));
           lane_ok[half] = in_a & in_b & not_back;
-          lanes::store(lane_i.data() + 8 * half, ui);
-          lanes::store(lane_j.data() + 8 * half, uj);
+          lane_i[half] = ui;
+          lane_j[half] = uj;
           // Every lane holds a valid cell for the loads (the ones outside the grid clamped).
-          lanes::store(cand_i.data() + 8 * half, lanes::min(ui, lanes::splat(na - 1)));
-          lanes::store(cand_j.data() + 8 * half, lanes::min(uj, lanes::splat(nb - 1)));
-          lanes::store(lane_h.data() + 8 * half, (ui * 37U + uj) & 1023U);
+          lanes::store(cand_i.data() + 8 * half, (ui & in_a) | (last_a & ~in_a));
+          lanes::store(cand_j.data() + 8 * half, (uj & in_b) | (last_b & ~in_b));
         }
-        std::uint32_t ok_mask = lanes::to_mask(lane_ok[0], lane_ok[1]);
-        std::uint32_t suspect_mask = 0;
-        for (std::uint32_t k = 0; k < kCandidates; ++k) {
-          suspect_mask |= std::uint32_t{filter[lane_h[k]]} << k;
-        }
-        suspect_mask &= ok_mask;
-        // J_k: cells not yet on this ant's path (the tabu list of Eq. 7); only the lanes whose
-        // filter bit is set scan the path.
-        while (suspect_mask != 0) {
-          const auto k = static_cast<std::uint32_t>(std::countr_zero(suspect_mask));
-          suspect_mask &= suspect_mask - 1;
-          std::uint32_t on_path = 0;
-          for (std::uint32_t t = 0; t < len; ++t) {
-            on_path |= (path[t].i == lane_i[k] ? 1U : 0U) & (path[t].j == lane_j[k] ? 1U : 0U);
+        // J_k: cells not yet on this ant's path (the tabu list of Eq. 7): every lane against
+        // every path cell, four vector compares per cell, no branch per lane.
+        lanes::U8 on_path[2] = {};
+        for (std::uint32_t t = 0; t < len; ++t) {
+          const lanes::U8 pi = lanes::splat(path[t].i), pj = lanes::splat(path[t].j);
+          for (std::uint32_t half = 0; half < 2; ++half) {
+            on_path[half] |= (lanes::U8)(lane_i[half] == pi) & (lanes::U8)(lane_j[half] == pj);
           }
-          ok_mask &= ~(on_path << k);
         }
+        const std::uint32_t ok_mask = lanes::to_mask(lane_ok[0] & ~on_path[0],
+                                                     lane_ok[1] & ~on_path[1]);
         if (ok_mask == 0) break;  // boxed in by its own path at a border
         // The candidates stay in their lanes (lane order is candidate order): the lanes of
         // ok_mask. The other lanes are computed and never chosen.
@@ -487,7 +473,6 @@ ANTCD_VECTOR_CLONES void run_colony(const FeatureSpace& space, const SearchReque
         came_from = opposite_lane(pick);
         sum_f += lanes.d[pick];
         path[len++] = cur;
-        remember(cur);
       }
       if (stopped) break;
       path_length[ant] = len;
