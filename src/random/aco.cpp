@@ -17,43 +17,24 @@
 #include <array>
 #include <bit>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <vector>
 
 #include "random/fast_math.hpp"
+#include "random/lane_vectors.hpp"
 #include "random/engines.hpp"
 #include "random/recorder.hpp"
 
 namespace antcd::detail {
 
-// The lane arithmetic of a colony step (Recorder::evaluate_batch): the 16 candidates' centroids
-// gathered, their distances and reaches, in fixed-length, branch-free loops that vectorise inside
-// run_colony's clones (this file is built without trapping maths or errno, so that float selects
-// and sqrt vectorise; neither changes a value).
+// The lane arithmetic of a colony step (Recorder::evaluate_lanes): the 16 lanes' distances and
+// reaches, in fixed-length, branch-free loops that vectorise inside run_colony's clones (this file
+// is built without trapping maths or errno, so that float selects and sqrt vectorise; neither
+// changes a value).
 [[gnu::always_inline]] inline Recorder::LaneSummary Recorder::compute_lanes(
-    Lanes& lanes, const FeatureSpace& space, const std::uint32_t* ci, const std::uint32_t* cj,
-    std::uint32_t count, bool witness, float delta, float centroid) {
-  const float* const ax = space.a.x.data();
-  const float* const ay = space.a.y.data();
-  const float* const az = space.a.z.data();
-  const float* const bx = space.b.x.data();
-  const float* const by = space.b.y.data();
-  const float* const bz = space.b.z.data();
-  for (std::uint32_t k = 0; k < kLanes; ++k) {
-    lanes.ax[k] = ax[ci[k]];
-    lanes.ay[k] = ay[ci[k]];
-    lanes.az[k] = az[ci[k]];
-    lanes.bx[k] = bx[cj[k]];
-    lanes.by[k] = by[cj[k]];
-    lanes.bz[k] = bz[cj[k]];
-  }
+    Lanes& lanes, std::uint32_t mask, bool witness, float delta, float centroid) {
   if (witness) {
-    const float* const ra = space.a.radius.data();
-    const float* const rb = space.b.radius.data();
-    for (std::uint32_t k = 0; k < kLanes; ++k) {
-      lanes.ra[k] = ra[ci[k]];
-      lanes.rb[k] = rb[cj[k]];
-    }
     for (std::uint32_t k = 0; k < kLanes; ++k) {
       lanes.reach[k] = lanes.ra[k] + lanes.rb[k] + delta;
     }
@@ -69,15 +50,18 @@ namespace antcd::detail {
     lanes.d[k] = std::sqrt(d2);
     lanes.within[k] = d2 <= lanes.reach[k] * lanes.reach[k] ? 1U : 0U;
   }
-  // Reductions over the real lanes only, in fixed-length loops.
-  LaneSummary summary;
-  summary.min_d2_bits = std::bit_cast<std::uint32_t>(std::numeric_limits<float>::infinity());
-  for (std::uint32_t k = 0; k < kLanes; ++k) {
-    const std::uint32_t real = k < count ? 1U : 0U;
-    summary.any_within |= lanes.within[k] & real;
-    const std::uint32_t bits = real != 0 ? std::bit_cast<std::uint32_t>(lanes.d2[k]) : ~0U;
-    summary.min_d2_bits = bits < summary.min_d2_bits ? bits : summary.min_d2_bits;
+  // Reductions over the candidates' lanes only (lane_vectors.hpp).
+  lanes::U8 any{};
+  lanes::U8 least = lanes::splat(~0U);
+  for (std::uint32_t half = 0; half < 2; ++half) {
+    const lanes::U8 ok = lanes::expand(mask, half);
+    any |= lanes::load(lanes.within + 8 * half) & ok;
+    const auto bits = (lanes::U8)lanes::load(lanes.d2 + 8 * half);
+    least = lanes::min(least, bits | ~ok);
   }
+  LaneSummary summary;
+  summary.any_within = lanes::reduce_or(any);
+  summary.min_d2_bits = lanes::reduce_min(least);
   return summary;
 }
 
@@ -87,6 +71,42 @@ struct Cell {
   std::uint32_t i = 0;
   std::uint32_t j = 0;
 };
+
+/// The 16 lanes' centroids (and radii with `witness`) of a cell at least hop_a / hop_b from
+/// every border: each side's values from its five rows / columns.
+inline void gather_interior(const FeatureSpace& space, std::uint32_t i, std::uint32_t j,
+                            std::uint32_t hop_a, std::uint32_t hop_b, bool witness,
+                            Recorder::Lanes& l) {
+  lanes::spread_rows(space.a.x.data(), i, hop_a, l.ax);
+  lanes::spread_rows(space.a.y.data(), i, hop_a, l.ay);
+  lanes::spread_rows(space.a.z.data(), i, hop_a, l.az);
+  lanes::spread_columns(space.b.x.data(), j, hop_b, l.bx);
+  lanes::spread_columns(space.b.y.data(), j, hop_b, l.by);
+  lanes::spread_columns(space.b.z.data(), j, hop_b, l.bz);
+  if (witness) {
+    lanes::spread_rows(space.a.radius.data(), i, hop_a, l.ra);
+    lanes::spread_columns(space.b.radius.data(), j, hop_b, l.rb);
+  }
+}
+
+/// The same for any cell, lane by lane from the (valid) cells ci, cj.
+inline void gather_lanes(const FeatureSpace& space, const std::uint32_t* ci,
+                         const std::uint32_t* cj, bool witness, Recorder::Lanes& l) {
+  for (std::uint32_t k = 0; k < Recorder::kLanes; ++k) {
+    l.ax[k] = space.a.x[ci[k]];
+    l.ay[k] = space.a.y[ci[k]];
+    l.az[k] = space.a.z[ci[k]];
+    l.bx[k] = space.b.x[cj[k]];
+    l.by[k] = space.b.y[cj[k]];
+    l.bz[k] = space.b.z[cj[k]];
+  }
+  if (witness) {
+    for (std::uint32_t k = 0; k < Recorder::kLanes; ++k) {
+      l.ra[k] = space.a.radius[ci[k]];
+      l.rb[k] = space.b.radius[cj[k]];
+    }
+  }
+}
 
 /// Distance between two features of one side with the L1 norm (a metric; no square root).
 inline float feature_step(const FeatureSide& s, std::uint32_t p, std::uint32_t q) {
@@ -99,13 +119,10 @@ inline float cell_distance(const FeatureSpace& s, Cell p, Cell q) {
   return feature_step(s.a, p.i, q.i) + feature_step(s.b, p.j, q.j);
 }
 
-/// The largest of the 16 lanes. Floats are mapped to integers of the same order (negative ones
-/// have their magnitude bits flipped), whose maximum vectorises; no lane is NaN. -0 and +0 may
-/// come out either way, which no caller can tell apart (l - top and the == test treat them alike).
-inline std::int32_t order_key(float v) {
-  const auto bits = std::bit_cast<std::int32_t>(v);
-  return bits ^ ((bits >> 31) & 0x7FFFFFFF);
-}
+/// Order keys, for the largest of the 16 lanes: floats are mapped to integers of the same order
+/// (negative ones have their magnitude bits flipped: bits ^ ((bits >> 31) & 0x7FFFFFFF)), whose
+/// maximum vectorises; no lane is NaN. -0 and +0 may come out either way, which no caller can
+/// tell apart (l - top and the == test treat them alike). The inverse:
 inline float from_order_key(std::int32_t key) {
   return std::bit_cast<float>(key ^ ((key >> 31) & 0x7FFFFFFF));
 }
@@ -114,13 +131,10 @@ inline float from_order_key(std::int32_t key) {
 /// pass: d_ij (`step`: cell_distance from the current cell, cax..cbz its two centroids, to each
 /// candidate, from the centroids the batch gathered; same sums as cell_distance, in the same
 /// order), then alpha' log2 tau - beta' log2(d_oj + d_ij + max(0, f - reach)) into `out`.
-/// Returns the largest of the 16 lanes (padding lanes repeat the first candidate, so it is the
-/// real lanes' largest).
-inline float remaining_log_weights(const Recorder::Lanes& l, float cax, float cay, float caz,
-                                   float cbx, float cby, float cbz, const float* log_tau,
-                                   float travelled, float alpha, float beta, float denom_floor,
-                                   float* step, float* out) {
-  std::int32_t best = std::numeric_limits<std::int32_t>::min();
+inline void remaining_log_weights(const Recorder::Lanes& l, float cax, float cay, float caz,
+                                  float cbx, float cby, float cbz, const float* log_tau,
+                                  float travelled, float alpha, float beta, float denom_floor,
+                                  float* step, float* out) {
   for (std::uint32_t k = 0; k < Recorder::kLanes; ++k) {
     const float sa = std::abs(cax - l.ax[k]) + std::abs(cay - l.ay[k]) + std::abs(caz - l.az[k]);
     const float sb = std::abs(cbx - l.bx[k]) + std::abs(cby - l.by[k]) + std::abs(cbz - l.bz[k]);
@@ -129,39 +143,74 @@ inline float remaining_log_weights(const Recorder::Lanes& l, float cax, float ca
     float denom = travelled + step[k] + missing;
     denom = denom > denom_floor ? denom : denom_floor;
     out[k] = alpha * log_tau[k] - beta * fast_log2(denom);
-    const std::int32_t key = order_key(out[k]);
-    best = key > best ? key : best;
   }
-  return from_order_key(best);
 }
 
-/// The largest of the 16 lanes (see order_key).
-inline float lane_max(const float* v) {
-  std::int32_t best = std::numeric_limits<std::int32_t>::min();
-  for (std::uint32_t k = 0; k < Recorder::kLanes; ++k) {
-    const std::int32_t key = order_key(v[k]);
-    best = key > best ? key : best;
+/// Sets the lanes outside `mask` to -inf and returns the largest of the 16 lanes, i.e. the
+/// candidates' largest (order keys: see from_order_key).
+inline float masked_max(float* v, std::uint32_t mask) {
+  lanes::U8 best = lanes::splat(0x80000000U);
+  for (std::uint32_t half = 0; half < 2; ++half) {
+    const lanes::F8 x = lanes::select(lanes::expand(mask, half), lanes::load(v + 8 * half),
+                                      lanes::splat(-std::numeric_limits<float>::infinity()));
+    lanes::store(v + 8 * half, x);
+    const auto bits = (lanes::I8)x;
+    const lanes::I8 key = bits ^ ((bits >> 31) & 0x7FFFFFFF);
+    best = (lanes::U8)lanes::max((lanes::I8)best, key);
   }
-  return from_order_key(best);
+  return from_order_key(lanes::reduce_max((lanes::I8)best));
 }
 
-/// Roulette weights 2^(l - top) of the first `count` lanes, 0 for the padding.
-inline void roulette_weights(const float* log_weight, float top, std::uint32_t count,
+/// Roulette weights 2^(l - top) of the lanes of `mask`, 0 for the others.
+inline void roulette_weights(const float* log_weight, float top, std::uint32_t mask,
                              float* weight) {
   for (std::uint32_t k = 0; k < Recorder::kLanes; ++k) {
-    const float w = fast_exp2(log_weight[k] - top);
-    weight[k] = k < count ? w : 0.0f;
+    weight[k] = fast_exp2(log_weight[k] - top);
+  }
+  for (std::uint32_t half = 0; half < 2; ++half) {
+    lanes::store(weight + 8 * half, lanes::select(lanes::expand(mask, half),
+                                                  lanes::load(weight + 8 * half), lanes::F8{}));
   }
 }
 
-/// log2 tau of the 16 lanes' pheromone blocks (row offset of i plus column of j), inlined into
-/// run_colony's clones.
-inline void gather_log_tau(const float* log_tau, const std::uint32_t* block_row,
-                           const std::uint32_t* block_col, const std::uint32_t* ci,
-                           const std::uint32_t* cj, float* out) {
-  for (std::uint32_t k = 0; k < Recorder::kLanes; ++k) {
-    out[k] = log_tau[block_row[ci[k]] + block_col[cj[k]]];
+/// The roulette's count (Eq. 7): with the serial running totals c_k of the 16 lanes' weights
+/// (c_k = c_{k-1} + w_k in float, from 0) and target = u * c_15, the number of lanes with
+/// c_k <= target. The serial totals are a chain of 16 dependent additions; they are first summed
+/// as prefix sums in three vector steps per half (another association, hence another rounding:
+/// sums of at most 16 non-negative terms, within 15 x 2^-24 of the exact total either way, so the
+/// two totals and their targets differ by under 4e-6 of the total). A lane whose total lies
+/// further than total / 2^16 from the target compares the same way with both sums; when every
+/// lane does (almost always), their count is the answer. Otherwise the serial totals are computed
+/// into `cumulative` and counted: the result is always that of the serial sums.
+inline std::uint32_t roulette_below(const float* weight, float u, float* cumulative) {
+  const lanes::F8 zero{};
+  lanes::F8 lo = lanes::load(weight);
+  lanes::F8 hi = lanes::load(weight + 8);
+  lo += __builtin_shufflevector(lo, zero, 8, 0, 1, 2, 3, 4, 5, 6);
+  hi += __builtin_shufflevector(hi, zero, 8, 0, 1, 2, 3, 4, 5, 6);
+  lo += __builtin_shufflevector(lo, zero, 8, 8, 0, 1, 2, 3, 4, 5);
+  hi += __builtin_shufflevector(hi, zero, 8, 8, 0, 1, 2, 3, 4, 5);
+  lo += __builtin_shufflevector(lo, zero, 8, 8, 8, 8, 0, 1, 2, 3);
+  hi += __builtin_shufflevector(hi, zero, 8, 8, 8, 8, 0, 1, 2, 3);
+  hi += lanes::splat(lo[7]);
+  const float approx_total = hi[7];
+  const float approx_target = u * approx_total;
+  const float margin = approx_total * 0x1p-16f;
+  const lanes::F8 low = lanes::splat(approx_target - margin);
+  const lanes::F8 high = lanes::splat(approx_target + margin);
+  const auto near = ((lanes::U8)(lo > low) & (lanes::U8)(lo <= high)) |
+                    ((lanes::U8)(hi > low) & (lanes::U8)(hi <= high));
+  if (lanes::reduce_or(near) == 0) {
+    return lanes::reduce_add(((lanes::U8)(lo <= low) & 1U) + ((lanes::U8)(hi <= low) & 1U));
   }
+  float total = 0;
+  for (std::uint32_t k = 0; k < Recorder::kLanes; ++k) {
+    total += weight[k];
+    cumulative[k] = total;
+  }
+  const lanes::F8 target = lanes::splat(u * total);
+  return lanes::reduce_add(((lanes::U8)(lanes::load(cumulative) <= target) & 1U) +
+                           ((lanes::U8)(lanes::load(cumulative + 8) <= target) & 1U));
 }
 
 /// Pheromone grid size along one side: at most `resolution` blocks, at most one per triangle.
@@ -241,10 +290,11 @@ ANTCD_VECTOR_CLONES void run_colony(const FeatureSpace& space, const SearchReque
   std::vector<std::uint32_t> touched;  // blocks with a pending deposit, in first-touch order
   touched.reserve(std::size_t{p.ants} * path_capacity);
   constexpr std::uint32_t kCandidates = Recorder::kLanes;
-  std::array<std::uint32_t, kCandidates> cand_i{}, cand_j{}, cand_lane{};
+  alignas(64) std::array<std::uint32_t, kCandidates> cand_i{}, cand_j{}, cand_block{};
   Recorder::Lanes lanes;
   alignas(64) std::array<float, kCandidates> cand_step{}, cand_tau{}, cand_log{}, cand_weight{},
       cand_cumulative{};
+  const bool witness = rec.thresholds().verdict == Verdict::Witness;
 
   const auto unit = static_cast<float>(space.centroid_delta);  // > 0: the length unit
   const float denom_floor = 1e-6f * unit;
@@ -254,18 +304,21 @@ ANTCD_VECTOR_CLONES void run_colony(const FeatureSpace& space, const SearchReque
 
   // J_k(c): the 8 neighbours at distance 1 (lanes 0–7), then the 8 at distance hop (8–15). The
   // directions are listed so that lane 7 - k (8 + 15 - k) is the opposite move of lane k.
+  // Offsets are kept as wrapping 32-bit integers: cur + offset is then below na (nb) exactly when
+  // the signed sum lies in [0, na) (na + hop_a < 2^32), so one unsigned compare checks a border.
   static constexpr std::array<std::array<int, 2>, 8> kDirections = {
       {{-1, -1}, {-1, 0}, {-1, 1}, {0, -1}, {0, 1}, {1, -1}, {1, 0}, {1, 1}}};
   constexpr std::uint32_t kNoLane = Recorder::kLanes;
-  std::array<std::int64_t, Recorder::kLanes> lane_di{}, lane_dj{};
+  alignas(64) std::array<std::uint32_t, Recorder::kLanes> lane_di{}, lane_dj{};
   for (std::uint32_t k = 0; k < 8; ++k) {
-    lane_di[k] = kDirections[k][0];
-    lane_dj[k] = kDirections[k][1];
-    lane_di[k + 8] = kDirections[k][0] * std::int64_t{hop_a};
-    lane_dj[k + 8] = kDirections[k][1] * std::int64_t{hop_b};
+    lane_di[k] = static_cast<std::uint32_t>(kDirections[k][0]);
+    lane_dj[k] = static_cast<std::uint32_t>(kDirections[k][1]);
+    lane_di[k + 8] = static_cast<std::uint32_t>(kDirections[k][0]) * hop_a;
+    lane_dj[k + 8] = static_cast<std::uint32_t>(kDirections[k][1]) * hop_b;
   }
   auto opposite_lane = [](std::uint32_t k) { return k < 8 ? 7 - k : 23 - k; };
-
+  static constexpr std::array<std::uint32_t, Recorder::kLanes> kLaneIndex = {
+      0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15};
   // Same stream for Aco and Maco: Maco with every switch off runs exactly as Aco.
   Rng rng(seed ^ 0xAC0ULL);
 
@@ -306,112 +359,120 @@ ANTCD_VECTOR_CLONES void run_colony(const FeatureSpace& space, const SearchReque
       float travelled = 0;  // d_oj of the remaining-distance reading
       std::uint32_t len = 0;
       path[len++] = cur;
-      // 1024-bit filter over the path's cells: most candidates are ruled off the tabu list
-      // without scanning the path.
-      std::array<std::uint64_t, 16> filter{};
-      // Cells near each other (a path's, a step's candidates) get different bits: 37 i + j
-      // separates the 5 x 5 neighbourhood; a collision only costs a scan of the path.
-      auto filter_bit = [](std::uint32_t i, std::uint32_t j) { return (i * 37U + j) & 1023U; };
-      auto remember = [&](Cell c) {
-        const std::uint32_t h = filter_bit(c.i, c.j);
-        filter[h >> 6] |= std::uint64_t{1} << (h & 63);
-      };
-      remember(cur);
       std::uint32_t came_from = kNoLane;  // lane of the cell just left, none at the start
 
       bool stopped = false;
       for (std::uint32_t step = 0; step < p.steps; ++step) {
-        // The candidates in lane order, compacted without a branch per lane. The cell just left
-        // (the opposite lane of the last move) is on the path: ruled out without a look-up, so
-        // the filter below almost never hits and its branch stays predictable.
-        const bool interior = cur.i >= hop_a && std::uint64_t{cur.i} + hop_a < na &&
-                              cur.j >= hop_b && std::uint64_t{cur.j} + hop_b < nb;
-        std::uint32_t count = 0;
-        for (std::uint32_t k = 0; k < kCandidates; ++k) {
-          const std::int64_t ci = std::int64_t{cur.i} + lane_di[k];
-          const std::int64_t cj = std::int64_t{cur.j} + lane_dj[k];
-          bool ok = k != came_from && (interior || (ci >= 0 && cj >= 0 && ci < na && cj < nb));
-          const auto ui = static_cast<std::uint32_t>(ci);
-          const auto uj = static_cast<std::uint32_t>(cj);
-          if (ok) {
-            // J_k: cells not yet on this ant's path (the tabu list of Eq. 7).
-            const std::uint32_t h = filter_bit(ui, uj);
-            if ((filter[h >> 6] >> (h & 63)) & 1) {
-              for (std::uint32_t t = len; t-- > 0 && ok;)
-                ok = !(path[t].i == ui && path[t].j == uj);
-            }
+        // The 16 lanes' cells and whether each is inside the grid and not the cell just left (the
+        // opposite lane of the last move), in vectors of 8 lanes.
+        lanes::U8 lane_i[2], lane_j[2], lane_ok[2];
+        const lanes::U8 ci = lanes::splat(cur.i), cj = lanes::splat(cur.j);
+        const lanes::U8 size_a = lanes::splat(na), size_b = lanes::splat(nb);
+        const lanes::U8 last_a = lanes::splat(na - 1), last_b = lanes::splat(nb - 1);
+        for (std::uint32_t half = 0; half < 2; ++half) {
+          const lanes::U8 ui = ci + lanes::load(lane_di.data() + 8 * half);
+          const lanes::U8 uj = cj + lanes::load(lane_dj.data() + 8 * half);
+          const auto in_a = (lanes::U8)(ui < size_a);
+          const auto in_b = (lanes::U8)(uj < size_b);
+          const auto not_back =
+              (lanes::U8)(lanes::load(kLaneIndex.data() + 8 * half) != lanes::splat(came_from));
+          lane_ok[half] = in_a & in_b & not_back;
+          lane_i[half] = ui;
+          lane_j[half] = uj;
+          // Every lane holds a valid cell for the loads (the ones outside the grid clamped).
+          lanes::store(cand_i.data() + 8 * half, (ui & in_a) | (last_a & ~in_a));
+          lanes::store(cand_j.data() + 8 * half, (uj & in_b) | (last_b & ~in_b));
+        }
+        // J_k: cells not yet on this ant's path (the tabu list of Eq. 7): every lane against
+        // every path cell, four vector compares per cell, no branch per lane.
+        lanes::U8 on_path[2] = {};
+        for (std::uint32_t t = 0; t < len; ++t) {
+          const lanes::U8 pi = lanes::splat(path[t].i), pj = lanes::splat(path[t].j);
+          for (std::uint32_t half = 0; half < 2; ++half) {
+            on_path[half] |= (lanes::U8)(lane_i[half] == pi) & (lanes::U8)(lane_j[half] == pj);
           }
-          cand_i[count] = ui;
-          cand_j[count] = uj;
-          cand_lane[count] = k;
-          count += ok ? 1 : 0;
         }
-        if (count == 0) break;  // boxed in by its own path at a border
-        // Lanes past `count` repeat the first candidate: computed, never chosen.
-        for (std::uint32_t c = count; c < kCandidates; ++c) {
-          cand_i[c] = cand_i[0];
-          cand_j[c] = cand_j[0];
+        const std::uint32_t ok_mask = lanes::to_mask(lane_ok[0] & ~on_path[0],
+                                                     lane_ok[1] & ~on_path[1]);
+        if (ok_mask == 0) break;  // boxed in by its own path at a border
+        // The candidates stay in their lanes (lane order is candidate order): the lanes of
+        // ok_mask. The other lanes are computed and never chosen.
+        const bool interior = cur.i >= hop_a && cur.i + hop_a < na && cur.j >= hop_b &&
+                              cur.j + hop_b < nb;
+        if (interior) {
+          gather_interior(space, cur.i, cur.j, hop_a, hop_b, witness, lanes);
+        } else {
+          gather_lanes(space, cand_i.data(), cand_j.data(), witness, lanes);
         }
-        rec.evaluate_batch(cand_i.data(), cand_j.data(), count, lanes);
+        rec.evaluate_lanes(cand_i.data(), cand_j.data(), ok_mask, lanes);
         if (rec.stopped()) {
           stopped = true;
           break;
         }
         // Eq. 7 in logarithms: log2(tau^alpha' eta^beta') = alpha' log2 tau - beta' log2 denom,
         // with denom = 1/eta: f(j) (classic), or one of the readings of Eq. 12 (switch 3).
-        gather_log_tau(log_tau.data(), block_row.data(), block_col.data(), cand_i.data(),
-                       cand_j.data(), cand_tau.data());
-        float top = 0;
+        if (interior) {
+          std::array<std::uint32_t, kCandidates> row, col;
+          lanes::spread_rows(block_row.data(), cur.i, hop_a, row.data());
+          lanes::spread_columns(block_col.data(), cur.j, hop_b, col.data());
+          for (std::uint32_t half = 0; half < 2; ++half) {
+            lanes::store(cand_block.data() + 8 * half, lanes::load(row.data() + 8 * half) +
+                                                           lanes::load(col.data() + 8 * half));
+          }
+        } else {
+          for (std::uint32_t k = 0; k < kCandidates; ++k) {
+            cand_block[k] = block_row[cand_i[k]] + block_col[cand_j[k]];
+          }
+        }
+        for (std::uint32_t k = 0; k < kCandidates; ++k) cand_tau[k] = log_tau[cand_block[k]];
         if (remaining) {
           // d_ij: the step from the current cell, from the centroids the batch gathered.
           const float cax = space.a.x[cur.i], cay = space.a.y[cur.i], caz = space.a.z[cur.i];
           const float cbx = space.b.x[cur.j], cby = space.b.y[cur.j], cbz = space.b.z[cur.j];
-          top = remaining_log_weights(lanes, cax, cay, caz, cbx, cby, cbz, cand_tau.data(),
-                                      travelled, alpha, beta, denom_floor, cand_step.data(),
-                                      cand_log.data());
+          remaining_log_weights(lanes, cax, cay, caz, cbx, cby, cbz, cand_tau.data(), travelled,
+                                alpha, beta, denom_floor, cand_step.data(), cand_log.data());
         } else {
-          for (std::uint32_t c = 0; c < count; ++c) {
-            const Cell to{cand_i[c], cand_j[c]};
-            float denom = lanes.d[c];
+          for (std::uint32_t k = 0; k < kCandidates; ++k) {
+            const Cell to{cand_i[k], cand_j[k]};
+            float denom = lanes.d[k];
             if (corridor) {
               denom += cell_distance(space, origin, to);
               if (has_goal) denom += cell_distance(space, to, goal);
             }
             denom = denom > denom_floor ? denom : denom_floor;
-            cand_log[c] = alpha * cand_tau[c] - beta * fast_log2(denom);
+            cand_log[k] = alpha * cand_tau[k] - beta * fast_log2(denom);
           }
-          // Padding lanes repeat the first candidate's value, so the maximum over all 16 lanes
-          // is the real lanes' maximum.
-          for (std::uint32_t c = count; c < kCandidates; ++c) cand_log[c] = cand_log[0];
-          top = lane_max(cand_log.data());
         }
+        // The candidates' largest (the other lanes become -inf).
+        const float top = masked_max(cand_log.data(), ok_mask);
         std::uint32_t pick = 0;
         if (sw.greedy_moves) {
-          while (!(cand_log[pick] == top)) ++pick;  // the first largest (the greedy route)
+          // The first largest (the greedy route).
+          const lanes::F8 t = lanes::splat(top);
+          const std::uint32_t largest =
+              lanes::to_mask((lanes::U8)(lanes::load(cand_log.data()) == t),
+                             (lanes::U8)(lanes::load(cand_log.data() + 8) == t));
+          pick = static_cast<std::uint32_t>(std::countr_zero(largest & ok_mask));
         } else {
-          // Roulette over weights scaled by the largest (2^(l - top) in (0, 1]); padding lanes
-          // weigh 0, so the running total over the real lanes is unchanged.
-          roulette_weights(cand_log.data(), top, count, cand_weight.data());
-          float total = 0;
-          for (std::uint32_t c = 0; c < count; ++c) {
-            total += cand_weight[c];
-            cand_cumulative[c] = total;
-          }
-          const float target = rng.unit_float() * total;
-          // The first lane whose running total exceeds the target: the totals never decrease,
-          // so it is the number of lanes at or below it (the last real lane if none exceeds).
-          for (std::uint32_t c = 0; c < kCandidates; ++c) {
-            pick += (c < count && !(cand_cumulative[c] > target)) ? 1 : 0;
-          }
-          pick = pick < count ? pick : count - 1;
+          // Roulette over weights scaled by the largest (2^(l - top) in (0, 1]); the other lanes
+          // weigh 0, so the running totals at the candidates are those of the candidates alone.
+          roulette_weights(cand_log.data(), top, ok_mask, cand_weight.data());
+          // The first candidate whose running total exceeds the target, or the last candidate if
+          // none does. The totals never decrease along the 16 lanes (the other lanes add 0), so
+          // the lanes at or below the target are the first `below`.
+          const std::uint32_t below =
+              roulette_below(cand_weight.data(), rng.unit_float(), cand_cumulative.data());
+          const std::uint32_t after = ok_mask >> below;  // below <= 16
+          pick = after != 0 ? below + static_cast<std::uint32_t>(std::countr_zero(after))
+                            : static_cast<std::uint32_t>(31 - std::countl_zero(ok_mask));
         }
+        pick &= kCandidates - 1;  // a candidate's lane already (ok_mask is not empty)
         const Cell next{cand_i[pick], cand_j[pick]};
         if (remaining) travelled += cand_step[pick];
         cur = next;
-        came_from = opposite_lane(cand_lane[pick]);
+        came_from = opposite_lane(pick);
         sum_f += lanes.d[pick];
         path[len++] = cur;
-        remember(cur);
       }
       if (stopped) break;
       path_length[ant] = len;

@@ -34,20 +34,17 @@ class Recorder {
   struct Lanes;
 
  private:
-  /// The lane arithmetic of evaluate_batch (aco.cpp): gathers the 16 cells' centroids (and
-  /// radii for the witness verdict) and computes their distances and reaches, in fixed-length,
-  /// branch-free loops that vectorise (the AVX2 clone gathers with vector loads).
-  /// Returns, over the first `count` lanes, whether any is within reach and the bits of the
-  /// smallest squared distance (non-negative floats order like their bits).
+  /// The lane arithmetic of evaluate_lanes (aco.cpp): from the 16 lanes' centroids (and radii for
+  /// the witness verdict), gathered by the caller, their distances and reaches, in fixed-length,
+  /// branch-free loops that vectorise. Returns, over the lanes of `mask`, whether any is
+  /// within reach and the bits of the smallest squared distance (non-negative floats order like
+  /// their bits).
   struct LaneSummary {
     std::uint32_t any_within = 0;
     std::uint32_t min_d2_bits = 0;
   };
-  static LaneSummary compute_lanes(Lanes& lanes, const FeatureSpace& space,
-                                   const std::uint32_t* ci, const std::uint32_t* cj,
-                                   std::uint32_t count, bool witness, float delta,
+  static LaneSummary compute_lanes(Lanes& lanes, std::uint32_t mask, bool witness, float delta,
                                    float centroid);
-
 
  public:
   /// `target_hits` is the absolute hit count of StopCriteria::target_share (0 = off).
@@ -134,30 +131,39 @@ class Recorder {
     alignas(64) std::uint32_t within[kLanes];
   };
 
-  /// Evaluates up to 16 cells at once (the colony's candidates) into `lanes`. `ci` and `cj` hold
-  /// 16 valid cells: the first `count` are the candidates, the rest padding, computed in the
-  /// same fixed-length loops (so that they vectorise) and then ignored. Stops exactly at
-  /// max_evaluations and at the first hit with first_hit (the cells after it are not counted);
-  /// returns how many were evaluated.
-  std::uint32_t evaluate_batch(const std::uint32_t* ci, const std::uint32_t* cj,
-                               std::uint32_t count, Lanes& lanes) {
+  /// Evaluates up to 16 cells at once (the colony's candidates): lane k is cell (ci[k], cj[k]),
+  /// and the lanes of `mask` are the candidates, in lane order; the others are computed in the
+  /// same fixed-length loops (so that they vectorise) and then ignored. The caller has gathered
+  /// the 16 cells' centroids into `lanes` (and their radii for the witness verdict); `ci` and `cj`
+  /// hold valid cells in every lane. Stops exactly at max_evaluations (the candidates past the
+  /// limit are not evaluated) and at the first hit with first_hit (the cells after it are not
+  /// counted); returns how many were evaluated.
+  std::uint32_t evaluate_lanes(const std::uint32_t* ci, const std::uint32_t* cj, std::uint32_t mask,
+                               Lanes& lanes) {
+    auto count = static_cast<std::uint32_t>(std::popcount(mask));
     if (max_evaluations_ != 0) {
       const std::uint64_t left = max_evaluations_ - out_.evaluations;
-      if (left < count) count = static_cast<std::uint32_t>(left);
+      while (left < count) {  // drop the last candidates
+        const auto last = static_cast<std::uint32_t>(31 - std::countl_zero(mask));
+        mask &= ~(std::uint32_t{1} << last);
+        --count;
+      }
     }
     const bool witness = t_.verdict == Verdict::Witness;
-    const LaneSummary sum =
-        compute_lanes(lanes, space_, ci, cj, count, witness, t_.delta, t_.centroid);
+    const LaneSummary sum = compute_lanes(lanes, mask, witness, t_.delta, t_.centroid);
     std::uint32_t counted_in_batch = 0;
     if (std::bit_cast<float>(sum.min_d2_bits) < best2_ || sum.any_within != 0) {
-      for (std::uint32_t k = 0; k < count; ++k) {
+      std::uint32_t evaluated = 0;
+      for (std::uint32_t left = mask; left != 0; left &= left - 1) {
+        const auto k = static_cast<std::uint32_t>(std::countr_zero(left));
+        ++evaluated;
         const float d2 = lanes.d2[k];
         if (d2 < best2_) offer_best(ci[k], cj[k], d2);
         if (lanes.within[k] != 0) {
-          out_.evaluations += k + 1 - counted_in_batch;
-          counted_in_batch = k + 1;
+          out_.evaluations += evaluated - counted_in_batch;
+          counted_in_batch = evaluated;
           consider(ci[k], cj[k], d2);
-          if (stopped_) return k + 1;
+          if (stopped_) return evaluated;
         }
       }
     }
