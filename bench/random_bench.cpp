@@ -82,6 +82,7 @@ const Space& space_for(std::uint32_t samples) {
   if (it == cache.end()) {
     const Scene& s = scene();
     SamplingOptions options;
+    options.triangle_masks = false;  // the paper's leaf pairs, as in antcd bench paper
     options.samples_per_side = samples;
     Space sp;
     sp.space = build_feature_space(s.a, s.pose_a, s.b, s.pose_b, options, 1);

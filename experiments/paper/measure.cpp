@@ -165,6 +165,7 @@ void run_paper_bench(const PaperBenchOptions& options, std::ostream& log) {
     for (const std::size_t f : chosen->second) {
       SamplingOptions one;
       one.samples_per_side = 1;
+      one.triangle_masks = false;  // the paper's preliminary detection: sphere and OBB only
       const FeatureSpace sp =
           build_feature_space(*fp.model_a, fp.a->pose(f), *fp.model_b, fp.b->pose(f), one, 0);
       ranked.push_back({f, sp.candidates_a, sp.candidates_b});
@@ -230,6 +231,7 @@ void run_paper_bench(const PaperBenchOptions& options, std::ostream& log) {
   auto build_space = [&](const PairFrame& pf, std::uint32_t n, std::uint64_t seed) {
     SamplingOptions sampling;
     sampling.samples_per_side = n;
+    sampling.triangle_masks = false;  // the paper's preliminary detection: sphere and OBB only
     return build_feature_space(*model_a, fine_a.pose(pf.frame), *model_b, fine_b.pose(pf.frame),
                                sampling, seed);
   };

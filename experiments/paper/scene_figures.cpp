@@ -78,6 +78,7 @@ void measure_scene_figures(const Scene& scene, const std::vector<FrameTruth>& tr
       req.delta = 0;
       req.samples_per_side = P.scene_samples;
       req.evaluations_per_leaf_pair = 0;  // the budget below is the only one
+      req.triangle_masks = false;         // the paper's preliminary detection: sphere and OBB only
       req.search = paper_request(method, shared::derive_seed(seed, 5, salt));
       req.search.verdict = verdict;
       req.search.centroid_delta = centroid_delta;

@@ -221,15 +221,28 @@ FeatureSpace build_feature_space(const Model& a, const Transform& pose_a, const 
 
   // Section 4 step 1: preliminary detection at the collision threshold itself.
   std::vector<LeafPair> pairs;
-  if (options.max_leaf_pairs == 0) {
+  if (options.max_leaf_pairs == 0 && !options.triangle_masks) {
     overlapping_leaves(a, pose_a, b, pose_b, space.delta, pairs);
   } else {
     const detail::PairFrame frame(a, pose_a, b, pose_b, space.delta);
-    detail::dual_traverse<true>(a, b, frame, [&](std::uint32_t la, std::uint32_t lb) {
+    auto collect = [&](std::uint32_t la, std::uint32_t lb) {
       pairs.push_back({la, lb});
+      if (options.max_leaf_pairs == 0) return false;
       space.complete = pairs.size() < options.max_leaf_pairs;
       return !space.complete;
-    });
+    };
+    // The masks only decide which leaf pairs are reported (the triangles of a reported pair are
+    // all sampled as before); the full pass keeps overlapping_leaves' order.
+    auto masked = [&](std::uint32_t la, std::uint32_t lb, std::uint32_t, std::uint32_t) {
+      return collect(la, lb);
+    };
+    if (options.max_leaf_pairs == 0) {
+      detail::dual_traverse<false>(a, b, frame, masked);
+    } else if (options.triangle_masks) {
+      detail::dual_traverse<true>(a, b, frame, masked);
+    } else {
+      detail::dual_traverse<true>(a, b, frame, collect);
+    }
   }
   space.leaf_pairs = pairs.size();
   if (pairs.empty()) return space;  // no leaf pair: separate, nothing to search

@@ -311,6 +311,7 @@ DetectResult random_detect(const Model& a, const Transform& pose_a, const Model&
   sampling.centroid_delta = request.search.centroid_delta;
   sampling.order = request.order;
   sampling.max_leaf_pairs = request.all_witnesses ? 0 : request.first_leaf_pairs;
+  sampling.triangle_masks = request.triangle_masks;
   FeatureSpace space = build_feature_space(a, pose_a, b, pose_b, sampling, request.search.seed);
   out.leaf_pairs = space.leaf_pairs;
   if (space.leaf_pairs == 0) {
