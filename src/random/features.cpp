@@ -221,9 +221,7 @@ FeatureSpace build_feature_space(const Model& a, const Transform& pose_a, const 
 
   // Section 4 step 1: preliminary detection at the collision threshold itself.
   std::vector<LeafPair> pairs;
-  if (options.max_leaf_pairs == 0 && !options.triangle_masks) {
-    overlapping_leaves(a, pose_a, b, pose_b, space.delta, pairs);
-  } else {
+  {
     const detail::PairFrame frame(a, pose_a, b, pose_b, space.delta);
     auto collect = [&](std::uint32_t la, std::uint32_t lb) {
       pairs.push_back({la, lb});
@@ -232,16 +230,22 @@ FeatureSpace build_feature_space(const Model& a, const Transform& pose_a, const 
       return !space.complete;
     };
     // The masks only decide which leaf pairs are reported (the triangles of a reported pair are
-    // all sampled as before); the full pass keeps overlapping_leaves' order.
+    // all sampled as before). Every leaf pair: overlapping_leaves' order; the first ones: nearest
+    // children first.
     auto masked = [&](std::uint32_t la, std::uint32_t lb, std::uint32_t, std::uint32_t) {
       return collect(la, lb);
     };
-    if (options.max_leaf_pairs == 0) {
-      detail::dual_traverse<false>(a, b, frame, masked);
-    } else if (options.triangle_masks) {
-      detail::dual_traverse<true>(a, b, frame, masked);
+    auto traverse = [&](auto& on_leaf) {
+      if (options.max_leaf_pairs == 0) {
+        detail::dual_traverse<false>(a, b, frame, on_leaf);
+      } else {
+        detail::dual_traverse<true>(a, b, frame, on_leaf);
+      }
+    };
+    if (options.triangle_masks) {
+      traverse(masked);
     } else {
-      detail::dual_traverse<true>(a, b, frame, collect);
+      traverse(collect);
     }
   }
   space.leaf_pairs = pairs.size();
