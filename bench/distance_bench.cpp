@@ -93,7 +93,7 @@ std::unique_ptr<Scene> make_scene(Shape shape, std::int64_t nominal) {
   s->model = std::make_unique<antcd::Model>(mesh);
   s->rss = fcl_model<fcl::RSSd>(mesh);
   s->obbrss = fcl_model<fcl::OBBRSSd>(mesh);
-  const Scalar radius = s->model->root().sphere.radius + s->model->root().sphere.center.norm();
+  const Scalar radius = s->model->root().radius + s->model->root().center.norm();
   std::mt19937_64 rng(0x64697374ULL + static_cast<std::uint64_t>(nominal));
   std::normal_distribution<Scalar> gauss;
   std::uniform_real_distribution<Scalar> uni(0, 1);

@@ -14,6 +14,7 @@
 #include <antcd/geometry.hpp>
 #include <antcd/mesh.hpp>
 
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <span>
@@ -32,18 +33,70 @@ struct BuildOptions {
   CovarianceMethod covariance = CovarianceMethod::AreaWeightedCentroid;
 };
 
+/// One node of the hierarchy: an oriented box and a sphere about the same centre, both holding
+/// every vertex of the node's triangles (model frame). 96 bytes: the centre and two box axes in
+/// double; the third axis is axis0 x axis1, computed the same way wherever it is used (the build
+/// fits the extents along exactly that vector); half extents and radius in float, rounded up
+/// (towards +infinity) from the double fit, so the stored volumes only ever contain the double
+/// ones. Read them through obb() and sphere().
 struct BvhNode {
-  Obb obb;
-  Sphere sphere;
+  // What the sphere test and the descent read comes first: those 36 bytes never straddle a cache
+  // line when the array starts on one (96-byte nodes begin at offset 0 or 32 of a 64-byte line).
+  Vec3 center = Vec3::Zero();  ///< centre of the box and of the sphere
+  float radius = 0;            ///< sphere radius
+  /// Number of triangles of a leaf; 0 for an internal node.
+  std::uint32_t count = 0;
   /// Internal node: index of the right child (the left one is this index + 1).
   /// Leaf: index of the first triangle in Model::leaf_triangles().
   std::uint32_t first_or_right = 0;
-  /// Number of triangles of a leaf; 0 for an internal node.
-  std::uint32_t count = 0;
+  std::array<float, 3> half = {0, 0, 0};  ///< box half extents along axis0, axis1, axes()[2]
+  Vec3 axis0 = Vec3::UnitX();             ///< first box axis (unit)
+  Vec3 axis1 = Vec3::UnitY();             ///< second box axis (unit, orthogonal to axis0)
 
   [[nodiscard]] bool is_leaf() const { return count != 0; }
+  /// The box axes as columns: axis0, axis1, axis0 x axis1 (right-handed).
+  [[nodiscard]] Mat3 axes() const {
+    Mat3 m;
+    m.col(0) = axis0;
+    m.col(1) = axis1;
+    m.col(2) = axis0.cross(axis1);
+    return m;
+  }
+  [[nodiscard]] Vec3 half_extents() const { return {half[0], half[1], half[2]}; }
+  [[nodiscard]] Obb obb() const { return {center, axes(), half_extents()}; }
+  [[nodiscard]] Sphere sphere() const { return {center, radius}; }
 };
-static_assert(sizeof(BvhNode) == 160, "BvhNode layout changed: check traversal cache behaviour");
+static_assert(sizeof(BvhNode) == 96, "BvhNode layout changed: check traversal cache behaviour");
+
+/// The corners of the triangles in leaf order, read through the model's mesh (the model keeps no
+/// copy of them): corner c (0, 1, 2) of leaf triangle k is
+/// mesh().vertices[mesh().triangles[leaf_triangles()[k]][c]], model frame. Valid while its Model
+/// lives and is not refitted.
+class LeafCorners {
+ public:
+  LeafCorners(const Mesh& mesh, std::span<const std::uint32_t> leaf_triangles)
+      : vertices_(mesh.vertices.data()),
+        triangles_(mesh.triangles.data()),
+        leaf_(leaf_triangles.data()),
+        size_(leaf_triangles.size()) {}
+  /// Corner c of leaf triangle k (k < size(), c < 3).
+  [[nodiscard]] const Vec3& operator()(std::size_t k, int c) const {
+    return vertices_[triangles_[leaf_[k]][static_cast<std::size_t>(c)]];
+  }
+  /// The three corners of leaf triangle k (k < size()).
+  [[nodiscard]] std::array<Vec3, 3> triangle(std::size_t k) const {
+    const TriangleIndices& t = triangles_[leaf_[k]];
+    return {vertices_[t[0]], vertices_[t[1]], vertices_[t[2]]};
+  }
+  /// Number of triangles.
+  [[nodiscard]] std::size_t size() const { return size_; }
+
+ private:
+  const Vec3* vertices_;
+  const TriangleIndices* triangles_;
+  const std::uint32_t* leaf_;
+  std::size_t size_;
+};
 
 struct BvhStats {
   std::size_t triangles = 0;             ///< triangles in the mesh
@@ -71,8 +124,8 @@ class ANTCD_API Model {
   [[nodiscard]] const BvhNode& root() const { return nodes_.front(); }
   /// Mesh triangle indices in leaf order (degenerate triangles absent).
   [[nodiscard]] std::span<const std::uint32_t> leaf_triangles() const { return leaf_triangles_; }
-  /// Vertex positions of leaf_triangles()[k], packed: 3 per triangle, model frame.
-  [[nodiscard]] std::span<const Vec3> leaf_vertices() const { return leaf_vertices_; }
+  /// Corners of leaf_triangles()[k], model frame (read through the mesh).
+  [[nodiscard]] LeafCorners leaf_corners() const { return {mesh_, leaf_triangles_}; }
   [[nodiscard]] const BvhStats& stats() const { return stats_; }
   /// The mesh is closed and consistently oriented (antcd::is_closed, decided at construction):
   /// it bounds a solid, and volume queries (CollisionRequest::volume) apply to it.
@@ -96,7 +149,6 @@ class ANTCD_API Model {
   BuildOptions options_;
   std::vector<BvhNode> nodes_;
   std::vector<std::uint32_t> leaf_triangles_;
-  std::vector<Vec3> leaf_vertices_;
   BvhStats stats_;
   bool closed_ = false;
   /// Data derived on first use by point queries (antcd/points.hpp), built once under a once-flag

@@ -108,10 +108,10 @@ FeatureVector pair_features(const Model& a, const Transform& pose_a, const Model
   const Transform b_to_a = pose_a.inverse() * pose_b;
   const auto na = a.nodes();
   const auto nb = b.nodes();
-  const Sphere sa = na[0].sphere;
-  const Sphere sb = moved(nb[0].sphere, b_to_a);
-  const Obb oa = na[0].obb;
-  const Obb ob = moved(nb[0].obb, b_to_a);
+  const Sphere sa = na[0].sphere();
+  const Sphere sb = moved(nb[0].sphere(), b_to_a);
+  const Obb oa = na[0].obb();
+  const Obb ob = moved(nb[0].obb(), b_to_a);
   const Scalar s = std::max(sa.radius + sb.radius, std::numeric_limits<Scalar>::min());
 
   // Root spheres.
@@ -178,13 +178,13 @@ FeatureVector pair_features(const Model& a, const Transform& pose_a, const Model
       const int ncb = children(nb, cur[p].b, cb);
       for (int x = 0; x < nca; ++x) {
         for (int y = 0; y < ncb; ++y) {
-          const Sphere s1 = na[ca[x]].sphere;
-          const Sphere s2 = moved(nb[cb[y]].sphere, b_to_a);
+          const Sphere s1 = na[ca[x]].sphere();
+          const Sphere s2 = moved(nb[cb[y]].sphere(), b_to_a);
           const Scalar rr = s1.radius + s2.radius;
           if (level > 3) {
             // Deeper levels only count overlaps: the library's tests, no margins.
             if (!geometry::sphere_overlap(s1, s2, delta)) continue;
-            if (!geometry::obb_overlap(na[ca[x]].obb, moved(nb[cb[y]].obb, b_to_a), delta)) {
+            if (!geometry::obb_overlap(na[ca[x]].obb(), moved(nb[cb[y]].obb(), b_to_a), delta)) {
               continue;
             }
             next[next_n++] = {ca[x], cb[y]};
@@ -195,7 +195,7 @@ FeatureVector pair_features(const Model& a, const Transform& pose_a, const Model
           if (g > 0) continue;
           std::array<Scalar, 15> mm;
           const Scalar w =
-              sat_margins(na[ca[x]].obb, moved(nb[cb[y]].obb, b_to_a), delta, mm.data());
+              sat_margins(na[ca[x]].obb(), moved(nb[cb[y]].obb(), b_to_a), delta, mm.data());
           sat = std::min(sat, w);
           if (w > 0) continue;
           next[next_n++] = {ca[x], cb[y]};

@@ -54,10 +54,10 @@ struct Posed {
 };
 
 Aabb world_box(const Model& model, const Transform& pose) {
-  const Obb& obb = model.root().obb;
+  const Obb obb = model.root().obb();
   const Vec3 center = pose.apply(obb.center);
   const Vec3 half = (pose.rotation * obb.axes).cwiseAbs() * obb.half_extents;
-  const Scalar allowance = 1e-9 * (center.norm() + half.norm() + model.root().sphere.radius) + 1e-300;
+  const Scalar allowance = 1e-9 * (center.norm() + half.norm() + model.root().radius) + 1e-300;
   const Vec3 grow = half.array() + allowance;
   return Aabb{center - grow, center + grow};
 }

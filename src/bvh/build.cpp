@@ -4,6 +4,7 @@
 #include <antcd/bvh.hpp>
 
 #include "bvh/model_cache.hpp"
+#include "bvh/node_store.hpp"
 #include "bvh/split.hpp"
 #include "geometry/obb_fit.hpp"
 #include "util/huge_pages.hpp"
@@ -178,17 +179,16 @@ class Builder {
 
   BvhNode fit_node(std::size_t begin, std::size_t end) const {
     const std::span<const BuildTriangle> tris = range(begin, end);
-    BvhNode node;
-    node.obb =
-        geometry::detail::fit_obb(tris, geometry::detail::fit_obb_axes(tris, options_.covariance));
+    const Obb box = geometry::detail::fit_obb(
+        tris, detail::storable_axes(geometry::detail::fit_obb_axes(tris, options_.covariance)));
     // Sphere about the box centre through the farthest vertex: never larger than the box's
     // circumscribed sphere, and a cheap first reject in the traversal.
     Scalar r2 = 0;
     for (const BuildTriangle& t : tris) {
-      for (const Vec3& v : t.v) r2 = std::max(r2, (v - node.obb.center).squaredNorm());
+      for (const Vec3& v : t.v) r2 = std::max(r2, (v - box.center).squaredNorm());
     }
-    node.sphere.center = node.obb.center;
-    node.sphere.radius = std::sqrt(r2);
+    BvhNode node;
+    detail::store_volumes(node, box, std::sqrt(r2));
     return node;
   }
 
@@ -263,25 +263,15 @@ Model::Model(Mesh mesh, const BuildOptions& options, std::string source)
     stats_.depth = builder.build_task(0, kept, 0, 0, 0);
   }
 
-  // The leaf order, then the triangles' corners in it (copies of the mesh's vertices), after the
-  // build's copies are freed: a 5-million-triangle build peaks at about 1.2 GB this way.
+  // The leaf order; the triangles' corners are read through the mesh (LeafCorners).
   leaf_triangles_.resize(kept);
   for (std::size_t i = 0; i < kept; ++i) leaf_triangles_[i] = tris[i].index;
   tris_storage.reset();
-  leaf_vertices_.reserve(3 * kept);
-  detail::advise_huge_pages(leaf_vertices_.data(), leaf_vertices_.capacity());
-  leaf_vertices_.resize(3 * kept);  // Vec3's default constructor writes nothing
-  for_blocks(kept, [&](std::size_t begin, std::size_t end) {
-    for (std::size_t i = begin; i < end; ++i) {
-      const TriangleIndices& t = mesh_.triangles[leaf_triangles_[i]];
-      for (int k = 0; k < 3; ++k) leaf_vertices_[3 * i + k] = mesh_.vertices[t[k]];
-    }
-  });
 
   stats_.triangles = mesh_.triangles.size();
   stats_.nodes = nodes_.size();
   for (const BvhNode& node : nodes_) {
-    stats_.obb_volume_sum += node.obb.volume();
+    stats_.obb_volume_sum += node.obb().volume();
     if (node.is_leaf()) {
       ++stats_.leaves;
       stats_.max_leaf_size = std::max<std::size_t>(stats_.max_leaf_size, node.count);
@@ -290,7 +280,7 @@ Model::Model(Mesh mesh, const BuildOptions& options, std::string source)
   stats_.memory_bytes =
       mesh_.vertices.capacity() * sizeof(Vec3) +
       mesh_.triangles.capacity() * sizeof(TriangleIndices) + nodes_.capacity() * sizeof(BvhNode) +
-      leaf_triangles_.capacity() * sizeof(std::uint32_t) + leaf_vertices_.capacity() * sizeof(Vec3);
+      leaf_triangles_.capacity() * sizeof(std::uint32_t);
   stats_.build_ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }

@@ -3,19 +3,21 @@
 #include <antcd/bvh.hpp>
 
 #include "bvh/model_cache.hpp"
+#include "bvh/node_store.hpp"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
 #include <string>
+#include <vector>
 
 namespace antcd {
 
 namespace {
 
-/// The box with `axes` holding the points, and the sphere about its centre through the farthest.
-void fit_points(BvhNode& node, const Mat3& axes, std::span<const Vec3> points) {
+/// The box with `axes` (the node's own) holding the points.
+Obb fit_points(const Mat3& axes, std::span<const Vec3> points) {
   Vec3 lo = Vec3::Constant(std::numeric_limits<Scalar>::infinity());
   Vec3 hi = -lo;
   for (const Vec3& p : points) {
@@ -23,9 +25,7 @@ void fit_points(BvhNode& node, const Mat3& axes, std::span<const Vec3> points) {
     lo = lo.cwiseMin(local);
     hi = hi.cwiseMax(local);
   }
-  node.obb.axes = axes;
-  node.obb.center = axes * (0.5 * (lo + hi));
-  node.obb.half_extents = 0.5 * (hi - lo);
+  return {axes * (0.5 * (lo + hi)), axes, 0.5 * (hi - lo)};
 }
 
 std::array<Vec3, 8> corners(const Obb& box) {
@@ -65,41 +65,42 @@ void Model::refit(std::span<const Vec3> new_vertices) {
   }
 
   std::copy(new_vertices.begin(), new_vertices.end(), mesh_.vertices.begin());
-  for (std::size_t k = 0; k < leaf_triangles_.size(); ++k) {
-    const auto& tri = mesh_.triangles[leaf_triangles_[k]];
-    for (int i = 0; i < 3; ++i) leaf_vertices_[3 * k + i] = mesh_.vertices[tri[i]];
-  }
+  const LeafCorners corners_of = leaf_corners();
   // Children come after their parent in the depth-first layout: refit from the last node back.
   // Each box keeps its axes; a leaf's extents come from its vertices, an internal node's from its
   // children's box corners (a bound, possibly looser than a fresh fit); each sphere is the smaller
   // of the box's circumscribed sphere and (internal nodes) the one about the box centre holding
   // the children's spheres, or (leaves) the one through the farthest vertex.
+  std::vector<Vec3> verts;
   for (std::size_t i = nodes_.size(); i-- > 0;) {
     BvhNode& node = nodes_[i];
+    const Mat3 axes = node.axes();
     if (node.is_leaf()) {
-      const std::span<const Vec3> verts(leaf_vertices_.data() + 3 * std::size_t{node.first_or_right},
-                                        3 * std::size_t{node.count});
-      fit_points(node, node.obb.axes, verts);
+      verts.clear();
+      for (std::uint32_t k = node.first_or_right; k < node.first_or_right + node.count; ++k) {
+        for (int c = 0; c < 3; ++c) verts.push_back(corners_of(k, c));
+      }
+      const Obb box = fit_points(axes, verts);
       Scalar r2 = 0;
-      for (const Vec3& v : verts) r2 = std::max(r2, (v - node.obb.center).squaredNorm());
-      node.sphere = {node.obb.center, std::sqrt(r2)};
+      for (const Vec3& v : verts) r2 = std::max(r2, (v - box.center).squaredNorm());
+      detail::store_volumes(node, box, std::sqrt(r2));
       continue;
     }
     const BvhNode& left = nodes_[i + 1];
     const BvhNode& right = nodes_[node.first_or_right];
     std::array<Vec3, 16> points;
-    const auto cl = corners(left.obb);
-    const auto cr = corners(right.obb);
+    const auto cl = corners(left.obb());
+    const auto cr = corners(right.obb());
     std::copy(cl.begin(), cl.end(), points.begin());
     std::copy(cr.begin(), cr.end(), points.begin() + 8);
-    fit_points(node, node.obb.axes, points);
+    const Obb box = fit_points(axes, points);
     const Scalar from_children =
-        std::max((left.sphere.center - node.obb.center).norm() + left.sphere.radius,
-                 (right.sphere.center - node.obb.center).norm() + right.sphere.radius);
-    node.sphere = {node.obb.center, std::min(from_children, node.obb.half_extents.norm())};
+        std::max((left.center - box.center).norm() + left.radius,
+                 (right.center - box.center).norm() + right.radius);
+    detail::store_volumes(node, box, std::min(from_children, box.half_extents.norm()));
   }
   stats_.obb_volume_sum = 0;
-  for (const BvhNode& node : nodes_) stats_.obb_volume_sum += node.obb.volume();
+  for (const BvhNode& node : nodes_) stats_.obb_volume_sum += node.obb().volume();
   // Data derived from the old positions (point-query pseudo-normals) is dropped.
   cache_ = std::make_shared<detail::ModelCache>();
 }

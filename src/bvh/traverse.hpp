@@ -26,36 +26,46 @@ struct PairFrame {
     // The culling tests are a filter in front of exact triangle tests, so widening them by a
     // rounding allowance never changes an answer; it keeps exactly touching configurations from
     // being culled by rounding in the box fit or in the separating-axis arithmetic.
-    const Scalar scale = a.root().sphere.radius + b.root().sphere.radius +
-                         a.root().sphere.center.norm() + b.root().sphere.center.norm() +
+    const Scalar scale = a.root().radius + b.root().radius + a.root().center.norm() +
+                         b.root().center.norm() +
                          b_to_a.translation.norm();
     margin = delta + 1e-9 * scale;
   }
 };
 
 /// Separating-axis test between A's node box and B's node box, B given in its model frame with the
-/// rigid motion (rot, trans) into A's model frame: the 15 axes, tolerances and margin of
+/// rotation `rot` into A's model frame: the 15 axes, tolerances and margin of
 /// geometry::obb_overlap, inlined into the traversal. True when a separating axis was found.
-inline bool obb_disjoint(const Obb& a, const Obb& b, const Mat3& rot, const Vec3& trans,
+/// B's third axis in A's frame is taken as (R b0) x (R b1), equal to R (b0 x b1) up to rounding
+/// (which the margin covers, like the rest of the separating-axis arithmetic).
+/// `cb` is B's centre in A's frame (rot * b.center + trans), which the sphere test computed.
+inline bool obb_disjoint(const BvhNode& a, const BvhNode& b, const Mat3& rot, const Vec3& cb,
                          Scalar margin) {
-  const Mat3 rb = rot * b.axes;
-  const Mat3 r = a.axes.transpose() * rb;
-  const Vec3 t = a.axes.transpose() * (rot * b.center + trans - a.center);
-  return geometry::detail::obb_separated(a.half_extents.array() + margin, b.half_extents, r, t);
+  const Vec3 rb0 = rot * b.axis0;
+  const Vec3 rb1 = rot * b.axis1;
+  const Vec3 rb2 = rb0.cross(rb1);
+  const Vec3 a2 = a.axis0.cross(a.axis1);
+  const Vec3 d = cb - a.center;
+  Mat3 r;
+  r << a.axis0.dot(rb0), a.axis0.dot(rb1), a.axis0.dot(rb2),  //
+      a.axis1.dot(rb0), a.axis1.dot(rb1), a.axis1.dot(rb2),   //
+      a2.dot(rb0), a2.dot(rb1), a2.dot(rb2);
+  const Vec3 t(a.axis0.dot(d), a.axis1.dot(d), a2.dot(d));
+  return geometry::detail::obb_separated(a.half_extents().array() + margin, b.half_extents(), r, t);
 }
 
 /// Which triangles of a leaf (bits of `live`, triangle k of the leaf at bit k) may come within the
-/// margin of a box: those the 13-axis test does not separate from it. The leaf's triangles (3
-/// vertices each from `verts`, starting at leaf triangle `first`) are mapped into the box's
-/// coordinates by u = m * v + off; `e` is the box's half extents widened by the margin.
-inline std::uint32_t live_triangles(std::span<const Vec3> verts, std::uint32_t first,
+/// margin of a box: those the 13-axis test does not separate from it. The leaf's triangles
+/// (leaf triangles first .. first + count of `corners`) are mapped into the box's coordinates by
+/// u = m * v + off; `e` is the box's half extents widened by the margin.
+inline std::uint32_t live_triangles(const LeafCorners& corners, std::uint32_t first,
                                     std::uint32_t count, std::uint32_t live, const Mat3& m,
                                     const Vec3& off, const Vec3& e) {
   for (std::uint32_t k = 0; k < count; ++k) {
     if ((live >> k & 1u) == 0) continue;
-    const std::size_t v = 3 * (std::size_t{first} + k);
-    if (geometry::detail::triangle_box_separated(m * verts[v] + off, m * verts[v + 1] + off,
-                                                 m * verts[v + 2] + off, e)) {
+    const std::size_t t = std::size_t{first} + k;
+    if (geometry::detail::triangle_box_separated(m * corners(t, 0) + off, m * corners(t, 1) + off,
+                                                 m * corners(t, 2) + off, e)) {
       live &= ~(1u << k);
     }
   }
@@ -113,13 +123,15 @@ TraversalStats dual_traverse(const Model& a, const Model& b, const PairFrame& fr
     const BvhNode& nb = nodes_b[item.ib];
     ++stats.node_pairs;
 
-    const Vec3 cb = rot * nb.sphere.center + trans;
-    const Scalar rsum = na.sphere.radius + nb.sphere.radius + frame.margin;
-    if ((cb - na.sphere.center).squaredNorm() > rsum * rsum) {
+    const Vec3 cb = rot * nb.center + trans;
+    const Scalar radius_a = na.radius;
+    const Scalar radius_b = nb.radius;
+    const Scalar rsum = radius_a + radius_b + frame.margin;
+    if ((cb - na.center).squaredNorm() > rsum * rsum) {
       ++stats.sphere_rejects;
       continue;
     }
-    if (obb_disjoint(na.obb, nb.obb, rot, trans, frame.margin)) {
+    if (obb_disjoint(na, nb, rot, cb, frame.margin)) {
       ++stats.obb_rejects;
       continue;
     }
@@ -128,24 +140,25 @@ TraversalStats dual_traverse(const Model& a, const Model& b, const PairFrame& fr
     const bool leaf_b = nb.is_leaf();
     if constexpr (kMasks) {
       if (leaf_a && na.count > 1 && na.count <= kMaskedLeaf &&
-          na.sphere.radius > kMaskRatio * nb.sphere.radius) {
+          radius_a > kMaskRatio * radius_b) {
         // A's triangles in B's node box coordinates: u = (R b)^T (v - (R c_b + t)).
-        const Mat3 m = (rot * nb.obb.axes).transpose();
-        const Vec3 off = -(m * (rot * nb.obb.center + trans));
-        item.live_a = live_triangles(a.leaf_vertices(), na.first_or_right, na.count, item.live_a, m,
-                                     off, nb.obb.half_extents.array() + frame.margin);
+        const Mat3 m = (rot * nb.axes()).transpose();
+        const Vec3 off = -(m * cb);
+        item.live_a = live_triangles(a.leaf_corners(), na.first_or_right, na.count, item.live_a, m,
+                                     off, nb.half_extents().array() + frame.margin);
         if ((item.live_a & (kAll >> (32 - na.count))) == 0) {
           ++stats.triangle_rejects;
           continue;
         }
       }
       if (leaf_b && nb.count > 1 && nb.count <= kMaskedLeaf &&
-          nb.sphere.radius > kMaskRatio * na.sphere.radius) {
+          radius_b > kMaskRatio * radius_a) {
         // B's triangles in A's node box coordinates: u = a^T (R v + t - c_a).
-        const Mat3 m = na.obb.axes.transpose() * rot;
-        const Vec3 off = na.obb.axes.transpose() * (trans - na.obb.center);
-        item.live_b = live_triangles(b.leaf_vertices(), nb.first_or_right, nb.count, item.live_b, m,
-                                     off, na.obb.half_extents.array() + frame.margin);
+        const Mat3 axes_a = na.axes();
+        const Mat3 m = axes_a.transpose() * rot;
+        const Vec3 off = axes_a.transpose() * (trans - na.center);
+        item.live_b = live_triangles(b.leaf_corners(), nb.first_or_right, nb.count, item.live_b, m,
+                                     off, na.half_extents().array() + frame.margin);
         if ((item.live_b & (kAll >> (32 - nb.count))) == 0) {
           ++stats.triangle_rejects;
           continue;
@@ -164,12 +177,12 @@ TraversalStats dual_traverse(const Model& a, const Model& b, const PairFrame& fr
     assert(top + 2 <= stack.size());
     // Descend the larger volume (or the only internal one); right child pushed first so the
     // left subtree is visited first.
-    if (leaf_b || (!leaf_a && na.sphere.radius >= nb.sphere.radius)) {
+    if (leaf_b || (!leaf_a && radius_a >= radius_b)) {
       std::uint32_t first = item.ia + 1;
       std::uint32_t second = na.first_or_right;
       if constexpr (kNearestFirst) {
-        if ((nodes_a[second].sphere.center - cb).squaredNorm() <
-            (nodes_a[first].sphere.center - cb).squaredNorm()) {
+        if ((nodes_a[second].center - cb).squaredNorm() <
+            (nodes_a[first].center - cb).squaredNorm()) {
           std::swap(first, second);
         }
       }
@@ -180,9 +193,9 @@ TraversalStats dual_traverse(const Model& a, const Model& b, const PairFrame& fr
       std::uint32_t second = nb.first_or_right;
       if constexpr (kNearestFirst) {
         // A's centre in B's frame.
-        const Vec3 ca = rot.transpose() * (na.sphere.center - trans);
-        if ((nodes_b[second].sphere.center - ca).squaredNorm() <
-            (nodes_b[first].sphere.center - ca).squaredNorm()) {
+        const Vec3 ca = rot.transpose() * (na.center - trans);
+        if ((nodes_b[second].center - ca).squaredNorm() <
+            (nodes_b[first].center - ca).squaredNorm()) {
           std::swap(first, second);
         }
       }

@@ -130,8 +130,8 @@ DistanceResult distance(const Model& a, const Transform& pose_a, const Model& b,
   const Vec3& trans = frame.b_to_a.translation;
   const auto nodes_a = a.nodes();
   const auto nodes_b = b.nodes();
-  const auto verts_a = a.leaf_vertices();
-  const auto verts_b = b.leaf_vertices();
+  const LeafCorners verts_a = a.leaf_corners();
+  const LeafCorners verts_b = b.leaf_corners();
 
   // A node of B with its volumes mapped into A's frame (the box only when needed): while the walk
   // descends A, both child pairs share it.
@@ -145,7 +145,7 @@ DistanceResult distance(const Model& a, const Transform& pose_a, const Model& b,
   const auto map_node = [&](std::uint32_t ib, MappedNode& m) {
     if (m.index == ib) return;
     m.index = ib;
-    m.sphere_center = rot * nodes_b[ib].sphere.center + trans;
+    m.sphere_center = rot * nodes_b[ib].center + trans;
     m.has_box = false;
   };
   // A node pair's bound: `lb` a lower bound of the distance between the contents (>= 0), `key`
@@ -161,15 +161,15 @@ DistanceResult distance(const Model& a, const Transform& pose_a, const Model& b,
     const BvhNode& na = nodes_a[ia];
     const BvhNode& nb = nodes_b[mb.index];
     const Scalar sphere =
-        detail::sphere_gap(na.sphere, mb.sphere_center, nb.sphere.radius) - frame.margin;
+        detail::sphere_gap(na.sphere(), mb.sphere_center, nb.radius) - frame.margin;
     if (search.prune(std::max(sphere, Scalar{0})))
       return Bound{std::max(sphere, Scalar{0}), sphere};
     if (!mb.has_box) {
-      mb.axes = rot * nb.obb.axes;
-      mb.center = rot * nb.obb.center + trans;
+      mb.axes = rot * nb.axes();
+      mb.center = mb.sphere_center;
       mb.has_box = true;
     }
-    const Scalar obb = detail::obb_gap(na.obb, mb.axes, mb.center, nb.obb.half_extents,
+    const Scalar obb = detail::obb_gap(na.obb(), mb.axes, mb.center, nb.half_extents(),
                                        search.cutoff() + frame.margin) -
                        frame.margin;
     const Scalar key = obb > 0 ? std::max(sphere, obb) : sphere;
@@ -199,7 +199,7 @@ DistanceResult distance(const Model& a, const Transform& pose_a, const Model& b,
       if (chunk_first != first) {
         for (std::uint32_t k = 0; k < count; ++k) {
           Mapped& m = chunk[k];
-          for (int v = 0; v < 3; ++v) m.v[v] = frame.b_to_a.apply(verts_b[3 * (first + k) + v]);
+          for (int v = 0; v < 3; ++v) m.v[v] = frame.b_to_a.apply(verts_b(first + k, v));
           m.lo = m.v[0].cwiseMin(m.v[1]).cwiseMin(m.v[2]);
           m.hi = m.v[0].cwiseMax(m.v[1]).cwiseMax(m.v[2]);
           m.n = unit_normal(m.v.data());
@@ -208,7 +208,7 @@ DistanceResult distance(const Model& a, const Transform& pose_a, const Model& b,
         chunk_first = first;
       }
       for (std::uint32_t ia = na.first_or_right; ia < na.first_or_right + na.count; ++ia) {
-        const Vec3* ta = &verts_a[3 * ia];
+        const Vec3 ta[3] = {verts_a(ia, 0), verts_a(ia, 1), verts_a(ia, 2)};
         const Vec3 lo_a = ta[0].cwiseMin(ta[1]).cwiseMin(ta[2]);
         const Vec3 hi_a = ta[0].cwiseMax(ta[1]).cwiseMax(ta[2]);
         const Vec3 n_a = unit_normal(ta);

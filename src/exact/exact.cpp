@@ -40,8 +40,8 @@ bool collide(const Model& a, const Transform& pose_a, const Model& b, const Tran
   result.clear();
   const bool normals = request.contact_normals || request.manifold_points > 0;
   const detail::PairFrame frame(a, pose_a, b, pose_b, request.delta);
-  const auto verts_a = a.leaf_vertices();
-  const auto verts_b = b.leaf_vertices();
+  const LeafCorners verts_a = a.leaf_corners();
+  const LeafCorners verts_b = b.leaf_corners();
   const auto tris_a = a.leaf_triangles();
   const auto tris_b = b.leaf_triangles();
   const auto nodes_a = a.nodes();
@@ -67,7 +67,7 @@ bool collide(const Model& a, const Transform& pose_a, const Model& b, const Tran
     if (cached && cached_leaf != lb) {
       for (std::uint32_t k = 0; k < nb.count; ++k) {
         const std::uint32_t jb = nb.first_or_right + k;
-        for (int v = 0; v < 3; ++v) cache_b[3 * k + v] = frame.b_to_a.apply(verts_b[3 * jb + v]);
+        for (int v = 0; v < 3; ++v) cache_b[3 * k + v] = frame.b_to_a.apply(verts_b(jb, v));
         lo_b[k] = cache_b[3 * k].cwiseMin(cache_b[3 * k + 1]).cwiseMin(cache_b[3 * k + 2]);
         hi_b[k] = cache_b[3 * k].cwiseMax(cache_b[3 * k + 1]).cwiseMax(cache_b[3 * k + 2]);
       }
@@ -76,9 +76,9 @@ bool collide(const Model& a, const Transform& pose_a, const Model& b, const Tran
     for (std::uint32_t ia = na.first_or_right; ia < na.first_or_right + na.count; ++ia) {
       const std::uint32_t ka = ia - na.first_or_right;
       if (ka < detail::kMaskedLeaf && (live_a >> ka & 1u) == 0) continue;
-      const Vec3& a0 = verts_a[3 * ia];
-      const Vec3& a1 = verts_a[3 * ia + 1];
-      const Vec3& a2 = verts_a[3 * ia + 2];
+      const Vec3& a0 = verts_a(ia, 0);
+      const Vec3& a1 = verts_a(ia, 1);
+      const Vec3& a2 = verts_a(ia, 2);
       const Vec3 lo_a = a0.cwiseMin(a1).cwiseMin(a2);
       const Vec3 hi_a = a0.cwiseMax(a1).cwiseMax(a2);
       for (std::uint32_t k = 0; k < nb.count; ++k) {
@@ -101,7 +101,7 @@ bool collide(const Model& a, const Transform& pose_a, const Model& b, const Tran
           b1 = &cache_b[3 * k + 1];
           b2 = &cache_b[3 * k + 2];
         } else {
-          for (int v = 0; v < 3; ++v) tb[v] = frame.b_to_a.apply(verts_b[3 * jb + v]);
+          for (int v = 0; v < 3; ++v) tb[v] = frame.b_to_a.apply(verts_b(jb, v));
           b0 = &tb[0];
           b1 = &tb[1];
           b2 = &tb[2];
@@ -142,8 +142,8 @@ bool collide(const Model& a, const Transform& pose_a, const Model& b, const Tran
     } else if (!result.colliding) {
       // Surfaces apart: the solids meet only if one lies wholly inside the other, which one
       // vertex of each tells (a vertex on the other surface would have been a surface contact).
-      const Vec3 va_in_b = frame.b_to_a.inverse().apply(a.leaf_vertices().front());
-      const Vec3 vb_in_a = frame.b_to_a.apply(b.leaf_vertices().front());
+      const Vec3 va_in_b = frame.b_to_a.inverse().apply(a.leaf_corners()(0, 0));
+      const Vec3 vb_in_a = frame.b_to_a.apply(b.leaf_corners()(0, 0));
       result.contained = detail::inside_closed(b, va_in_b) || detail::inside_closed(a, vb_in_a);
       result.colliding = result.contained;
     }

@@ -40,10 +40,10 @@ void reduce_boundary(std::vector<Edge>& edges) {
 
 /// p lies outside the node's box by more than the rounding of the box's fit.
 bool outside_box(const BvhNode& node, const Vec3& p) {
-  const Vec3 local = node.obb.axes.transpose() * (p - node.obb.center);
-  const Scalar margin =
-      1e-10 * (node.obb.center.cwiseAbs().maxCoeff() + node.obb.half_extents.maxCoeff());
-  return ((local.cwiseAbs() - node.obb.half_extents).array() > margin).any();
+  const Vec3 local = node.axes().transpose() * (p - node.center);
+  const Vec3 half = node.half_extents();
+  const Scalar margin = 1e-10 * (node.center.cwiseAbs().maxCoeff() + half.maxCoeff());
+  return ((local.cwiseAbs() - half).array() > margin).any();
 }
 
 /// Whether two connected pieces of the hierarchy's triangles (joined through shared vertex
@@ -94,7 +94,7 @@ PointIndex build_point_index(const Model& model) {
   PointIndex index;
   const auto nodes = model.nodes();
   const auto leaf_tris = model.leaf_triangles();
-  const auto lv = model.leaf_vertices();
+  const LeafCorners lv = model.leaf_corners();
   const Mesh& mesh = model.mesh();
 
   // Boundary of each node's patch, children before parents (a child's index exceeds its parent's).
@@ -139,14 +139,14 @@ PointIndex build_point_index(const Model& model) {
   // volume) has them all flipped.
   Scalar volume6 = 0;
   for (std::size_t k = 0; k < n; ++k) {
-    const Vec3* v = &lv[3 * k];
+    const auto v = lv.triangle(k);
     volume6 += v[0].dot(v[1].cross(v[2]));
   }
   const Scalar outward = volume6 < 0 ? -1 : 1;
   std::vector<EdgeSlot> slots;
   slots.reserve(3 * n);
   for (std::uint32_t k = 0; k < n; ++k) {
-    const Vec3* v = &lv[3 * static_cast<std::size_t>(k)];
+    const auto v = lv.triangle(k);
     const Vec3 nrm = outward * (v[1] - v[0]).cross(v[2] - v[0]).normalized();
     index.face_normal[k] = nrm;
     const TriangleIndices& t = mesh.triangles[leaf_tris[k]];
@@ -187,7 +187,7 @@ const PointIndex& point_index(const Model& model) {
 int winding_number(const Model& model, const PointIndex& index, const Vec3& p) {
   const auto nodes = model.nodes();
   if (outside_box(nodes[0], p)) return 0;  // the root box holds the whole surface
-  const auto lv = model.leaf_vertices();
+  const LeafCorners lv = model.leaf_corners();
   const auto& verts = model.mesh().vertices;
   Scalar total = 0;
   DescentStack<std::uint32_t> storage(model.stats().depth);
@@ -196,7 +196,7 @@ int winding_number(const Model& model, const PointIndex& index, const Vec3& p) {
   stack[top++] = 0;
   auto leaf_sum = [&](const BvhNode& node) {
     for (std::size_t k = node.first_or_right; k < node.first_or_right + node.count; ++k) {
-      total += geometry::solid_angle(p, lv[3 * k], lv[3 * k + 1], lv[3 * k + 2]);
+      total += geometry::solid_angle(p, lv(k, 0), lv(k, 1), lv(k, 2));
     }
   };
   while (top > 0) {
@@ -227,7 +227,7 @@ bool inside_from_closest(const Model& model, const PointIndex& index, const Vec3
                          const ClosestPoint& c) {
   if (index.sign_by_winding) return winding_number(model, index, p) != 0;
   const std::uint32_t k = c.leaf_triangle;
-  const Vec3* v = &model.leaf_vertices()[3 * static_cast<std::size_t>(k)];
+  const auto v = model.leaf_corners().triangle(k);
   const Vec3 d = p - c.point;
   const Scalar dn = d.norm();
   if (dn == 0) return true;  // on the surface (the caller reports distance 0)

@@ -12,12 +12,12 @@ namespace antcd::detail {
 
 PointTree build_point_tree(const Model& model) {
   const auto nodes = model.nodes();
-  const auto lv = model.leaf_vertices();
+  const LeafCorners lv = model.leaf_corners();
   PointTree tree;
-  const std::size_t n_tris = lv.size() / 3;
+  const std::size_t n_tris = lv.size();
   tree.triangles.resize(n_tris);
   for (std::size_t k = 0; k < n_tris; ++k) {
-    const Vec3* v = &lv[3 * k];
+    const auto v = lv.triangle(k);
     PointTree::Triangle& t = tree.triangles[k];
     t = {Vec3::Zero(), 0, {Vec3::Zero(), Vec3::Zero(), Vec3::Zero()}, {0, 0, 0}};
     for (int i = 0; i < 3; ++i) {
@@ -48,9 +48,8 @@ PointTree build_point_tree(const Model& model) {
   for (std::size_t i = nodes.size(); i-- > 0;) {
     const BvhNode& n = nodes[i];
     if (n.is_leaf()) {
-      for (std::size_t k = 3 * std::size_t{n.first_or_right};
-           k < 3 * (std::size_t{n.first_or_right} + n.count); ++k) {
-        box[i].extend(lv[k]);
+      for (std::size_t k = n.first_or_right; k < std::size_t{n.first_or_right} + n.count; ++k) {
+        for (int c = 0; c < 3; ++c) box[i].extend(lv(k, c));
       }
     } else {
       const Aabb& l = box[i + 1];
@@ -113,7 +112,7 @@ struct Entry {
 
 ClosestPoint closest_point(const Model& model, const PointTree& tree, const Vec3& p,
                            std::uint32_t hint) {
-  const auto lv = model.leaf_vertices();
+  const LeafCorners lv = model.leaf_corners();
   ClosestPoint best;
   best.distance_squared = std::numeric_limits<Scalar>::infinity();
   best.leaf_triangle = kNoHint;
@@ -124,7 +123,7 @@ ClosestPoint closest_point(const Model& model, const PointTree& tree, const Vec3
   Scalar cut = std::numeric_limits<Scalar>::infinity();  // (best distance + margin)^2
   auto test_triangle = [&](std::uint32_t k) {
     if (triangle_bound_squared(tree.triangles[k], p) > cut) return;
-    const Vec3* v = &lv[3 * static_cast<std::size_t>(k)];
+    const auto v = lv.triangle(k);
     Vec3 c;
     const Scalar d2 = geometry::point_triangle_distance_squared(p, v[0], v[1], v[2], &c);
     if (d2 < best.distance_squared || (d2 == best.distance_squared && k < best.leaf_triangle)) {

@@ -18,13 +18,15 @@ constexpr Scalar kMaxCells = 1 << 24;
 }  // namespace
 
 SolidGrid::SolidGrid(const Model& model, const std::function<int(const Vec3&)>& winding) {
-  const auto lv = model.leaf_vertices();
+  const LeafCorners lv = model.leaf_corners();
   Aabb box;
-  for (const Vec3& v : lv) box.extend(v);
+  for (std::size_t k = 0; k < lv.size(); ++k) {
+    for (int c = 0; c < 3; ++c) box.extend(lv(k, c));
+  }
   const Vec3 extent = box.extent();
   const Scalar largest = extent.maxCoeff();
   if (!(largest > 0)) return;
-  const Scalar target = std::clamp(kCellsPerTriangle * static_cast<Scalar>(lv.size() / 3),
+  const Scalar target = std::clamp(kCellsPerTriangle * static_cast<Scalar>(lv.size()),
                                    kMinCells, kMaxCells);
   // Flat axes count as 1/256 of the largest one, so that a thin solid still gets cells.
   const Vec3 sized = extent.cwiseMax(largest / 256);
@@ -73,7 +75,7 @@ SolidGrid::SolidGrid(const Model& model, const std::function<int(const Vec3&)>& 
       }
     }
   };
-  for (std::size_t k = 0; k < lv.size(); k += 3) mark(mark, lv[k], lv[k + 1], lv[k + 2], 0);
+  for (std::size_t k = 0; k < lv.size(); ++k) mark(mark, lv(k, 0), lv(k, 1), lv(k, 2), 0);
 
   // Face-connected components of the free cells, each classified at its first cell's centre
   // (at least half a cell from the surface, so its winding number is exact).
@@ -84,7 +86,7 @@ SolidGrid::SolidGrid(const Model& model, const std::function<int(const Vec3&)>& 
   // Each component costs one winding number; a surface that encloses very many small free
   // regions (thousands of tiny shells) would make that the bulk of the build, so past a budget
   // the remaining components are left to the point queries (marked as surface cells).
-  std::size_t budget = 1024 + lv.size() / 48;
+  std::size_t budget = 1024 + lv.size() / 16;
   for (std::size_t start = 0; start < total; ++start) {
     if (cells_[start] == kSurface || seen[start]) continue;
     component.clear();

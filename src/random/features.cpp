@@ -35,13 +35,13 @@ bool FeatureSpace::collides(std::uint32_t i, std::uint32_t j, Verdict verdict,
 }
 
 Scalar feature_radius(const Model& model) {
-  const auto verts = model.leaf_vertices();
-  const std::size_t n = verts.size() / 3;
+  const LeafCorners verts = model.leaf_corners();
+  const std::size_t n = verts.size();
   std::vector<Scalar> radii(n);
   for (std::size_t k = 0; k < n; ++k) {
-    const Vec3& v0 = verts[3 * k];
-    const Vec3& v1 = verts[3 * k + 1];
-    const Vec3& v2 = verts[3 * k + 2];
+    const Vec3& v0 = verts(k, 0);
+    const Vec3& v1 = verts(k, 1);
+    const Vec3& v2 = verts(k, 2);
     const Vec3 c = (v0 + v1 + v2) / 3;
     radii[k] = std::sqrt(
         std::max({(v0 - c).squaredNorm(), (v1 - c).squaredNorm(), (v2 - c).squaredNorm()}));
@@ -129,10 +129,10 @@ FeatureSide make_side(const Model& model, const Transform& pose, const Transform
   const std::size_t n = picked.size();
   std::vector<Vec3> centroids(n);
   std::vector<Vec3> world(3 * n);
-  const auto verts = model.leaf_vertices();
+  const LeafCorners verts = model.leaf_corners();
   for (std::size_t k = 0; k < n; ++k) {
     const std::size_t p = picked[k].position;
-    for (int v = 0; v < 3; ++v) world[3 * k + v] = pose.apply(verts[3 * p + v]);
+    for (int v = 0; v < 3; ++v) world[3 * k + v] = pose.apply(verts(p, v));
     centroids[k] = (world[3 * k] + world[3 * k + 1] + world[3 * k + 2]) / 3;
   }
 
@@ -175,7 +175,7 @@ FeatureSide make_side(const Model& model, const Transform& pose, const Transform
     side.z[k] = static_cast<float>(c.z());
     Scalar r2 = 0;
     for (int v = 0; v < 3; ++v) {
-      side.vertices[3 * k + v] = to_test.apply(verts[3 * std::size_t{picked[src].position} + v]);
+      side.vertices[3 * k + v] = to_test.apply(verts(std::size_t{picked[src].position}, v));
       r2 = std::max(r2, (world[3 * src + v] - c).squaredNorm());
     }
     // The float centroid is off by up to ~1e-7 of its coordinates; the radius absorbs it, so

@@ -118,9 +118,9 @@ struct FrameTriangle {
 
 FrameTriangle frame_triangle(const Model& model, const Transform& to_frame,
                              std::uint32_t position) {
-  const auto verts = model.leaf_vertices();
+  const LeafCorners verts = model.leaf_corners();
   FrameTriangle t;
-  for (int k = 0; k < 3; ++k) t.v[k] = to_frame.apply(verts[3 * std::size_t{position} + k]);
+  for (int k = 0; k < 3; ++k) t.v[k] = to_frame.apply(verts(std::size_t{position}, k));
   t.centroid = (t.v[0] + t.v[1] + t.v[2]) / 3;
   Scalar r2 = 0;
   for (const Vec3& v : t.v) r2 = std::max(r2, (v - t.centroid).squaredNorm());

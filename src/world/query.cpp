@@ -137,8 +137,8 @@ Scalar exact_growth(const Bounds& b, Scalar delta) { return delta * (1 + 1e-12) 
 // then reject the pair at its first test, so skipping it changes no answer. Most pairs whose boxes
 // overlap on a large world are rejected here, before collide() sets up the pair.
 bool spheres_apart(const Object& a, const Object& b, Scalar delta) {
-  const Sphere& sa = a.model->root().sphere;
-  const Sphere& sb = b.model->root().sphere;
+  const Sphere sa = a.model->root().sphere();
+  const Sphere sb = b.model->root().sphere();
   const Vec3 ca = a.pose.apply(sa.center);
   const Vec3 cb = b.pose.apply(sb.center);
   const Scalar scale = sa.radius + sb.radius + 2 * (sa.center.norm() + sb.center.norm()) +
@@ -148,7 +148,7 @@ bool spheres_apart(const Object& a, const Object& b, Scalar delta) {
 }
 
 Obb posed_obb(const Object& o) {
-  Obb b = o.model->root().obb;
+  Obb b = o.model->root().obb();
   b.axes = o.pose.rotation * b.axes;
   b.center = o.pose.apply(b.center);
   return b;
@@ -171,8 +171,8 @@ std::vector<ObjectPair> World::candidate_pairs(Scalar delta) const {
     if (!detail::boxes_overlap(query, grown(bb.box, bb.tolerance))) return false;
     const Object& a = w.objects[i];
     const Object& b = w.objects[j];
-    const Sphere& sa = a.model->root().sphere;
-    const Sphere& sb = b.model->root().sphere;
+    const Sphere sa = a.model->root().sphere();
+    const Sphere sb = b.model->root().sphere();
     const Vec3 ca = a.pose.apply(sa.center);
     const Vec3 cb = b.pose.apply(sb.center);
     const Scalar reach = sa.radius + sb.radius + delta;

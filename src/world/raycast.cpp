@@ -44,16 +44,18 @@ bool ray_triangle(const LocalRay& r, const Vec3& v0, const Vec3& v1, const Vec3&
 // Conservative node test: the segment [0, s_max] of the ray against the node's sphere, then its
 // box (slab test in the box's frame), both widened by a relative rounding allowance.
 bool ray_meets_node(const LocalRay& r, const BvhNode& n, Scalar s_max, Scalar slack) {
-  const Vec3 oc = n.sphere.center - r.origin;
+  const Vec3 oc = n.center - r.origin;
   const Scalar along = std::clamp(oc.dot(r.direction), Scalar{0}, s_max);
-  const Scalar rad = n.sphere.radius + slack;
+  const Scalar rad = n.radius + slack;
   if ((oc - along * r.direction).squaredNorm() > rad * rad) return false;
   Scalar lo = 0;
   Scalar hi = s_max;
-  const Vec3 o = n.obb.axes.transpose() * (r.origin - n.obb.center);
-  const Vec3 d = n.obb.axes.transpose() * r.direction;
+  const Mat3 axes = n.axes();
+  const Vec3 o = axes.transpose() * (r.origin - n.center);
+  const Vec3 d = axes.transpose() * r.direction;
+  const Vec3 half = n.half_extents();
   for (int k = 0; k < 3; ++k) {
-    const Scalar h = n.obb.half_extents[k] + slack;
+    const Scalar h = half[k] + slack;
     if (std::abs(d[k]) < 1e-300) {
       if (std::abs(o[k]) > h) return false;
       continue;
@@ -73,11 +75,11 @@ bool ray_meets_node(const LocalRay& r, const BvhNode& n, Scalar s_max, Scalar sl
 template <class OnHit>
 void walk(const Model& model, const LocalRay& r, const Scalar* s_max, OnHit&& on_hit) {
   const auto nodes = model.nodes();
-  const auto verts = model.leaf_vertices();
+  const LeafCorners verts = model.leaf_corners();
   const BvhNode& root = model.root();
   // Rounding allowance for the node tests: relative to the model's size and the ray's distance.
   const Scalar slack =
-      1e-9 * (root.sphere.radius + root.sphere.center.norm() + r.origin.norm()) + 1e-300;
+      1e-9 * (root.radius + root.center.norm() + r.origin.norm()) + 1e-300;
   std::array<std::uint32_t, 256> stack;
   std::size_t top = 0;
   stack[top++] = 0;
@@ -87,7 +89,7 @@ void walk(const Model& model, const LocalRay& r, const Scalar* s_max, OnHit&& on
     if (n.is_leaf()) {
       for (std::uint32_t k = n.first_or_right; k < n.first_or_right + n.count; ++k) {
         Scalar s = 0;
-        if (ray_triangle(r, verts[3 * k], verts[3 * k + 1], verts[3 * k + 2], *s_max, s)) {
+        if (ray_triangle(r, verts(k, 0), verts(k, 1), verts(k, 2), *s_max, s)) {
           on_hit(k, s);
         }
       }
@@ -101,8 +103,8 @@ void walk(const Model& model, const LocalRay& r, const Scalar* s_max, OnHit&& on
 
 RayHit make_hit(const Model& model, const Transform& pose, const Ray& ray, const Vec3& unit_dir,
                 std::uint32_t k, Scalar s) {
-  const auto verts = model.leaf_vertices();
-  const Vec3 n_local = (verts[3 * k + 1] - verts[3 * k]).cross(verts[3 * k + 2] - verts[3 * k]);
+  const LeafCorners verts = model.leaf_corners();
+  const Vec3 n_local = (verts(k, 1) - verts(k, 0)).cross(verts(k, 2) - verts(k, 0));
   Vec3 normal = pose.apply_vector(n_local).normalized();
   if (normal.dot(unit_dir) > 0) normal = -normal;
   RayHit hit;

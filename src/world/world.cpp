@@ -58,13 +58,13 @@ void check_pose(const Transform& pose, const std::string& function, const std::s
 
 Aabb posed_box(const Model& model, const Transform& pose, Scalar& tolerance) {
   const BvhNode& root = model.root();
-  const Vec3 c = pose.apply(root.obb.center);
-  const Vec3 ext = (pose.rotation * root.obb.axes).cwiseAbs() * root.obb.half_extents;
+  const Vec3 c = pose.apply(root.center);
+  const Vec3 ext = (pose.rotation * root.axes()).cwiseAbs() * root.half_extents();
   // The root box's axis-aligned bounds (not cut by the root sphere: World::candidate_pairs
   // relies on the tree boxes containing the posed root box).
   // Magnitudes by their 1-norms (bounds on the 2-norms, no square roots: this runs for every object
   // of every frame).
-  const Scalar sphere_reach = root.sphere.radius + pose.apply(root.sphere.center).lpNorm<1>();
+  const Scalar sphere_reach = root.radius + pose.apply(root.center).lpNorm<1>();
   // Relative allowance for the box fit and for rounding in the pose applied here; at least the
   // scale of the hierarchy traversal's (bvh/traverse.hpp).
   tolerance = 1e-9 * (sphere_reach + c.lpNorm<1>() + ext.lpNorm<1>()) + 1e-300;
@@ -85,7 +85,7 @@ const World::Impl::Object& World::Impl::get(ObjectId id, const char* function,
 
 Aabb World::Impl::fattened(std::uint32_t slot) const {
   const Bounds& b = bounds[slot];
-  return grown(b.box, settings.fat_fraction * objects[slot].model->root().sphere.radius +
+  return grown(b.box, settings.fat_fraction * objects[slot].model->root().radius +
                           2 * b.tolerance);
 }
 

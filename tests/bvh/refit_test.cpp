@@ -50,10 +50,10 @@ TEST(Refit, QueriesMatchAFreshlyBuiltModel) {
     for (const BvhNode& node : refitted.nodes()) {
       if (!node.is_leaf()) continue;
       for (std::uint32_t k = 0; k < 3 * node.count; ++k) {
-        const Vec3 v = refitted.leaf_vertices()[3 * node.first_or_right + k];
-        const Vec3 local = node.obb.axes.transpose() * (v - node.obb.center);
-        ASSERT_TRUE(((local.cwiseAbs() - node.obb.half_extents).array() <= 1e-12).all());
-        ASSERT_LE((v - node.sphere.center).norm(), node.sphere.radius + 1e-12);
+        const Vec3 v = refitted.leaf_corners()(node.first_or_right + k / 3, static_cast<int>(k % 3));
+        const Vec3 local = node.axes().transpose() * (v - node.center);
+        ASSERT_TRUE(((local.cwiseAbs() - node.half_extents()).array() <= 1e-12).all());
+        ASSERT_LE((v - node.center).norm(), node.radius + 1e-12);
       }
     }
     CollisionRequest all;
@@ -108,7 +108,7 @@ TEST(Refit, BadInputIsAnArgumentErrorAndChangesNothing) {
   }
   EXPECT_EQ(model.mesh().vertices, mesh.vertices);
   for (std::size_t i = 0; i < before.size(); ++i) {
-    EXPECT_EQ(model.nodes()[i].obb.center, before[i].obb.center);
+    EXPECT_EQ(model.nodes()[i].center, before[i].center);
   }
 }
 

@@ -24,13 +24,13 @@ bool leaf_triangles_within(const Model& a, std::uint32_t la, const Transform& pa
                            std::uint32_t lb, const Transform& pb, Scalar delta) {
   const BvhNode& na = a.nodes()[la];
   const BvhNode& nb = b.nodes()[lb];
-  const auto va = a.leaf_vertices();
-  const auto vb = b.leaf_vertices();
+  const LeafCorners va = a.leaf_corners();
+  const LeafCorners vb = b.leaf_corners();
   for (std::uint32_t i = na.first_or_right; i < na.first_or_right + na.count; ++i) {
     for (std::uint32_t j = nb.first_or_right; j < nb.first_or_right + nb.count; ++j) {
-      if (geometry::triangles_within(pa.apply(va[3 * i]), pa.apply(va[3 * i + 1]),
-                                     pa.apply(va[3 * i + 2]), pb.apply(vb[3 * j]),
-                                     pb.apply(vb[3 * j + 1]), pb.apply(vb[3 * j + 2]), delta)) {
+      if (geometry::triangles_within(pa.apply(va(i, 0)), pa.apply(va(i, 1)), pa.apply(va(i, 2)),
+                                     pb.apply(vb(j, 0)), pb.apply(vb(j, 1)), pb.apply(vb(j, 2)),
+                                     delta)) {
         return true;
       }
     }
@@ -44,12 +44,12 @@ bool leaf_volumes_within(const Model& a, std::uint32_t la, const Transform& pa, 
   const Scalar slack = delta + 1e-6;
   const BvhNode& na = a.nodes()[la];
   const BvhNode& nb = b.nodes()[lb];
-  const Sphere sa{pa.apply(na.sphere.center), na.sphere.radius};
-  const Sphere sb{pb.apply(nb.sphere.center), nb.sphere.radius};
-  Obb oa = na.obb;
+  const Sphere sa{pa.apply(na.center), na.radius};
+  const Sphere sb{pb.apply(nb.center), nb.radius};
+  Obb oa = na.obb();
   oa.center = pa.apply(oa.center);
   oa.axes = pa.rotation * oa.axes;
-  Obb ob = nb.obb;
+  Obb ob = nb.obb();
   ob.center = pb.apply(ob.center);
   ob.axes = pb.rotation * ob.axes;
   return geometry::sphere_overlap(sa, sb, slack) && geometry::obb_overlap(oa, ob, slack);
@@ -57,17 +57,17 @@ bool leaf_volumes_within(const Model& a, std::uint32_t la, const Transform& pa, 
 
 TEST(Traversal, ReportsEveryLeafPairInContactAndOnlyOverlappingOnes) {
   const Model b(load_mesh(test::assimp_model("OBJ/spider.obj")), {5});
-  const Scalar r = b.root().sphere.radius;  // size the torus like the spider
+  const Scalar r = b.root().radius;  // size the torus like the spider
   const Model a(make_torus(0.7 * r, 0.2 * r, 32, 12), {3});
   std::mt19937_64 rng(9);
   const auto leaves_a = leaves_of(a);
   const auto leaves_b = leaves_of(b);
   int with_contacts = 0;
   for (int trial = 0; trial < 12; ++trial) {
-    const Scalar delta = trial % 2 == 0 ? 0.0 : 0.05 * b.root().sphere.radius;
+    const Scalar delta = trial % 2 == 0 ? 0.0 : 0.05 * b.root().radius;
     const Transform pa = test::random_pose(rng, 0.0);
-    Transform pb = test::random_pose(rng, 0.8 * b.root().sphere.radius);
-    pb.translation -= pb.rotation * b.root().sphere.center;
+    Transform pb = test::random_pose(rng, 0.8 * b.root().radius);
+    pb.translation -= pb.rotation * b.root().center;
     std::vector<LeafPair> pairs;
     const TraversalStats stats = overlapping_leaves(a, pa, b, pb, delta, pairs);
     EXPECT_EQ(stats.leaf_pairs, pairs.size());

@@ -59,8 +59,8 @@ TEST_P(DistanceAgainstFcl, SameDistanceOnThousandsOfPoses) {
   const Model b(load_mesh(test::assimp_model(c.b)), {}, c.b);
   const auto fa = fcl_model(a.mesh());
   const auto fb = fcl_model(b.mesh());
-  const Scalar scale = a.root().sphere.radius + b.root().sphere.radius +
-                       a.root().sphere.center.norm() + b.root().sphere.center.norm();
+  const Scalar scale = a.root().radius + b.root().radius +
+                       a.root().center.norm() + b.root().center.norm();
   std::mt19937_64 rng(2026);
   std::normal_distribution<Scalar> gauss;
   int separated = 0, near = 0, zero = 0;
@@ -85,7 +85,7 @@ TEST_P(DistanceAgainstFcl, SameDistanceOnThousandsOfPoses) {
       pb.translation = va - rot * vb + s * dir;
       return pb;
     };
-    const Scalar reach = std::min(a.root().sphere.radius, b.root().sphere.radius);
+    const Scalar reach = std::min(a.root().radius, b.root().radius);
     Scalar s = std::uniform_real_distribution<Scalar>(0, 1)(rng) * reach;
     if (i % 3 == 0) {
       Scalar lo = 0, hi = 3 * scale;

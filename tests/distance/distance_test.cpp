@@ -137,8 +137,8 @@ TEST_P(DistanceBruteForce, MatchesAllPairsAtRandomTouchingAndNearPoses) {
   const MeshPair& p = GetParam();
   const Model a(first_triangles(load_mesh(test::assimp_model(p.a)), p.limit), {}, p.a);
   const Model b(first_triangles(load_mesh(test::assimp_model(p.b)), p.limit), {}, p.b);
-  const Scalar ra = a.root().sphere.radius + a.root().sphere.center.norm();
-  const Scalar rb = b.root().sphere.radius + b.root().sphere.center.norm();
+  const Scalar ra = a.root().radius + a.root().center.norm();
+  const Scalar rb = b.root().radius + b.root().center.norm();
   const Scalar scale = ra + rb;
   std::mt19937_64 rng(15);
   int poses = 0, near = 0, zero = 0;
@@ -176,7 +176,7 @@ TEST(Distance, RandomPosesOfFullMeshesAgreeWithBruteForce) {
   const Model a(load_mesh(test::assimp_model("OBJ/spider.obj")), {}, "spider");
   const Model b(load_mesh(test::assimp_model("STL/sphereWithHole.stl")), {}, "sphereWithHole");
   std::mt19937_64 rng(7);
-  const Scalar scale = a.root().sphere.radius + b.root().sphere.radius;
+  const Scalar scale = a.root().radius + b.root().radius;
   for (int trial = 0; trial < 3; ++trial) {
     const Transform pa = test::random_pose(rng, 0.3 * scale);
     const Transform pb = test::random_pose(rng, 0.8 * scale);

@@ -195,8 +195,8 @@ TEST(ContactManifold, RealMeshesKeepBetweenOneAndKPerRegionCoveringEveryNormal) 
   std::mt19937_64 rng(7);
   int checked = 0;
   for (int pose = 0; pose < 10; ++pose) {
-    const Transform pa = test::random_pose(rng, 0.3 * spider.root().sphere.radius);
-    const Transform pb = test::random_pose(rng, 0.3 * spider.root().sphere.radius);
+    const Transform pa = test::random_pose(rng, 0.3 * spider.root().radius);
+    const Transform pb = test::random_pose(rng, 0.3 * spider.root().radius);
     CollisionRequest req;
     req.all_contacts = true;
     req.contact_normals = true;

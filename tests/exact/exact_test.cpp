@@ -54,7 +54,7 @@ void expect_matches_brute_force(const Model& a, const Transform& pa, const Model
   const PairSet found = sorted_contacts(all);
   ASSERT_EQ(found, truth) << what << ": all-contacts set differs from brute force";
 
-  const Scalar scale = a.root().sphere.radius + b.root().sphere.radius + pa.translation.norm() +
+  const Scalar scale = a.root().radius + b.root().radius + pa.translation.norm() +
                        pb.translation.norm();
   for (const Contact& c : all.contacts) {
     EXPECT_LE(c.distance, delta) << what;
@@ -70,13 +70,13 @@ void expect_matches_brute_force(const Model& a, const Transform& pa, const Model
 void random_pose_sweep(const Model& a, const Model& b, int poses, std::uint64_t seed,
                        const std::vector<Scalar>& deltas, const std::string& name) {
   std::mt19937_64 rng(seed);
-  const Scalar reach = 0.9 * (a.root().sphere.radius + b.root().sphere.radius);
+  const Scalar reach = 0.9 * (a.root().radius + b.root().radius);
   int colliding = 0;
   for (int i = 0; i < poses; ++i) {
     Transform pa = test::random_pose(rng, 0.0);
     Transform pb = test::random_pose(rng, reach);
-    pa.translation = -a.root().sphere.center;  // centre A's bounding sphere on the origin
-    pb.translation -= pb.rotation * b.root().sphere.center;
+    pa.translation = -a.root().center;  // centre A's bounding sphere on the origin
+    pb.translation -= pb.rotation * b.root().center;
     for (const Scalar delta : deltas) {
       expect_matches_brute_force(
           a, pa, b, pb, delta,
@@ -108,7 +108,7 @@ TEST(ExactCollide, RealMeshesMatchBruteForceOnRandomPoses) {
   random_pose_sweep(spider, spider, 60, 5, {0.0, 0.5}, "spider-spider");
   // box.obj is a unit cube, far smaller than the spider: scale it to a third of the spider's size.
   Mesh big_box = load_mesh(test::assimp_model("OBJ/box.obj"));
-  for (Vec3& v : big_box.vertices) v *= 0.6 * spider.root().sphere.radius;
+  for (Vec3& v : big_box.vertices) v *= 0.6 * spider.root().radius;
   const Model scaled_box(big_box, {}, "scaled box");
   random_pose_sweep(spider, scaled_box, 200, 6, {0.0, 0.3}, "spider-box");
   random_pose_sweep(cube, box, 600, 7, {0.0, 0.1}, "cube-box");

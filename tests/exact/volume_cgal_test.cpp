@@ -40,7 +40,7 @@ TEST(VolumeAgainstCgal, SmallSolidsInAndAroundClosedModels) {
     const CGAL::Side_of_triangle_mesh<SurfaceMesh, K> side(sm);
     const Model small(make_sphere(0.04, 6, 3), {}, "small");
     // The vertex the volume test uses: the first one of the first leaf triangle.
-    const Vec3 first = small.leaf_vertices().front();
+    const Vec3 first = small.leaf_corners()(0, 0);
     std::mt19937_64 rng(5);
     const Aabb box = big.bounds();
     std::uniform_real_distribution<Scalar> ux(box.min.x() - 0.2, box.max.x() + 0.2);

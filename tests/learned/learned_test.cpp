@@ -32,7 +32,7 @@ TEST(LearnedFeatures, InvariantToACommonRigidMotionOfBothObjects) {
   std::mt19937_64 rng(7);
   int overlapping_pairs = 0;
   for (const Model* second : {&b, &spider}) {
-    const Scalar reach = a.root().sphere.radius + second->root().sphere.radius;
+    const Scalar reach = a.root().radius + second->root().radius;
     for (int trial = 0; trial < 40; ++trial) {
       const Transform pa = test::random_pose(rng, 3.0);
       Transform rel = test::random_pose(rng, 0.8 * reach);

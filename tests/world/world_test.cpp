@@ -417,11 +417,11 @@ TEST(World, LargeMovingWorldMatchesOracleAtAnyThreadCount) {
     // Oracle: pairs whose root spheres (placed by the pose) meet, then collide().
     std::vector<ObjectPair> expected;
     std::vector<Vec3> centre(kObjects);
-    for (int i = 0; i < kObjects; ++i) centre[i] = poses[i].apply(models[i]->root().sphere.center);
+    for (int i = 0; i < kObjects; ++i) centre[i] = poses[i].apply(models[i]->root().center);
     for (int i = 0; i < kObjects; ++i) {
       for (int j = i + 1; j < kObjects; ++j) {
         if (!admitted(i, j)) continue;
-        const Scalar reach = models[i]->root().sphere.radius + models[j]->root().sphere.radius;
+        const Scalar reach = models[i]->root().radius + models[j]->root().radius;
         if ((centre[i] - centre[j]).squaredNorm() > reach * reach * (1 + 1e-9)) continue;
         if (collide(*models[i], poses[i], *models[j], poses[j]).colliding) {
           expected.push_back({std::min(ids[i], ids[j]), std::max(ids[i], ids[j])});
