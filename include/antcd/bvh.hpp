@@ -40,8 +40,8 @@ struct BuildOptions {
 /// (towards +infinity) from the double fit, so the stored volumes only ever contain the double
 /// ones. Read them through obb() and sphere().
 struct BvhNode {
-  // What the sphere test and the descent read comes first: those 36 bytes never straddle a cache
-  // line when the array starts on one (96-byte nodes begin at offset 0 or 32 of a 64-byte line).
+  // What the sphere test and the descent read comes first (36 bytes). The array is not aligned
+  // to cache lines, so on some nodes these bytes straddle two lines; aligning it was not tried.
   Vec3 center = Vec3::Zero();  ///< centre of the box and of the sphere
   float radius = 0;            ///< sphere radius
   /// Number of triangles of a leaf; 0 for an internal node.
