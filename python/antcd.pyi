@@ -10,6 +10,7 @@ __version__: str
 
 _ArrayLike = npt.ArrayLike
 _Pose = Union[None, npt.ArrayLike, Tuple[npt.ArrayLike, npt.ArrayLike]]
+_Poses = Optional[npt.ArrayLike]  # (n, 4, 4), or one (4, 4) / None for every pair
 _Covariance = Literal["area", "vertex"]
 
 def load_mesh(path: Union[str, os.PathLike[str]]) -> Tuple[npt.NDArray[np.float64], npt.NDArray[np.int64]]: ...
@@ -67,6 +68,9 @@ def collide(a: Model, pose_a: _Pose, b: Model, pose_b: _Pose, *, delta: float = 
             all_contacts: bool = False, max_contacts: int = 0, contact_normals: bool = False,
             manifold_points: int = 0) -> CollisionResult: ...
 
+def collide_batch(a: Model, b: Model, poses_a: _Poses, poses_b: _Poses, *, delta: float = 0.0,
+                  threads: int = 0) -> npt.NDArray[np.bool_]: ...
+
 class DistanceResult:
     @property
     def distance(self) -> float: ...
@@ -93,6 +97,9 @@ class DistanceResult:
 
 def distance(a: Model, pose_a: _Pose, b: Model, pose_b: _Pose, *, upper_bound: float = ...,
              abs_tolerance: float = 0.0, rel_tolerance: float = 0.0) -> DistanceResult: ...
+
+def distance_batch(a: Model, b: Model, poses_a: _Poses, poses_b: _Poses, *,
+                   threads: int = 0) -> npt.NDArray[np.float64]: ...
 
 class RandomResult:
     @property

@@ -74,6 +74,40 @@ Transform rigid(const double* r, std::ptrdiff_t r_row, const double* t, std::str
   return out;
 }
 
+Transform from_homogeneous(const double* d) {
+  Transform out;
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) out.rotation(i, j) = d[i * 4 + j];
+    out.translation[i] = d[i * 4 + 3];
+  }
+  return out;
+}
+
+/// What homogeneous() accepts, decided without building a message.
+bool acceptable_homogeneous(const double* d) {
+  for (int k = 0; k < 16; ++k) {
+    if (!std::isfinite(d[k])) return false;
+  }
+  if (std::abs(d[12]) > kRigidTolerance || std::abs(d[13]) > kRigidTolerance ||
+      std::abs(d[14]) > kRigidTolerance || std::abs(d[15] - 1) > kRigidTolerance) {
+    return false;
+  }
+  const Mat3 r = from_homogeneous(d).rotation;
+  return (r.transpose() * r - Mat3::Identity()).cwiseAbs().maxCoeff() <= kRigidTolerance &&
+         r.determinant() >= 0;
+}
+
+/// A row-major 4x4 homogeneous matrix, checked: finite, last row [0, 0, 0, 1], rigid rotation.
+Transform homogeneous(const double* d, std::string_view name) {
+  require_finite(d, 16, name);
+  if (std::abs(d[12]) > kRigidTolerance || std::abs(d[13]) > kRigidTolerance ||
+      std::abs(d[14]) > kRigidTolerance || std::abs(d[15] - 1) > kRigidTolerance) {
+    throw py::value_error(str(name) + ": last row must be [0, 0, 0, 1] (no projective part)");
+  }
+  const double t[3] = {d[3], d[7], d[11]};
+  return rigid(d, 4, t, name);
+}
+
 /// The common case on the per-query path: a float64 numpy array of shape (rows, cols) (or (rows,)
 /// when cols is 1), any strides, read straight from its buffer: no conversion, no temporary array,
 /// no Python call. False when `h` is anything else (the caller then converts and checks it).
@@ -137,13 +171,32 @@ Transform to_transform(py::handle pose, std::string_view name) {
     }
     std::copy_n(m.data(), 16, d);
   }
-  require_finite(d, 16, name);
-  if (std::abs(d[12]) > kRigidTolerance || std::abs(d[13]) > kRigidTolerance ||
-      std::abs(d[14]) > kRigidTolerance || std::abs(d[15] - 1) > kRigidTolerance) {
-    throw py::value_error(str(name) + ": last row must be [0, 0, 0, 1] (no projective part)");
+  return homogeneous(d, name);
+}
+
+std::vector<Transform> to_transforms(py::handle poses, std::string_view name, std::size_t& count) {
+  if (poses.is_none()) return {Transform::identity()};
+  const auto a = as_float64(as_array(poses, name), name);
+  if (a.ndim() == 2 && a.shape(0) == 4 && a.shape(1) == 4) return {homogeneous(a.data(), name)};
+  if (a.ndim() != 3 || a.shape(1) != 4 || a.shape(2) != 4) {
+    throw py::value_error(str(name) + " must have shape (n, 4, 4) (or (4, 4) for one pose for all), got " +
+                          shape_of(a));
   }
-  const double t[3] = {d[3], d[7], d[11]};
-  return rigid(d, 4, t, name);
+  const auto n = static_cast<std::size_t>(a.shape(0));
+  if (count != kAnyCount && n != count) {
+    throw py::value_error(str(name) + " has " + std::to_string(n) + " poses, the other poses " +
+                          std::to_string(count));
+  }
+  count = n;
+  std::vector<Transform> out;
+  out.reserve(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    // The indexed name is built only when the pose is bad: no allocation per good pose.
+    const double* d = a.data() + 16 * i;
+    if (!acceptable_homogeneous(d)) (void)homogeneous(d, str(name) + "[" + std::to_string(i) + "]");
+    out.push_back(from_homogeneous(d));
+  }
+  return out;
 }
 
 py::array_t<double> to_matrix(const Transform& t) {

@@ -15,6 +15,7 @@
 #include <memory>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace antcd::python {
 
@@ -24,6 +25,15 @@ namespace py = pybind11;
 /// The rotation must be orthonormal with determinant +1 (within 1e-6), the last row of a 4x4
 /// [0, 0, 0, 1], every entry finite. `name` is the argument's name in messages.
 Transform to_transform(py::handle pose, std::string_view name);
+
+/// `count` value meaning "not fixed yet" for to_transforms.
+inline constexpr std::size_t kAnyCount = static_cast<std::size_t>(-1);
+
+/// A batch of poses: a numeric (n, 4, 4) array of homogeneous matrices, each checked as by
+/// to_transform (messages name `name[i]`), or one (4, 4) matrix or None standing for every pose
+/// (then one Transform is returned and `count` is left alone). When `count` is not kAnyCount the
+/// batch must hold exactly `count` poses; otherwise `count` is set to its size.
+std::vector<Transform> to_transforms(py::handle poses, std::string_view name, std::size_t& count);
 
 /// The 4x4 homogeneous matrix of a transform.
 py::array_t<double> to_matrix(const Transform& t);
