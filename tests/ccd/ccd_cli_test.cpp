@@ -1,4 +1,7 @@
 // `antcd ccd-queries` on rational CSV files written from the exact corpus, and its error lines.
+#include <antcd/mesh.hpp>
+#include <antcd/sweep.hpp>
+
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -93,6 +96,27 @@ TEST_F(CcdCli, BadFilesNameTheRow) {
   const auto r = run({"ccd-queries", (dir_ / "bad.csv").string(), "--kind", "xx"});
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("--kind must be vf or ee"), std::string::npos) << r.err;
+}
+
+TEST_F(CcdCli, SweepMatchesTheLibrary) {
+  const auto box = test::assimp_model("OBJ/box.obj");
+  const auto r = run({"sweep", box.string(), box.string(), "--pose-a0", "-5,0,0", "--pose-a1",
+                      "5,0,0,0,0,0,1", "--pose-b1", "0,1,0", "--json"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  const Model m(load_mesh(box), {}, "box");
+  const SweepResult s =
+      sweep(m, Transform::from_axis_angle(Vec3::UnitZ(), 0, {-5, 0, 0}),
+            Transform::from_quaternion({5, 0, 0}, 0, 0, 0, 1), m, Transform::identity(),
+            Transform::from_axis_angle(Vec3::UnitZ(), 0, {0, 1, 0}));
+  ASSERT_TRUE(s.hit);
+  EXPECT_TRUE(j["hit"].get<bool>());
+  EXPECT_EQ(j["toi"].get<double>(), s.toi);
+  EXPECT_EQ(j["contact"]["triangle_a"].get<std::uint32_t>(), s.contact.triangle_a);
+  EXPECT_EQ(j["tolerance_decided"].get<bool>(), s.tolerance_decided);
+  const auto bad = run({"sweep", box.string(), box.string(), "--pose-b0", "1,2"});
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.err.find("error: --pose-b0"), std::string::npos) << bad.err;
 }
 
 }  // namespace
