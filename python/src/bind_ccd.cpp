@@ -12,14 +12,6 @@
 
 namespace antcd::python {
 
-namespace {
-
-py::array_t<double> to_point(const Vec3& p) {
-  return make_vector<double>(3, [&](std::size_t k) { return p[static_cast<int>(k)]; });
-}
-
-}  // namespace
-
 void bind_ccd(py::module_& m) {
   py::class_<Contact>(m, "SweepContact",
                       "Where a sweep first touched: a triangle pair at the time of impact.")
