@@ -19,7 +19,7 @@ namespace {
 constexpr Scalar kAllowance = 1e-12;
 /// The loop's distance queries may stop within this fraction of the distance (the lower bound is
 /// still proven); only the stopping decision needs the exact distance.
-constexpr Scalar kStepRelTolerance = 0.25;
+constexpr Scalar kStepRelTolerance = 0.5;
 
 void check_pose(const Transform& p, const char* name) {
   if (!p.rotation.allFinite() || !p.translation.allFinite()) {
