@@ -37,9 +37,11 @@
 #include "ccd/exact_truth.hpp"
 
 #ifdef ANTCD_BENCH_FCL
-#include <fcl/geometry/bvh/BVH_model.h>
 #include <fcl/math/bv/RSS.h>
 #include <fcl/narrowphase/continuous_collision.h>
+
+#include "peers/adapters/fcl.hpp"
+#include "peers/adapters/peer_mesh.hpp"
 #endif
 
 namespace {
@@ -233,34 +235,17 @@ void collide_at_contact(benchmark::State& state) {
 BENCHMARK(collide_at_contact)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
 
 #ifdef ANTCD_BENCH_FCL
-std::shared_ptr<fcl::BVHModel<fcl::RSSd>> fcl_model(const antcd::Mesh& mesh) {
-  std::vector<fcl::Vector3d> vertices(mesh.vertices.begin(), mesh.vertices.end());
-  std::vector<fcl::Triangle> triangles;
-  for (const auto& t : mesh.triangles) triangles.emplace_back(t[0], t[1], t[2]);
-  auto model = std::make_shared<fcl::BVHModel<fcl::RSSd>>();
-  model->beginModel(static_cast<int>(triangles.size()), static_cast<int>(vertices.size()));
-  model->addSubModel(vertices, triangles);
-  model->endModel();
-  return model;
-}
-
-fcl::Transform3d fcl_pose(const Transform& t) {
-  fcl::Transform3d out = fcl::Transform3d::Identity();
-  out.linear() = t.rotation;
-  out.translation() = t.translation;
-  return out;
-}
-
 void fcl_ca(benchmark::State& state) {
   const Pair& p = pair(static_cast<int>(state.range(0)));
-  const auto a = fcl_model(p.a->mesh());
-  const auto b = fcl_model(p.b->mesh());
+  using antcd::peers::to_fcl;
+  const auto a = antcd::peers::build_fcl<fcl::RSSd>(antcd::peers::peer_mesh(p.a->mesh()));
+  const auto b = antcd::peers::build_fcl<fcl::RSSd>(antcd::peers::peer_mesh(p.b->mesh()));
   const fcl::ContinuousCollisionRequestd request(1000, 1e-6, fcl::CCDM_LINEAR, fcl::GST_LIBCCD,
                                                  fcl::CCDC_CONSERVATIVE_ADVANCEMENT);
   auto query = [&](const Motion& m) {
     fcl::ContinuousCollisionResultd result;
-    fcl::continuousCollide(a.get(), fcl_pose(m.a0), fcl_pose(m.a1), b.get(), fcl_pose(m.b0),
-                           fcl_pose(m.b1), request, result);
+    fcl::continuousCollide(a.get(), to_fcl(m.a0), to_fcl(m.a1), b.get(), to_fcl(m.b0), to_fcl(m.b1),
+                           request, result);
     return result;
   };
   int misses = 0, late = 0, hits = 0;
