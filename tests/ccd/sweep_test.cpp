@@ -9,10 +9,14 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <iostream>
 #include <optional>
 #include <random>
+#include <thread>
+#include <vector>
 
 #include "support/test_support.hpp"
 
@@ -177,6 +181,43 @@ TEST(Sweep, RandomFastMotionsNeverBeatDenseStepping) {
   EXPECT_GE(spin_hits, 2);
   std::cout << "random fast motions: " << motions << ", hits " << hits << '\n';
   EXPECT_GE(hits, motions / 3);
+}
+
+TEST(Sweep, ThreadsShareModelsAndGetTheSameAnswers) {
+  const Model torus(make_torus(1.0, 0.3, 32, 16), {}, "torus");
+  const Model sphere(make_sphere(0.5, 24, 12), {}, "sphere");
+  std::vector<std::array<Transform, 2>> motions;
+  std::mt19937_64 rng(5);
+  for (int i = 0; i < 8; ++i) {
+    Transform a0 = test::random_pose(rng, 0);
+    Transform a1 = test::random_pose(rng, 0);
+    a0.translation = Vec3(-2, 0.3 * i - 1, 3.0 * (i % 2));
+    a1.translation = Vec3(2, 0.1 * i, 0.2 + 3.0 * (i % 2));
+    motions.push_back({a0, a1});
+  }
+  auto run_all = [&] {
+    std::vector<SweepResult> out;
+    for (const auto& m : motions) {
+      out.push_back(sweep(sphere, m[0], m[1], torus, Transform::identity(), Transform::identity()));
+    }
+    return out;
+  };
+  const auto reference = run_all();
+  const auto hits =
+      std::count_if(reference.begin(), reference.end(), [](const SweepResult& r) { return r.hit; });
+  EXPECT_GT(hits, 0);
+  EXPECT_LT(hits, static_cast<long>(reference.size()));
+  std::vector<std::vector<SweepResult>> got(4);
+  std::vector<std::thread> threads;
+  for (auto& g : got) threads.emplace_back([&g, &run_all] { g = run_all(); });
+  for (auto& t : threads) t.join();
+  for (const auto& g : got) {
+    for (std::size_t i = 0; i < reference.size(); ++i) {
+      EXPECT_EQ(g[i].hit, reference[i].hit);
+      EXPECT_EQ(g[i].toi, reference[i].toi);
+      EXPECT_EQ(g[i].contact.triangle_a, reference[i].contact.triangle_a);
+    }
+  }
 }
 
 TEST(Sweep, RejectsBadArguments) {
