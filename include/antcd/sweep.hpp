@@ -20,14 +20,15 @@
 // - Conservative: if the surfaces come within min_separation at some t in [0, 1], the result is a
 //   hit with toi <= t*. A miss is a proof that they never do.
 // - A hit is proven (tolerance_decided false) when at toi the exact test finds the surfaces
-//   intersecting or the distance computed at toi is within min_separation less the allowance.
-//   Otherwise the surfaces are at toi within min_separation + mu * time_tolerance + allowance
-//   (the distance at toi, exact up to rounding, is in result.distance): any closer and advancing
-//   would have stopped; any farther and it would have advanced by more than time_tolerance.
+//   intersecting or a triangle pair's distance computed at toi is within min_separation less the
+//   allowance. Otherwise the surfaces are at toi within min_separation + mu * time_tolerance +
+//   allowance (result.distance is a pair's distance there): the search stops only that close, and
+//   a step from any farther reaches at least time_tolerance / 2 ahead.
 // - After max_iterations distance queries the search stops with a hit at the time reached
 //   (tolerance_decided and budget_exhausted set): still toi <= t*.
-// - contact: the triangle pair of minimum distance at toi (world frame): point is the common point
-//   or the closest points' midpoint, normal and depth as in collide.hpp (normal from B towards A).
+// - contact: a triangle pair at toi whose distance is within mu * time_tolerance / 2 of the
+//   minimum (an intersecting pair when the surfaces intersect), world frame: point is the common
+//   point or the closest points' midpoint, normal and depth as in collide.hpp (from B towards A).
 //
 // Thread safety: sweep() only reads its Models; any number of threads may sweep the same Models.
 // Errors: ArgumentError for min_separation < 0 or not finite, time_tolerance <= 0 or not finite,
@@ -62,8 +63,8 @@ struct SweepResult {
   bool tolerance_decided = false;
   /// max_iterations ran out (the hit is then a conservative stop).
   bool budget_exhausted = false;
-  /// Distance between the surfaces at toi when hit (up to rounding); else the proven lower bound
-  /// of the distance at the last time examined.
+  /// When hit: the contact pair's distance at toi (within mu * time_tolerance / 2 above the
+  /// surfaces' distance); else the proven lower bound of the distance at the last time examined.
   Scalar distance = 0;
   /// mu: the bound on the relative speed of the surfaces (mesh units per unit time).
   Scalar motion_bound = 0;

@@ -115,12 +115,16 @@ SweepResult sweep(const Model& a, const Transform& pose_a0, const Transform& pos
     }
     Scalar gap = d.lower_bound - ms - allowance;
     if (gap <= mu * tol || d.intersecting) {
-      // Near enough to stop: decide on the exact distance (and keep it for the contact).
-      d = distance(a, pa, b, pb, DistanceRequest{});
+      // Near enough to stop: decide on a distance within mu * tol / 2 of the minimum (an exact
+      // one costs far more where many pairs are about equally close, e.g. a ball in a ring).
+      // d.distance is a pair's distance (>= the minimum) and the lower bound is within
+      // mu * tol / 2 below it, so a stop here is within reach and a step from here is >= tol / 2.
+      DistanceRequest settle;
+      settle.abs_tolerance = mu * tol / 2;
+      d = distance(a, pa, b, pb, settle);
       ++result.iterations;
-      gap = d.distance - ms - allowance;
       const bool proven = d.intersecting || d.distance + allowance <= ms;
-      if (proven || gap <= mu * tol) {
+      if (proven || d.distance - ms - allowance <= mu * tol) {
         result.hit = true;
         result.toi = t;
         result.tolerance_decided = !proven;
@@ -128,6 +132,7 @@ SweepResult sweep(const Model& a, const Transform& pose_a0, const Transform& pos
         fill_contact(a, pa, b, pb, d, result.contact);
         break;
       }
+      gap = d.lower_bound - ms - allowance;
     }
     // No contact before t + gap / mu (rounded down; the allowance covers the sum's rounding).
     const Scalar advance = gap / mu * (1 - 1e-15);
