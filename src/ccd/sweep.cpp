@@ -42,6 +42,12 @@ Scalar origin_radius(const Model& m) {
   return m.root().center.norm() + static_cast<Scalar>(m.root().radius);
 }
 
+/// The larger of the two lower bounds distance() proves: its lower_bound, and its distance less
+/// the tolerance it was allowed (`slack`).
+Scalar proven_lower_bound(const DistanceResult& d, Scalar slack) {
+  return std::isfinite(d.distance) ? std::max(d.lower_bound, d.distance - slack) : d.lower_bound;
+}
+
 void fill_contact(const Model& a, const Transform& pa, const Model& b, const Transform& pb,
                   const DistanceResult& d, Contact& c) {
   c.triangle_a = d.triangle_a;
@@ -113,12 +119,13 @@ SweepResult sweep(const Model& a, const Transform& pose_a0, const Transform& pos
       result.distance = d.lower_bound;
       break;
     }
-    Scalar gap = d.lower_bound - ms - allowance;
+    // distance() promises both its lower bound and distance * (1 - rel_tolerance).
+    Scalar gap = proven_lower_bound(d, kStepRelTolerance * d.distance) - ms - allowance;
     if (gap <= mu * tol || d.intersecting) {
       // Near enough to stop: decide on a distance within mu * tol / 2 of the minimum (an exact
       // one costs far more where many pairs are about equally close, e.g. a ball in a ring).
-      // d.distance is a pair's distance (>= the minimum) and the lower bound is within
-      // mu * tol / 2 below it, so a stop here is within reach and a step from here is >= tol / 2.
+      // d.distance is a pair's distance (>= the minimum) and the minimum is at most mu * tol / 2
+      // below it, so a stop here is within reach and a step from here is >= tol / 2.
       DistanceRequest settle;
       settle.abs_tolerance = mu * tol / 2;
       d = distance(a, pa, b, pb, settle);
@@ -132,7 +139,7 @@ SweepResult sweep(const Model& a, const Transform& pose_a0, const Transform& pos
         fill_contact(a, pa, b, pb, d, result.contact);
         break;
       }
-      gap = d.lower_bound - ms - allowance;
+      gap = proven_lower_bound(d, settle.abs_tolerance) - ms - allowance;
     }
     // No contact before t + gap / mu (rounded down; the allowance covers the sum's rounding).
     const Scalar advance = gap / mu * (1 - 1e-15);
