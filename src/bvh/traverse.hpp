@@ -36,7 +36,7 @@ struct PairFrame {
 /// product as B's third axis, equal to R (b0 x b1) up to rounding (which the margin covers, like
 /// the rest of the separating-axis arithmetic).
 struct PosedAxes {
-  Vec3 b0, b1, b2;
+  Vec3 b0 = Vec3::Zero(), b1 = Vec3::Zero(), b2 = Vec3::Zero();
   PosedAxes() = default;
   PosedAxes(const BvhNode& b, const Mat3& rot) : b0(rot * b.axis0), b1(rot * b.axis1) {
     b2 = b0.cross(b1);
@@ -46,8 +46,9 @@ struct PosedAxes {
 /// Separating-axis test between A's node box (third axis `a2` = a.axis0 x a.axis1) and B's node
 /// box with axes `rb` and centre `cb` in A's model frame: the 15 axes, tolerances and margin of
 /// geometry::obb_overlap, inlined into the traversal. True when a separating axis was found.
-inline bool obb_disjoint(const BvhNode& a, const Vec3& a2, const BvhNode& b, const PosedAxes& rb,
-                         const Vec3& cb, Scalar margin) {
+[[gnu::always_inline]] inline bool obb_disjoint(const BvhNode& a, const Vec3& a2, const BvhNode& b,
+                                                const PosedAxes& rb, const Vec3& cb,
+                                                Scalar margin) {
   const Vec3 d = cb - a.center;
   Mat3 r;
   r << a.axis0.dot(rb.b0), a.axis0.dot(rb.b1), a.axis0.dot(rb.b2),  //
@@ -123,9 +124,9 @@ TraversalStats dual_traverse(const Model& a, const Model& b, const PairFrame& fr
   std::uint32_t centre_of = kNone;  // the node of B whose centre cb holds
   std::uint32_t axes_of = kNone;    // the node of B whose axes rb holds
   std::uint32_t third_of = kNone;   // the node of A whose third axis a2 holds
-  Vec3 cb;
+  Vec3 cb = Vec3::Zero();
   PosedAxes rb;
-  Vec3 a2;
+  Vec3 a2 = Vec3::Zero();
   stack[top++] = {0, 0, kAll, kAll};
   while (top > 0) {
     Item item = stack[--top];
