@@ -79,10 +79,14 @@ class CMakeBuild(build_ext):
         # SONAME, which is the name the loader looks for.
         needed = subprocess.run(["ldd", str(extension)], check=True, capture_output=True,
                                 text=True).stdout
+        shipped = False
         for line in needed.splitlines():
             match = re.match(r"\s*(libantcd\.so[^ ]*) => (\S+)", line)
             if match:
                 shutil.copyfile(match.group(2), target / match.group(1))
+                shipped = True
+        if not shipped:
+            return  # a static libantcd is inside the extension: no RUNPATH to set
         set_rpath = tree / "antcd_set_rpath.cmake"
         set_rpath.write_text(f'file(RPATH_SET FILE "{target / extension.name}" NEW_RPATH "$ORIGIN")\n')
         run("cmake", "-P", set_rpath)
