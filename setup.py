@@ -75,22 +75,24 @@ class CMakeBuild(build_ext):
             shutil.copyfile(built / name, target / name)
         shutil.copyfile(extension, target / extension.name)
 
-        # The shared libantcd the extension links (none with BUILD_SHARED_LIBS=OFF), under its
-        # SONAME, which is the name the loader looks for.
+        # The shared antcd libraries the extension links (none with BUILD_SHARED_LIBS=OFF), under
+        # their SONAMEs, the names the loader looks for; each file that has a (build-tree) RUNPATH
+        # gets $ORIGIN instead, so that they find one another beside the extension.
         needed = subprocess.run(["ldd", str(extension)], check=True, capture_output=True,
                                 text=True).stdout
-        shipped = False
+        shipped = [target / extension.name]
         for line in needed.splitlines():
-            match = re.match(r"\s*(libantcd\.so[^ ]*) => (\S+)", line)
+            match = re.match(r"\s*(libantcd[^ ]*\.so[^ ]*) => (\S+)", line)
             if match:
                 shutil.copyfile(match.group(2), target / match.group(1))
-                shipped = True
-        if not shipped:
-            return  # a static libantcd is inside the extension: no RUNPATH to set
+                shipped.append(target / match.group(1))
+        script = "".join(
+            f'unset(runpath)\nunset(rpath)\nfile(READ_ELF "{path}" RUNPATH runpath RPATH rpath)\n'
+            f'if(runpath OR rpath)\n  file(RPATH_SET FILE "{path}" NEW_RPATH "$ORIGIN")\nendif()\n'
+            for path in shipped)
         set_rpath = tree / "antcd_set_rpath.cmake"
-        set_rpath.write_text(f'file(RPATH_SET FILE "{target / extension.name}" NEW_RPATH "$ORIGIN")\n')
+        set_rpath.write_text(script)
         run("cmake", "-P", set_rpath)
-
 
 (SOURCE / "build").mkdir(exist_ok=True)
 setup(
