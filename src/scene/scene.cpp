@@ -1,12 +1,10 @@
 // The scene engine: shared models in one World (its incremental broad phase), and the narrow
 // phase of the chosen method on each surviving pair.
 #include <antcd/collide.hpp>
+#include <antcd/load.hpp>
 #include <antcd/random.hpp>
 #include <antcd/scene.hpp>
 #include <antcd/world.hpp>
-
-#include <tbb/parallel_for.h>
-#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <chrono>
@@ -18,6 +16,7 @@
 #include <stdexcept>
 
 #include "scene/pair_query.hpp"
+#include "util/parallel.hpp"
 
 namespace antcd {
 
@@ -132,8 +131,8 @@ FrameResult Scene::run_frame(std::size_t frame, const SceneQuery& query,
   // threads = 1 keeps the whole frame on the calling thread.
   std::vector<Transform> poses(n);
   for (std::size_t i = 0; i < n; ++i) poses[i] = description_.objects[i].pose(frame);
-  tbb::task_arena arena(query.threads);
-  result.candidates = arena.execute([&] { return broad_phase(frame, query.delta); });
+  result.candidates =
+      parallel::with_threads(query.threads, [&] { return broad_phase(frame, query.delta); });
 
   // Narrow phase, one independent task per candidate pair.
   const std::size_t m = result.candidates.size();
@@ -143,9 +142,9 @@ FrameResult Scene::run_frame(std::size_t frame, const SceneQuery& query,
     if (query.threads == 1 || count < 2) {
       for (std::size_t k = 0; k < count; ++k) body(k);
     } else {
-      tbb::task_arena arena(query.threads);
-      arena.execute(
-          [&] { tbb::parallel_for(std::size_t{0}, count, [&](std::size_t k) { body(k); }); });
+      parallel::with_threads(query.threads, [&] {
+        parallel::for_each_index(0, count, [&](std::size_t k) { body(k); });
+      });
     }
   };
   const auto side = [&](std::uint32_t i) {
