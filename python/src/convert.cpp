@@ -179,7 +179,8 @@ std::vector<Transform> to_transforms(py::handle poses, std::string_view name, st
   const auto a = as_float64(as_array(poses, name), name);
   if (a.ndim() == 2 && a.shape(0) == 4 && a.shape(1) == 4) return {homogeneous(a.data(), name)};
   if (a.ndim() != 3 || a.shape(1) != 4 || a.shape(2) != 4) {
-    throw py::value_error(str(name) + " must have shape (n, 4, 4) (or (4, 4) for one pose for all), got " +
+    throw py::value_error(str(name) +
+                          " must have shape (n, 4, 4) (or (4, 4) for one pose for all), got " +
                           shape_of(a));
   }
   const auto n = static_cast<std::size_t>(a.shape(0));
