@@ -17,7 +17,7 @@ PROBE = """
 import antcd, os, sys
 package = os.path.dirname(os.path.realpath(antcd.__file__))
 assert package.startswith(os.path.realpath(sys.prefix)), f"antcd imported from {package}, not the venv"
-libs = {line.split()[-1] for line in open("/proc/self/maps") if "libantcd.so" in line}
+libs = {line.split()[-1] for line in open("/proc/self/maps") if "/libantcd" in line}
 assert libs and all(os.path.dirname(os.path.realpath(p)) == package for p in libs), libs
 print("installed antcd", antcd.__version__, "at", package, "with", *sorted(libs))
 """
