@@ -25,8 +25,9 @@ namespace antcd::python {
 namespace {
 
 /// Pose pairs handed to one thread at a time: small enough to balance uneven queries, large
-/// enough that the shared counter is not contended.
-constexpr std::size_t kChunk = 8;
+/// enough that the shared counter is not contended and that two threads rarely write the same
+/// cache line of the output (64 one-byte verdicts fill one).
+constexpr std::size_t kChunk = 64;
 
 struct PoseBatch {
   std::vector<Transform> a;  // size n, or 1 (the same pose for every pair)
