@@ -53,6 +53,7 @@ int main(int argc, char** argv) {
 #else
   antcd::cli::add_lab_commands(app);
 #endif
+  antcd::cli::add_ccd_commands(app, code);
   // CLI11 would only say "A subcommand is required" for a mistyped command: name it.
   if (argc > 1 && argv[1][0] != '-' &&
       app.get_subcommands([&](CLI::App* sub) { return sub->check_name(argv[1]); }).empty()) {

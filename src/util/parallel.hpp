@@ -76,6 +76,16 @@ T reduce(std::size_t begin, std::size_t end, T identity, const Body& body, const
 #endif
 }
 
+/// How many threads may run the calling thread's parallel work (tbb::this_task_arena's
+/// max_concurrency); 1 without oneTBB.
+inline int max_concurrency() {
+#if defined(ANTCD_WITH_TBB)
+  return tbb::this_task_arena::max_concurrency();
+#else
+  return 1;
+#endif
+}
+
 /// f() with at most `threads` workers (tbb::task_arena's max_concurrency); returns f()'s value.
 template <class F>
 decltype(auto) with_threads(int threads, F&& f) {

@@ -23,7 +23,8 @@ using Object = World::Impl::Object;
 using Bounds = World::Impl::Bounds;
 using SlotPair = std::pair<std::uint32_t, std::uint32_t>;
 
-// Below these sizes a query stays on the calling thread: handing work to oneTBB costs more.
+// Below these sizes (or in an arena of one thread) a query stays on the calling thread: handing
+// work to oneTBB costs more.
 constexpr std::size_t kParallelObjects = 64;
 constexpr std::size_t kParallelPairs = 64;
 // Broad-phase tasks per query: enough to balance a few threads, each still thousands of node visits
@@ -81,7 +82,7 @@ std::vector<SlotPair> self_pairs(const World::Impl& w, Scalar gap) {
     };
   };
   std::vector<SlotPair> out;
-  if (w.live < kParallelObjects) {
+  if (w.live < kParallelObjects || parallel::max_concurrency() == 1) {
     w.tree.pairs(w.tree.all_pairs(), gap, emit_into(out));
   } else {
     const std::vector<detail::AabbTree::PairTask> tasks = w.tree.pair_tasks(gap, kPairTasks);
@@ -111,7 +112,7 @@ void for_each_pair(std::size_t m, Test&& test, Warm&& warm) {
       test(k);
     }
   };
-  if (m < kParallelPairs) {
+  if (m < kParallelPairs || parallel::max_concurrency() == 1) {
     run(0, m);
   } else {
     parallel::for_ranges(0, m, 1, run);
