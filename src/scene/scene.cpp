@@ -1,6 +1,7 @@
 // The scene engine: shared models in one World (its incremental broad phase), and the narrow
 // phase of the chosen method on each surviving pair.
 #include <antcd/collide.hpp>
+#include <antcd/load.hpp>
 #include <antcd/random.hpp>
 #include <antcd/scene.hpp>
 #include <antcd/world.hpp>
