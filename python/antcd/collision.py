@@ -20,9 +20,10 @@ Differences from trimesh/FCL, all documented on the methods: meshes may be ``ant
 (shared, built once), trimesh meshes, or ``(vertices, faces)`` pairs; collision means the surfaces
 share a point (touching counts, a mesh entirely inside another does not collide); a contact's
 ``depth`` is NaN because antcd does not compute penetration depth (``distance`` is 0 for
-intersecting triangles); a minimum distance is never negative (0 when surfaces meet, where FCL's
-signed distance may be negative) and is ``inf`` with the names and data ``None`` when there is no
-pair to measure.
+intersecting triangles; ``antcd.penetration`` gives the solids' depth); a minimum distance between
+two closed meshes is signed like FCL's (minus the penetration depth of overlapping solids, nested
+ones included), between open meshes the surface distance (never negative); it is ``inf`` with the
+names and data ``None`` when there is no pair to measure.
 """
 from __future__ import annotations
 
@@ -192,6 +193,8 @@ class CollisionManager:
         # id -> name. Ids are never reused and entries are kept after removal, so a query racing a
         # removal in another thread can still name what it found.
         self._names: dict[int, str] = {}
+        # name -> (model, pose) for queries on one named object (min_distance_internal(name=)).
+        self._posed: dict[str, tuple[Model, Any]] = {}
 
     def add_object(self, name: str, mesh: Any, transform: Any = None) -> Model:
         """Adds (or, for a name already present, replaces) an object.
@@ -208,6 +211,7 @@ class CollisionManager:
             self._world.remove(old_id)
         self._ids[name] = new_id
         self._names[new_id] = name
+        self._posed[name] = (model, np.eye(4) if transform is None else transform)
         return model
 
     def remove_object(self, name: str) -> None:
@@ -215,6 +219,7 @@ class CollisionManager:
         if name not in self._ids:
             raise ValueError(f"{name} not in collision manager!")
         self._world.remove(self._ids.pop(name))
+        del self._posed[name]
 
     def set_transform(self, name: str, transform: Any) -> None:
         """Replaces an object's pose; ValueError if there is none by that name or the transform
@@ -222,6 +227,7 @@ class CollisionManager:
         if name not in self._ids:
             raise ValueError(f"{name} not in collision manager!")
         self._world.set_pose(self._ids[name], transform)
+        self._posed[name] = (self._posed[name][0], transform)
 
     def in_collision_single(self, mesh: Any, transform: Any = None, return_names: bool = False,
                             return_data: bool = False) -> Any:
@@ -278,14 +284,42 @@ class CollisionManager:
                 data = DistanceData((name, "__external"), result)
         return _answer(_distance_of(nearest), name, data, return_name, return_data)
 
-    def min_distance_internal(self, return_names: bool = False, return_data: bool = False) -> Any:
-        """Minimum distance between any two objects.
+    def min_distance_internal(self, return_names: bool = False, return_data: bool = False,
+                              name: str | None = None) -> Any:
+        """Minimum distance between any two objects, or (name, as trimesh >= 4.10) between the
+        object called ``name`` and any other (ValueError if there is none by that name).
 
-        Returns the distance, plus (return_names) the 2-tuple of the closest objects' names in
-        alphabetical order and (return_data) a DistanceData. Fewer than two objects: inf and None.
+        Signed for two closed meshes: minus their penetration depth when the solids overlap
+        (``antcd.penetration``; nested ones included). Returns the distance, plus (return_names)
+        the 2-tuple of the closest objects' names in alphabetical order and (return_data) a
+        DistanceData. Fewer than two objects: inf and None.
         """
+        if name is not None:
+            return self._min_distance_named(name, return_names, return_data)
         nearest = self._world.distance_internal()
         return self._closest(nearest, self, return_names, return_data, sort_names=True)
+
+    def _min_distance_named(self, name: str, return_names: bool, return_data: bool) -> Any:
+        if name not in self._ids:
+            raise ValueError(f"{name} not in collision manager!")
+        model, pose = self._posed[name]
+        best = None
+        for other in sorted(self._ids):
+            if other == name:
+                continue
+            other_model, other_pose = self._posed[other]
+            try:  # signed for two closed meshes; an open one is a ValueError: surface distance
+                result = _antcd.distance(model, pose, other_model, other_pose, signed=True)
+            except ValueError:
+                result = _antcd.distance(model, pose, other_model, other_pose)
+            if best is None or result.distance < best[1].distance:
+                best = (other, result)
+        if best is None:
+            return _answer(math.inf, None, None, return_names, return_data)
+        other, result = best
+        names = tuple(sorted((name, other)))
+        data = DistanceData((name, other), result) if return_data else None
+        return _answer(float(result.distance), names, data, return_names, return_data)
 
     def min_distance_other(self, other_manager: "CollisionManager", return_names: bool = False,
                            return_data: bool = False) -> Any:

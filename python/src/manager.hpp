@@ -69,7 +69,9 @@ class ManagedWorld {
   /// object then also meets itself, as two managers holding the same objects would).
   [[nodiscard]] std::vector<Hit> collide_other(const ManagedWorld& other, Mode mode, Scalar delta = 0) const;
 
-  /// The closest pair of distinct objects of this world (exact surface distance, distance.hpp).
+  /// The closest pair of distinct objects of this world: signed distance (distance.hpp,
+  /// signed_distance: -penetration depth when two closed objects overlap) for closed pairs, the
+  /// surface distance otherwise.
   [[nodiscard]] Nearest distance_internal() const;
   /// The object closest to `model` at `pose`.
   [[nodiscard]] Nearest distance_single(const Model& model, const Transform& pose) const;

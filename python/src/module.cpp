@@ -34,5 +34,6 @@ PYBIND11_MODULE(_antcd, m) {
   antcd::python::bind_random(m);
   antcd::python::bind_scene(m);
   antcd::python::bind_distance(m);
+  antcd::python::bind_penetration(m);
   antcd::python::bind_manager(m);
 }
