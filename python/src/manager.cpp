@@ -26,6 +26,10 @@ CollisionRequest request_for(ManagedWorld::Mode mode, Scalar delta) {
   CollisionRequest request;
   request.delta = delta;
   request.all_contacts = mode == ManagedWorld::Mode::Contacts;
+  // Closed meshes collide as solids: one wholly inside another collides (no contacts then).
+  request.volume = true;
+  // Each contact's triangle-pair depth and normal (FCL's mesh semantics), for ContactData.
+  request.contact_normals = mode == ManagedWorld::Mode::Contacts;
   return request;
 }
 

@@ -2,7 +2,8 @@
 // reader/writer lock, with the queries trimesh's manager asks for.
 //
 // Objects (a shared Model and a pose) are added, moved and removed through the World (its dynamic
-// AABB tree is the broad phase); collision queries are the World's (collide_all, collide_model),
+// AABB tree is the broad phase); collision queries are the World's (collide_all, collide_model)
+// with CollisionRequest::volume (a closed object wholly inside another collides),
 // minimum-distance queries run antcd::distance over object pairs in order of a lower bound (the gap
 // between the objects' world boxes), each bounded by the best distance found so far.
 //

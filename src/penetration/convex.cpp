@@ -186,6 +186,19 @@ ConvexPolytope make_polytope(const Model& model, const Transform& pose) {
   return p;
 }
 
+namespace {
+
+// A smaller support value wins; an exact tie (symmetric configurations such as two coincident
+// boxes) goes to the lexicographically smaller direction, so the answer does not depend on the
+// order of the faces.
+bool better(Scalar h, const Vec3& direction, const ConvexDepth& best) {
+  if (h != best.depth) return h < best.depth;
+  return std::lexicographical_compare(direction.data(), direction.data() + 3,
+                                      best.direction.data(), best.direction.data() + 3);
+}
+
+}  // namespace
+
 ConvexDepth convex_depth(const ConvexPolytope& a, const ConvexPolytope& b) {
   ConvexDepth best;
   best.depth = std::numeric_limits<Scalar>::infinity();
@@ -194,14 +207,14 @@ ConvexDepth convex_depth(const ConvexPolytope& a, const ConvexPolytope& b) {
     const Vec3& n = a.normals[i];
     const Vec3& pb = b.vertices[b.support_index(-n)];
     const Scalar h = n.dot(a.face_point[i]) - n.dot(pb);
-    if (h < best.depth) best = {h, -n, Vec3(pb + h * n), pb};
+    if (better(h, -n, best)) best = {h, -n, Vec3(pb + h * n), pb};
   }
   // Faces of B (outward m): M's facet normal is -m; A moves along m.
   for (std::size_t i = 0; i < b.normals.size(); ++i) {
     const Vec3& m = b.normals[i];
     const Vec3& pa = a.vertices[a.support_index(-m)];
     const Scalar h = m.dot(b.face_point[i]) - m.dot(pa);
-    if (h < best.depth) best = {h, m, pa, Vec3(pa + h * m)};
+    if (better(h, m, best)) best = {h, m, pa, Vec3(pa + h * m)};
   }
   // Edge pairs spanning a facet of M: the arcs (n0, n1) of A and (-m0, -m1) of B cross.
   for (const ConvexPolytope::Edge& ea : a.edges) {
@@ -220,7 +233,7 @@ ConvexDepth convex_depth(const ConvexPolytope& a, const ConvexPolytope& b) {
       n /= std::sqrt(n2);
       if (n.dot(ea.n0 + ea.n1) < 0) n = -n;
       const Scalar h = n.dot(ea.p0 - eb.p0);
-      if (h < best.depth) {
+      if (better(h, -n, best)) {
         Vec3 ca, cb;
         geometry::segment_segment_distance_squared(ea.p0, ea.p1, eb.p0, eb.p1, &ca, &cb);
         best = {h, -n, ca, cb};
