@@ -40,10 +40,11 @@
 //   at most `upper` (PD is then in [0, upper]).
 // - witness: a world point inside both solids (winding numbers, points.hpp) when overlapping.
 //
-// Convexity (PenetrationRequest::shape = Auto): a closed, connected mesh is convex when every edge
-// is convex (the far vertex of each neighbouring triangle lies on or behind the other triangle's
-// plane, exact orientation predicate) — a locally convex closed surface that covers itself twice
-// would pass; declare Shape::General for such input.
+// Convexity (PenetrationRequest::shape = Auto): a closed mesh is convex when it is one connected
+// piece and no edge is reflex: the far vertex of each neighbouring triangle lies behind the other
+// triangle's plane or within 1e-10 of the model's size of it (coplanar neighbours then form one
+// face). A locally convex closed surface that covers itself twice would pass; declare
+// Shape::General for such input.
 //
 // Cost: convex pairs O(E_A * E_B) arc tests plus O(F * V) supports; general pairs a handful of
 // exact collide() calls (the budget) plus point queries (which build a per-model cache on first
@@ -62,8 +63,10 @@
 namespace antcd {
 
 struct PenetrationRequest {
-  /// How to treat the models: detect convexity (Auto), declare both convex (Convex: exact path
-  /// without the check; wrong answers if they are not), or use the general bounds (General).
+  /// How to treat the models: detect convexity (Auto: the exact path for convex pairs of up to
+  /// about 6000 x 6000 edges, the general bounds otherwise), require it (Convex: the exact path at
+  /// any size; ArgumentError naming a model that is not convex), or use the general bounds
+  /// (General).
   enum class Shape { Auto, Convex, General };
   Shape shape = Shape::Auto;
   /// Stop refining once upper - lower <= max(abs_tolerance, rel_tolerance * upper).

@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <numeric>
 
 namespace antcd::detail {
@@ -79,99 +80,117 @@ Scalar signed_volume6(const Mesh& mesh) {
 
 }  // namespace
 
-bool convex_mesh(const Mesh& mesh, int* orientation) {
-  if (!is_closed(mesh)) return false;
+std::size_t ConvexPolytope::support_index(const Vec3& n, std::size_t start) const {
+  std::size_t cur = start;
+  Scalar value = n.dot(vertices[cur]);
+  for (bool improved = true; improved;) {
+    improved = false;
+    std::size_t next = cur;
+    for (std::uint32_t k = adjacent_begin[cur]; k < adjacent_begin[cur + 1]; ++k) {
+      const Scalar v = n.dot(vertices[adjacent[k]]);
+      if (v > value) {
+        value = v;
+        next = adjacent[k];
+        improved = true;
+      }
+    }
+    cur = next;
+  }
+  return cur;
+}
+
+Scalar ConvexPolytope::plane_margin(const Vec3& p) const {
+  Scalar m = -std::numeric_limits<Scalar>::infinity();
+  for (std::size_t i = 0; i < normals.size(); ++i)
+    m = std::max(m, normals[i].dot(p - face_point[i]));
+  return m;
+}
+
+bool convex_polytope(const Model& model, const Transform& pose, ConvexPolytope* out) {
+  const Mesh& mesh = model.mesh();
+  if (!model.is_closed()) return false;
   const Scalar vol = signed_volume6(mesh);
   const int orient = (vol > 0) - (vol < 0);
-  if (orientation != nullptr) *orientation = orient;
   if (orient == 0) return false;
-  // Edges concave by less than 1e-10 of the model's size count as convex: the rounding of
-  // generated or exported coordinates bends flat quads by that much.
+  // Heights within 1e-10 of the model's size count as flat: the rounding of generated or
+  // exported coordinates bends flat quads by that much (a floating-point test is enough then).
   const Aabb box = mesh.bounds();
   const Scalar flat = 1e-10 * (box.max - box.min).norm();
-  bool convex = true;
-  UnionFind parts(mesh.triangles.size());
-  for_each_edge(mesh, [&](std::uint32_t t1, std::uint32_t t2, std::uint32_t u, std::uint32_t v) {
-    if (!convex) return;
-    parts.join(t1, t2);
-    const TriangleIndices& a = mesh.triangles[t1];
-    const Vec3& w = mesh.vertices[third(mesh.triangles[t2], u, v)];
-    // orient3d > 0: w below a's plane, i.e. behind it for an outward (counter-clockwise from
-    // outside) triangle.
-    const Vec3& a0 = mesh.vertices[a[0]];
-    const Scalar o = geometry::orient3d(a0, mesh.vertices[a[1]], mesh.vertices[a[2]], w) * orient;
-    if (o >= 0) return;
-    // Height of w in front of a's plane: |o| / |normal|.
-    const Scalar n = (mesh.vertices[a[1]] - a0).cross(mesh.vertices[a[2]] - a0).norm();
-    if (-o > flat * n) convex = false;
-  });
-  if (!convex) return false;
-  std::uint32_t root = UINT32_MAX;
-  for (std::uint32_t i = 0; i < mesh.triangles.size(); ++i) {
-    if (!has_area(mesh.triangles[i])) continue;
-    const std::uint32_t r = parts.find(i);
-    if (root == UINT32_MAX) root = r;
-    if (r != root) return false;  // several pieces
-  }
-  return true;
-}
-
-std::size_t ConvexPolytope::support_index(const Vec3& n) const {
-  std::size_t best = 0;
-  Scalar best_value = -std::numeric_limits<Scalar>::infinity();
-  for (std::size_t i = 0; i < vertices.size(); ++i) {
-    const Scalar v = n.dot(vertices[i]);
-    if (v > best_value) {
-      best_value = v;
-      best = i;
-    }
-  }
-  return best;
-}
-
-ConvexPolytope make_polytope(const Model& model, const Transform& pose) {
-  const Mesh& mesh = model.mesh();
-  const int orient = signed_volume6(mesh) < 0 ? -1 : 1;
-  ConvexPolytope p;
-  std::vector<Vec3> world(mesh.vertices.size());
-  std::vector<char> used(mesh.vertices.size(), 0);
-  for (const TriangleIndices& t : mesh.triangles) {
-    if (has_area(t)) used[t[0]] = used[t[1]] = used[t[2]] = 1;
-  }
-  for (std::size_t i = 0; i < world.size(); ++i) {
-    world[i] = pose.apply(mesh.vertices[i]);
-    if (used[i] != 0) p.vertices.push_back(world[i]);
-  }
-  p.centroid = Vec3::Zero();
-  for (const Vec3& v : p.vertices) p.centroid += v;
-  p.centroid /= static_cast<Scalar>(std::max<std::size_t>(1, p.vertices.size()));
-
-  // Outward unit normal of each triangle; coplanar neighbours (exact test) form one patch, whose
-  // normal is tested once.
   const std::size_t nt = mesh.triangles.size();
+  // Outward unit normal of each triangle, model frame.
   std::vector<Vec3> normal(nt, Vec3::Zero());
   std::vector<Scalar> area(nt, 0);
   for (std::size_t i = 0; i < nt; ++i) {
     const TriangleIndices& t = mesh.triangles[i];
     if (!has_area(t)) continue;
-    const Vec3 n = (world[t[1]] - world[t[0]]).cross(world[t[2]] - world[t[0]]) * orient;
+    const Vec3& a = mesh.vertices[t[0]];
+    const Vec3 n = (mesh.vertices[t[1]] - a).cross(mesh.vertices[t[2]] - a) * orient;
     area[i] = n.norm();
     if (area[i] > 0) normal[i] = n / area[i];
   }
-  UnionFind patches(nt);
+  bool convex = true;
+  UnionFind parts(nt);    // connected pieces
+  UnionFind patches(nt);  // coplanar neighbours: one face normal per patch
+  std::vector<std::array<std::uint32_t, 4>> edges;  // u, v, t1, t2 of the non-flat edges
+  std::vector<std::array<std::uint32_t, 2>> graph;  // every edge
   for_each_edge(mesh, [&](std::uint32_t t1, std::uint32_t t2, std::uint32_t u, std::uint32_t v) {
-    const TriangleIndices& a = mesh.triangles[t1];
-    const Scalar o =
-        geometry::orient3d(mesh.vertices[a[0]], mesh.vertices[a[1]], mesh.vertices[a[2]],
-                           mesh.vertices[third(mesh.triangles[t2], u, v)]);
-    if (o == 0) {
+    if (!convex) return;
+    parts.join(t1, t2);
+    graph.push_back({u, v});
+    // Height of the far vertex of t2 in front of t1's plane: > 0 is a reflex (concave) edge.
+    const Vec3& w = mesh.vertices[third(mesh.triangles[t2], u, v)];
+    const Scalar h = normal[t1].dot(w - mesh.vertices[u]);
+    if (h > flat) {
+      convex = false;
+    } else if (h >= -flat) {
       patches.join(t1, t2);
-      return;
+    } else {
+      edges.push_back({u, v, t1, t2});
     }
-    const Vec3 arc = normal[t2].cross(normal[t1]);
-    if (arc.squaredNorm() == 0) return;
-    p.edges.push_back({world[u], world[v], normal[t1], normal[t2], arc});
   });
+  if (!convex) return false;
+  std::uint32_t root = UINT32_MAX;
+  for (std::uint32_t i = 0; i < nt; ++i) {
+    if (!has_area(mesh.triangles[i])) continue;
+    const std::uint32_t r = parts.find(i);
+    if (root == UINT32_MAX) root = r;
+    if (r != root) return false;  // several pieces
+  }
+  if (out == nullptr) return true;
+
+  ConvexPolytope& p = *out;
+  p = {};
+  std::vector<char> used(mesh.vertices.size(), 0);
+  for (const TriangleIndices& t : mesh.triangles) {
+    if (has_area(t)) used[t[0]] = used[t[1]] = used[t[2]] = 1;
+  }
+  std::vector<Vec3> world(mesh.vertices.size());
+  std::vector<std::uint32_t> index(mesh.vertices.size(), 0);  // mesh vertex -> p.vertices
+  for (std::size_t i = 0; i < world.size(); ++i) {
+    world[i] = pose.apply(mesh.vertices[i]);
+    if (used[i] == 0) continue;
+    index[i] = static_cast<std::uint32_t>(p.vertices.size());
+    p.vertices.push_back(world[i]);
+  }
+  p.adjacent_begin.assign(p.vertices.size() + 1, 0);
+  for (const auto& [u, v] : graph) {
+    ++p.adjacent_begin[index[u] + 1];
+    ++p.adjacent_begin[index[v] + 1];
+  }
+  for (std::size_t i = 0; i < p.vertices.size(); ++i)
+    p.adjacent_begin[i + 1] += p.adjacent_begin[i];
+  p.adjacent.resize(p.adjacent_begin.back());
+  std::vector<std::uint32_t> fill(p.adjacent_begin.begin(), p.adjacent_begin.end() - 1);
+  for (const auto& [u, v] : graph) {
+    p.adjacent[fill[index[u]]++] = index[v];
+    p.adjacent[fill[index[v]]++] = index[u];
+  }
+  for (Vec3& n : normal) n = pose.apply_vector(n);
+  for (const auto& [u, v, t1, t2] : edges) {
+    const Vec3 arc = normal[t2].cross(normal[t1]);
+    if (arc.squaredNorm() == 0) continue;
+    p.edges.push_back({world[u], world[v], normal[t1], normal[t2], arc});
+  }
   std::vector<std::uint32_t> best(nt, UINT32_MAX);  // per patch root: its largest triangle
   for (std::uint32_t i = 0; i < nt; ++i) {
     if (area[i] == 0) continue;
@@ -183,18 +202,125 @@ ConvexPolytope make_polytope(const Model& model, const Transform& pose) {
     p.normals.push_back(normal[b]);
     p.face_point.push_back(world[mesh.triangles[b][0]]);
   }
-  return p;
+  return true;
 }
 
 namespace {
+
+// The arc of an edge lies in the spherical cap about the normalised sum of its normals, of half
+// angle half the angle between them; two arcs can cross only if their caps meet.
+struct Cap {
+  Vec3 center;
+  Scalar half_angle;
+};
+
+Cap cap_of(const ConvexPolytope::Edge& e, Scalar sign) {
+  const Vec3 sum = e.n0 + e.n1;
+  const Scalar len = sum.norm();
+  const Scalar angle = std::atan2(e.n0.cross(e.n1).norm(), e.n0.dot(e.n1));
+  return {len > 0 ? Vec3(sign * sum / len) : Vec3::UnitX(), len > 0 ? 0.5 * angle : 4.0};
+}
+
+using EdgeList = std::vector<const ConvexPolytope::Edge*>;
+
+// Calls f(ea, eb) for every pair of the listed edges of A and B whose arcs (A's, and B's negated)
+// might cross: all pairs for short lists; else only pairs whose caps meet, found through a
+// uniform grid of B's cap centres (cell = the largest chord at which two caps can still meet), so
+// that fine tessellations cost about E log E instead of E².
+template <typename F>
+void for_each_candidate_pair(const EdgeList& a, const EdgeList& b, const F& f) {
+  const auto all_pairs = [&] {
+    for (const auto* ea : a) {
+      for (const auto* eb : b) f(*ea, *eb);
+    }
+  };
+  if (static_cast<double>(a.size()) * static_cast<double>(b.size()) <= (1 << 14)) {
+    all_pairs();
+    return;
+  }
+  std::vector<Cap> caps_a, caps_b;
+  Scalar max_a = 0, max_b = 0;
+  for (const auto* ea : a) {
+    caps_a.push_back(cap_of(*ea, 1));
+    max_a = std::max(max_a, caps_a.back().half_angle);
+  }
+  for (const auto* eb : b) {
+    caps_b.push_back(cap_of(*eb, -1));
+    max_b = std::max(max_b, caps_b.back().half_angle);
+  }
+  const Scalar reach = max_a + max_b;
+  if (reach >= 0.5 * std::numbers::pi) {  // long arcs: the grid would not prune
+    all_pairs();
+    return;
+  }
+  // Chord between cap centres that can still meet, with a margin for rounding.
+  const Scalar cell = 2 * std::sin(0.5 * reach) * (1 + 1e-6) + 1e-9;
+  const auto coord = [&](Scalar x) {
+    return static_cast<std::int64_t>(std::floor((x + 1) / cell));
+  };
+  const auto key = [](std::int64_t i, std::int64_t j, std::int64_t k) {
+    return static_cast<std::uint64_t>((i << 42) | (j << 21) | k);
+  };
+  std::vector<std::pair<std::uint64_t, std::uint32_t>> grid;
+  grid.reserve(caps_b.size());
+  for (std::uint32_t i = 0; i < caps_b.size(); ++i) {
+    const Vec3& c = caps_b[i].center;
+    grid.emplace_back(key(coord(c.x()), coord(c.y()), coord(c.z())), i);
+  }
+  std::sort(grid.begin(), grid.end());
+  for (std::size_t ia = 0; ia < a.size(); ++ia) {
+    const Vec3& c = caps_a[ia].center;
+    const std::int64_t x = coord(c.x()), y = coord(c.y()), z = coord(c.z());
+    for (std::int64_t dx = -1; dx <= 1; ++dx) {
+      for (std::int64_t dy = -1; dy <= 1; ++dy) {
+        for (std::int64_t dz = -1; dz <= 1; ++dz) {
+          if (x + dx < 0 || y + dy < 0 || z + dz < 0) continue;
+          const std::uint64_t k = key(x + dx, y + dy, z + dz);
+          auto it = std::lower_bound(grid.begin(), grid.end(), std::pair{k, std::uint32_t{0}});
+          for (; it != grid.end() && it->first == k; ++it) f(*a[ia], *b[it->second]);
+        }
+      }
+    }
+  }
+}
+
+// The centroid of the vertices and the radius of a ball about it inside the polytope.
+struct InnerBall {
+  Vec3 center;
+  Scalar radius;
+};
+
+InnerBall inner_ball(const ConvexPolytope& p) {
+  Vec3 c = Vec3::Zero();
+  for (const Vec3& v : p.vertices) c += v;
+  c /= static_cast<Scalar>(std::max<std::size_t>(1, p.vertices.size()));
+  return {c, std::max<Scalar>(0, -p.plane_margin(c))};
+}
+
+// The edges of one polytope that can span a facet of the Minkowski difference with a support
+// value below `limit`. An edge e of A spanning a facet of normal n gives h = n·e.p0 + h_B(-n) >=
+// n·(e.p0 - c) + r for a ball (c, r) inside B, and n lies in e's cap (centre u, half angle t),
+// so n·w >= u·w - 2 |w| sin(t / 2). For an edge of B the facet normal is -v, v in its cap, and
+// h = h_A(-v) + v·e.p0 >= v·(e.p0 - c) + r with A's ball: the same bound.
+EdgeList useful_edges(const ConvexPolytope& p, const InnerBall& other, Scalar limit) {
+  EdgeList out;
+  for (const auto& e : p.edges) {
+    const Cap cap = cap_of(e, 1);
+    const Vec3 w = e.p0 - other.center;
+    const Scalar lb =
+        cap.center.dot(w) - 2 * w.norm() * std::sin(0.5 * cap.half_angle) + other.radius;
+    if (!(lb > limit)) out.push_back(&e);
+  }
+  return out;
+}
 
 // A smaller support value wins; an exact tie (symmetric configurations such as two coincident
 // boxes) goes to the lexicographically smaller direction, so the answer does not depend on the
 // order of the faces.
 bool better(Scalar h, const Vec3& direction, const ConvexDepth& best) {
   if (h != best.depth) return h < best.depth;
-  return std::lexicographical_compare(direction.data(), direction.data() + 3,
-                                      best.direction.data(), best.direction.data() + 3);
+  return std::lexicographical_compare(direction.data(), direction.data() + 3, best.direction.data(),
+                                      best.direction.data() + 3);
 }
 
 }  // namespace
@@ -203,41 +329,75 @@ ConvexDepth convex_depth(const ConvexPolytope& a, const ConvexPolytope& b) {
   ConvexDepth best;
   best.depth = std::numeric_limits<Scalar>::infinity();
   // Faces of A: move A along -n until its face is level with B's lowest vertex along n.
+  std::size_t hint = 0;
   for (std::size_t i = 0; i < a.normals.size(); ++i) {
     const Vec3& n = a.normals[i];
-    const Vec3& pb = b.vertices[b.support_index(-n)];
+    hint = b.support_index(-n, hint);
+    const Vec3& pb = b.vertices[hint];
     const Scalar h = n.dot(a.face_point[i]) - n.dot(pb);
     if (better(h, -n, best)) best = {h, -n, Vec3(pb + h * n), pb};
   }
   // Faces of B (outward m): M's facet normal is -m; A moves along m.
+  hint = 0;
   for (std::size_t i = 0; i < b.normals.size(); ++i) {
     const Vec3& m = b.normals[i];
-    const Vec3& pa = a.vertices[a.support_index(-m)];
+    hint = a.support_index(-m, hint);
+    const Vec3& pa = a.vertices[hint];
     const Scalar h = m.dot(b.face_point[i]) - m.dot(pa);
     if (better(h, m, best)) best = {h, m, pa, Vec3(pa + h * m)};
   }
-  // Edge pairs spanning a facet of M: the arcs (n0, n1) of A and (-m0, -m1) of B cross.
-  for (const ConvexPolytope::Edge& ea : a.edges) {
-    const Vec3 da = ea.p1 - ea.p0;
-    for (const ConvexPolytope::Edge& eb : b.edges) {
-      const Scalar cba = -eb.n0.dot(ea.arc);
-      const Scalar dba = -eb.n1.dot(ea.arc);
-      if (cba * dba >= 0) continue;
-      const Scalar adc = ea.n0.dot(eb.arc);
-      const Scalar bdc = ea.n1.dot(eb.arc);
-      if (adc * bdc >= 0 || cba * bdc <= 0) continue;
-      const Vec3 db = eb.p1 - eb.p0;
-      Vec3 n = da.cross(db);
-      const Scalar n2 = n.squaredNorm();
-      if (!(n2 > 1e-24 * da.squaredNorm() * db.squaredNorm())) continue;  // parallel edges
-      n /= std::sqrt(n2);
-      if (n.dot(ea.n0 + ea.n1) < 0) n = -n;
-      const Scalar h = n.dot(ea.p0 - eb.p0);
-      if (better(h, -n, best)) {
-        Vec3 ca, cb;
-        geometry::segment_segment_distance_squared(ea.p0, ea.p1, eb.p0, eb.p1, &ca, &cb);
-        best = {h, -n, ca, cb};
-      }
+  // Edge pairs spanning a facet of M: the arcs (n0, n1) of A and (-m0, -m1) of B cross. An edge
+  // pair wins only by more than rounding: an edge pair whose cross product is a face normal (its
+  // arcs meet at a Gauss-map vertex) ties with that face, and the face's points are the exact ones.
+  Scalar scale = 0;
+  for (const Vec3& v : a.vertices) scale = std::max(scale, v.cwiseAbs().maxCoeff());
+  for (const Vec3& v : b.vertices) scale = std::max(scale, v.cwiseAbs().maxCoeff());
+  const Scalar margin = 1e-12 * scale;
+  // Only edges that can beat the best face (with a rounding margin) are paired.
+  const Scalar limit = best.depth + 1e-9 * scale;
+  const EdgeList edges_a = useful_edges(a, inner_ball(b), limit);
+  const EdgeList edges_b = useful_edges(b, inner_ball(a), limit);
+  for_each_candidate_pair(
+      edges_a, edges_b, [&](const ConvexPolytope::Edge& ea, const ConvexPolytope::Edge& eb) {
+        const Scalar cba = -eb.n0.dot(ea.arc);
+        const Scalar dba = -eb.n1.dot(ea.arc);
+        if (cba * dba >= 0) return;
+        const Scalar adc = ea.n0.dot(eb.arc);
+        const Scalar bdc = ea.n1.dot(eb.arc);
+        if (adc * bdc >= 0 || cba * bdc <= 0) return;
+        const Vec3 da = ea.p1 - ea.p0;
+        const Vec3 db = eb.p1 - eb.p0;
+        Vec3 n = da.cross(db);
+        const Scalar n2 = n.squaredNorm();
+        if (!(n2 > 1e-24 * da.squaredNorm() * db.squaredNorm())) return;  // parallel edges
+        n /= std::sqrt(n2);
+        if (n.dot(ea.n0 + ea.n1) < 0) n = -n;
+        const Scalar h = n.dot(ea.p0 - eb.p0);
+        if (h < best.depth - margin) {
+          Vec3 ca, cb;
+          geometry::segment_segment_distance_squared(ea.p0, ea.p1, eb.p0, eb.p1, &ca, &cb);
+          best = {h, -n, ca, cb};
+        }
+      });
+  return best;
+}
+
+}  // namespace antcd::detail
+
+namespace antcd::detail {
+
+Vec3 convex_witness(const ConvexPolytope& a, const ConvexPolytope& b, const ConvexDepth& d,
+                    Scalar& margin) {
+  // Points of the segment from point_a (on A's surface) to point_b (on B's): A moved along it by
+  // the depth touches B at point_b, so the overlap lies about it.
+  margin = std::numeric_limits<Scalar>::infinity();
+  Vec3 best = d.point_a;
+  for (const Scalar t : {0.5, 0.25, 0.75}) {
+    const Vec3 c = d.point_a + t * (d.point_b - d.point_a);
+    const Scalar m = std::max(a.plane_margin(c), b.plane_margin(c));
+    if (m < margin) {
+      margin = m;
+      best = c;
     }
   }
   return best;

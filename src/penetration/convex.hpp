@@ -21,16 +21,22 @@ struct ConvexPolytope {
   std::vector<Vec3> normals;     ///< one per non-degenerate triangle
   std::vector<Vec3> face_point;  ///< a vertex of that triangle
   std::vector<Edge> edges;
-  Vec3 centroid = Vec3::Zero();
+  /// Vertex graph (every mesh edge), compressed rows: the neighbours of vertex i are
+  /// adjacent[adjacent_begin[i] .. adjacent_begin[i + 1]).
+  std::vector<std::uint32_t> adjacent_begin;
+  std::vector<std::uint32_t> adjacent;
 
-  [[nodiscard]] std::size_t support_index(const Vec3& n) const;  ///< argmax n·v
+  /// argmax n·v by hill climbing on the vertex graph from `start` (a local maximum of a linear
+  /// function over a convex polytope's graph is a global one).
+  [[nodiscard]] std::size_t support_index(const Vec3& n, std::size_t start = 0) const;
+  /// max over the face planes of n·(p - face point): negative strictly inside (floating point).
+  [[nodiscard]] Scalar plane_margin(const Vec3& p) const;
 };
 
-/// Sign of the mesh's orientation: +1 outward, -1 inward, 0 when its signed volume is 0. Exact
-/// predicate per edge, see penetration.hpp (Convexity).
-bool convex_mesh(const Mesh& mesh, int* orientation = nullptr);
-
-ConvexPolytope make_polytope(const Model& model, const Transform& pose);
+/// Whether a closed model is convex (every edge convex, heights within 1e-10 of its size count
+/// as flat, one connected piece); when it is and `out` is not null, fills `out` with the model
+/// posed by `pose`.
+bool convex_polytope(const Model& model, const Transform& pose, ConvexPolytope* out);
 
 struct ConvexDepth {
   Scalar depth = 0;  ///< min over Minkowski facets of the support value; <= 0: no overlap
@@ -40,5 +46,11 @@ struct ConvexDepth {
 };
 
 ConvexDepth convex_depth(const ConvexPolytope& a, const ConvexPolytope& b);
+
+/// The point deepest inside both polytopes (by their face planes) among a few points of the
+/// segment between the depth's points; its margin (negative: inside both by that much) is
+/// returned through `margin`.
+Vec3 convex_witness(const ConvexPolytope& a, const ConvexPolytope& b, const ConvexDepth& d,
+                    Scalar& margin);
 
 }  // namespace antcd::detail

@@ -235,31 +235,40 @@ void convex(const detail::ConvexPolytope& pa, const detail::ConvexPolytope& pb, 
   out.overlapping = d.depth > 0;
   out.lower = out.upper = std::max<Scalar>(0, d.depth);
   if (!out.overlapping) return;
+  // A point inside both by the face planes, clear of them by far more than rounding; else (a
+  // sliver of overlap) the general search for one, checked by winding numbers.
+  Scalar margin = 0;
+  const Vec3 w = detail::convex_witness(pa, pb, d, margin);
   const detail::DepthProbe probe(a, pose_a, b, pose_b);
-  const Vec3 mid = 0.5 * (d.point_a + d.point_b);
-  const detail::DepthPoint w = probe.best_point(std::span<const Vec3>(&mid, 1));
-  out.witness = w.inside ? w.p : mid;
+  if (margin < -1e-9 * probe.scale()) {
+    out.witness = w;
+    return;
+  }
+  const detail::DepthPoint deep = probe.best_point(std::span<const Vec3>(&w, 1));
+  out.witness = deep.inside ? deep.p : w;
 }
 
 }  // namespace
 
-bool is_convex(const Model& model) {
-  return model.is_closed() && detail::convex_mesh(model.mesh());
-}
+bool is_convex(const Model& model) { return detail::convex_polytope(model, {}, nullptr); }
 
 PenetrationResult penetration(const Model& a, const Transform& pose_a, const Model& b,
                               const Transform& pose_b, const PenetrationRequest& request) {
   check_request(a, b, request);
   PenetrationResult out;
   using Shape = PenetrationRequest::Shape;
-  const bool convex_pair = request.shape == Shape::Convex ||
-                           (request.shape == Shape::Auto && detail::convex_mesh(a.mesh()) &&
-                            detail::convex_mesh(b.mesh()));
-  if (convex_pair) {
-    const detail::ConvexPolytope pa = detail::make_polytope(a, pose_a);
-    const detail::ConvexPolytope pb = detail::make_polytope(b, pose_b);
+  if (request.shape != Shape::General) {
+    detail::ConvexPolytope pa, pb;
+    const bool declared = request.shape == Shape::Convex;
+    bool convex_pair =
+        detail::convex_polytope(a, pose_a, &pa) && detail::convex_polytope(b, pose_b, &pb);
+    if (declared && !convex_pair) {
+      throw ArgumentError("penetration: shape Convex declared, but model '" +
+                          (detail::convex_polytope(a, {}, nullptr) ? b.source() : a.source()) +
+                          "' is not convex");
+    }
     const double work = static_cast<double>(pa.edges.size()) * static_cast<double>(pb.edges.size());
-    if (request.shape == Shape::Convex || work <= kMaxConvexWork) {
+    if (convex_pair && (declared || work <= kMaxConvexWork)) {
       convex(pa, pb, a, pose_a, b, pose_b, out);
       return out;
     }
