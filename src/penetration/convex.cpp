@@ -8,11 +8,15 @@
 // facet of M); the arc test is the hemisphere test of the two great-circle arcs.
 #include "penetration/convex.hpp"
 
+#include "bvh/model_cache.hpp"
+
 #include <antcd/geometry.hpp>
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
+#include <mutex>
 #include <numbers>
 #include <numeric>
 
@@ -106,7 +110,11 @@ Scalar ConvexPolytope::plane_margin(const Vec3& p) const {
   return m;
 }
 
-bool convex_polytope(const Model& model, const Transform& pose, ConvexPolytope* out) {
+namespace {
+
+// Builds the model-frame polytope (pose identity) when the model is convex.
+bool build_polytope(const Model& model, ConvexPolytope* out) {
+  const Transform pose = Transform::identity();
   const Mesh& mesh = model.mesh();
   if (!model.is_closed()) return false;
   const Scalar vol = signed_volume6(mesh);
@@ -156,8 +164,6 @@ bool convex_polytope(const Model& model, const Transform& pose, ConvexPolytope* 
     if (root == UINT32_MAX) root = r;
     if (r != root) return false;  // several pieces
   }
-  if (out == nullptr) return true;
-
   ConvexPolytope& p = *out;
   p = {};
   std::vector<char> used(mesh.vertices.size(), 0);
@@ -202,6 +208,50 @@ bool convex_polytope(const Model& model, const Transform& pose, ConvexPolytope* 
     p.normals.push_back(normal[b]);
     p.face_point.push_back(world[mesh.triangles[b][0]]);
   }
+  return true;
+}
+
+// The model-frame analysis, derived once per Model (the model's cache; a refit starts a new one).
+struct ConvexEntry {
+  bool convex = false;
+  ConvexPolytope shape;  // model frame
+};
+
+const ConvexEntry& convex_entry(const Model& model) {
+  ModelCache& cache = ModelCacheAccess::cache(model);
+  std::call_once(cache.convex_once, [&] {
+    auto entry = std::make_shared<ConvexEntry>();
+    entry->convex = build_polytope(model, &entry->shape);
+    if (!entry->convex) entry->shape = {};
+    cache.convex = std::move(entry);
+  });
+  return *static_cast<const ConvexEntry*>(cache.convex.get());
+}
+
+}  // namespace
+
+bool convex_polytope(const Model& model, const Transform& pose, ConvexPolytope* out) {
+  const ConvexEntry& entry = convex_entry(model);
+  if (!entry.convex) return false;
+  if (out == nullptr) return true;
+  const ConvexPolytope& m = entry.shape;
+  ConvexPolytope& p = *out;
+  p.vertices.resize(m.vertices.size());
+  for (std::size_t i = 0; i < m.vertices.size(); ++i) p.vertices[i] = pose.apply(m.vertices[i]);
+  p.normals.resize(m.normals.size());
+  p.face_point.resize(m.face_point.size());
+  for (std::size_t i = 0; i < m.normals.size(); ++i) {
+    p.normals[i] = pose.apply_vector(m.normals[i]);
+    p.face_point[i] = pose.apply(m.face_point[i]);
+  }
+  p.edges.resize(m.edges.size());
+  for (std::size_t i = 0; i < m.edges.size(); ++i) {
+    const ConvexPolytope::Edge& e = m.edges[i];
+    p.edges[i] = {pose.apply(e.p0), pose.apply(e.p1), pose.apply_vector(e.n0),
+                  pose.apply_vector(e.n1), pose.apply_vector(e.arc)};
+  }
+  p.adjacent_begin = m.adjacent_begin;
+  p.adjacent = m.adjacent;
   return true;
 }
 

@@ -35,7 +35,8 @@ struct ConvexPolytope {
 
 /// Whether a closed model is convex (every edge convex, heights within 1e-10 of its size count
 /// as flat, one connected piece); when it is and `out` is not null, fills `out` with the model
-/// posed by `pose`.
+/// posed by `pose`. The model-frame analysis is done once per Model (its cache, under a
+/// once-flag: thread-safe) and only posed per call.
 bool convex_polytope(const Model& model, const Transform& pose, ConvexPolytope* out);
 
 struct ConvexDepth {
