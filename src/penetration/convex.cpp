@@ -195,7 +195,12 @@ bool build_polytope(const Model& model, ConvexPolytope* out) {
   for (const auto& [u, v, t1, t2] : edges) {
     const Vec3 arc = normal[t2].cross(normal[t1]);
     if (arc.squaredNorm() == 0) continue;
-    p.edges.push_back({world[u], world[v], normal[t1], normal[t2], arc});
+    Vec3 cap = normal[t1] + normal[t2];
+    const Scalar len = cap.norm();
+    // Opposite normals (a flat wedge) have no cap: the whole sphere (chord 2).
+    cap = len > 0 ? Vec3(cap / len) : Vec3::UnitX();
+    const Scalar chord = len > 0 ? (normal[t1] - cap).norm() : 2;
+    p.edges.push_back({world[u], world[v], normal[t1], normal[t2], arc, cap, chord});
   }
   std::vector<std::uint32_t> best(nt, UINT32_MAX);  // per patch root: its largest triangle
   for (std::uint32_t i = 0; i < nt; ++i) {
@@ -247,8 +252,13 @@ bool convex_polytope(const Model& model, const Transform& pose, ConvexPolytope* 
   p.edges.resize(m.edges.size());
   for (std::size_t i = 0; i < m.edges.size(); ++i) {
     const ConvexPolytope::Edge& e = m.edges[i];
-    p.edges[i] = {pose.apply(e.p0), pose.apply(e.p1), pose.apply_vector(e.n0),
-                  pose.apply_vector(e.n1), pose.apply_vector(e.arc)};
+    p.edges[i] = {pose.apply(e.p0),
+                  pose.apply(e.p1),
+                  pose.apply_vector(e.n0),
+                  pose.apply_vector(e.n1),
+                  pose.apply_vector(e.arc),
+                  pose.apply_vector(e.cap),
+                  e.chord};
   }
   p.adjacent_begin = m.adjacent_begin;
   p.adjacent = m.adjacent;
@@ -256,20 +266,6 @@ bool convex_polytope(const Model& model, const Transform& pose, ConvexPolytope* 
 }
 
 namespace {
-
-// The arc of an edge lies in the spherical cap about the normalised sum of its normals, of half
-// angle half the angle between them; two arcs can cross only if their caps meet.
-struct Cap {
-  Vec3 center;
-  Scalar half_angle;
-};
-
-Cap cap_of(const ConvexPolytope::Edge& e, Scalar sign) {
-  const Vec3 sum = e.n0 + e.n1;
-  const Scalar len = sum.norm();
-  const Scalar angle = std::atan2(e.n0.cross(e.n1).norm(), e.n0.dot(e.n1));
-  return {len > 0 ? Vec3(sign * sum / len) : Vec3::UnitX(), len > 0 ? 0.5 * angle : 4.0};
-}
 
 using EdgeList = std::vector<const ConvexPolytope::Edge*>;
 
@@ -288,23 +284,17 @@ void for_each_candidate_pair(const EdgeList& a, const EdgeList& b, const F& f) {
     all_pairs();
     return;
   }
-  std::vector<Cap> caps_a, caps_b;
+  // Two caps meet only if their centres are within the sum of their chords (chords of angles
+  // add up to at least the chord of the sum). B's caps are negated.
   Scalar max_a = 0, max_b = 0;
-  for (const auto* ea : a) {
-    caps_a.push_back(cap_of(*ea, 1));
-    max_a = std::max(max_a, caps_a.back().half_angle);
-  }
-  for (const auto* eb : b) {
-    caps_b.push_back(cap_of(*eb, -1));
-    max_b = std::max(max_b, caps_b.back().half_angle);
-  }
+  for (const auto* ea : a) max_a = std::max(max_a, ea->chord);
+  for (const auto* eb : b) max_b = std::max(max_b, eb->chord);
   const Scalar reach = max_a + max_b;
-  if (reach >= 0.5 * std::numbers::pi) {  // long arcs: the grid would not prune
+  if (reach >= 1.0) {  // long arcs: the grid would not prune
     all_pairs();
     return;
   }
-  // Chord between cap centres that can still meet, with a margin for rounding.
-  const Scalar cell = 2 * std::sin(0.5 * reach) * (1 + 1e-6) + 1e-9;
+  const Scalar cell = reach * (1 + 1e-6) + 1e-9;  // with a margin for rounding
   const auto coord = [&](Scalar x) {
     return static_cast<std::int64_t>(std::floor((x + 1) / cell));
   };
@@ -312,14 +302,14 @@ void for_each_candidate_pair(const EdgeList& a, const EdgeList& b, const F& f) {
     return static_cast<std::uint64_t>((i << 42) | (j << 21) | k);
   };
   std::vector<std::pair<std::uint64_t, std::uint32_t>> grid;
-  grid.reserve(caps_b.size());
-  for (std::uint32_t i = 0; i < caps_b.size(); ++i) {
-    const Vec3& c = caps_b[i].center;
+  grid.reserve(b.size());
+  for (std::uint32_t i = 0; i < b.size(); ++i) {
+    const Vec3 c = -b[i]->cap;
     grid.emplace_back(key(coord(c.x()), coord(c.y()), coord(c.z())), i);
   }
   std::sort(grid.begin(), grid.end());
   for (std::size_t ia = 0; ia < a.size(); ++ia) {
-    const Vec3& c = caps_a[ia].center;
+    const Vec3& c = a[ia]->cap;
     const std::int64_t x = coord(c.x()), y = coord(c.y()), z = coord(c.z());
     for (std::int64_t dx = -1; dx <= 1; ++dx) {
       for (std::int64_t dy = -1; dy <= 1; ++dy) {
@@ -350,15 +340,13 @@ InnerBall inner_ball(const ConvexPolytope& p) {
 // The edges of one polytope that can span a facet of the Minkowski difference with a support
 // value below `limit`. An edge e of A spanning a facet of normal n gives h = n·e.p0 + h_B(-n) >=
 // n·(e.p0 - c) + r for a ball (c, r) inside B, and n lies in e's cap (centre u, half angle t),
-// so n·w >= u·w - 2 |w| sin(t / 2). For an edge of B the facet normal is -v, v in its cap, and
-// h = h_A(-v) + v·e.p0 >= v·(e.p0 - c) + r with A's ball: the same bound.
+// so n·w >= u·w - |w| |n - u| >= u·w - |w| chord. For an edge of B the facet normal is -v, v in its
+// cap, and h = h_A(-v) + v·e.p0 >= v·(e.p0 - c) + r with A's ball: the same bound.
 EdgeList useful_edges(const ConvexPolytope& p, const InnerBall& other, Scalar limit) {
   EdgeList out;
   for (const auto& e : p.edges) {
-    const Cap cap = cap_of(e, 1);
     const Vec3 w = e.p0 - other.center;
-    const Scalar lb =
-        cap.center.dot(w) - 2 * w.norm() * std::sin(0.5 * cap.half_angle) + other.radius;
+    const Scalar lb = e.cap.dot(w) - w.norm() * e.chord + other.radius;
     if (!(lb > limit)) out.push_back(&e);
   }
   return out;
@@ -378,35 +366,61 @@ bool better(Scalar h, const Vec3& direction, const ConvexDepth& best) {
 ConvexDepth convex_depth(const ConvexPolytope& a, const ConvexPolytope& b) {
   ConvexDepth best;
   best.depth = std::numeric_limits<Scalar>::infinity();
-  // Faces of A: move A along -n until its face is level with B's lowest vertex along n.
-  std::size_t hint = 0;
-  for (std::size_t i = 0; i < a.normals.size(); ++i) {
+  Scalar scale = 0;
+  for (const Vec3& v : a.vertices) scale = std::max(scale, v.cwiseAbs().maxCoeff());
+  for (const Vec3& v : b.vertices) scale = std::max(scale, v.cwiseAbs().maxCoeff());
+  const Scalar slack = 1e-9 * scale;  // the bounds below are compared with this rounding margin
+  const InnerBall ball_a = inner_ball(a);
+  const InnerBall ball_b = inner_ball(b);
+  // Faces of A (outward n): move A along -n until its face is level with B's lowest vertex along
+  // n. h = n·f + h_B(-n) >= n·(f - c_B) + r_B: faces whose bound exceeds the best are skipped.
+  std::size_t hint_b = 0;
+  const auto face_a = [&](std::size_t i) {
     const Vec3& n = a.normals[i];
-    hint = b.support_index(-n, hint);
-    const Vec3& pb = b.vertices[hint];
+    hint_b = b.support_index(-n, hint_b);
+    const Vec3& pb = b.vertices[hint_b];
     const Scalar h = n.dot(a.face_point[i]) - n.dot(pb);
     if (better(h, -n, best)) best = {h, -n, Vec3(pb + h * n), pb};
-  }
+  };
   // Faces of B (outward m): M's facet normal is -m; A moves along m.
-  hint = 0;
-  for (std::size_t i = 0; i < b.normals.size(); ++i) {
+  std::size_t hint_a = 0;
+  const auto face_b = [&](std::size_t i) {
     const Vec3& m = b.normals[i];
-    hint = a.support_index(-m, hint);
-    const Vec3& pa = a.vertices[hint];
+    hint_a = a.support_index(-m, hint_a);
+    const Vec3& pa = a.vertices[hint_a];
     const Scalar h = m.dot(b.face_point[i]) - m.dot(pa);
     if (better(h, m, best)) best = {h, m, pa, Vec3(pa + h * m)};
+  };
+  std::vector<Scalar> bound_a(a.normals.size()), bound_b(b.normals.size());
+  for (std::size_t i = 0; i < a.normals.size(); ++i) {
+    bound_a[i] = a.normals[i].dot(a.face_point[i] - ball_b.center) + ball_b.radius;
+  }
+  for (std::size_t i = 0; i < b.normals.size(); ++i) {
+    bound_b[i] = b.normals[i].dot(b.face_point[i] - ball_a.center) + ball_a.radius;
+  }
+  // The most promising face of each first, so that the others are mostly skipped.
+  if (!bound_a.empty()) {
+    face_a(static_cast<std::size_t>(std::min_element(bound_a.begin(), bound_a.end()) -
+                                    bound_a.begin()));
+  }
+  if (!bound_b.empty()) {
+    face_b(static_cast<std::size_t>(std::min_element(bound_b.begin(), bound_b.end()) -
+                                    bound_b.begin()));
+  }
+  for (std::size_t i = 0; i < bound_a.size(); ++i) {
+    if (!(bound_a[i] > best.depth + slack)) face_a(i);
+  }
+  for (std::size_t i = 0; i < bound_b.size(); ++i) {
+    if (!(bound_b[i] > best.depth + slack)) face_b(i);
   }
   // Edge pairs spanning a facet of M: the arcs (n0, n1) of A and (-m0, -m1) of B cross. An edge
   // pair wins only by more than rounding: an edge pair whose cross product is a face normal (its
   // arcs meet at a Gauss-map vertex) ties with that face, and the face's points are the exact ones.
-  Scalar scale = 0;
-  for (const Vec3& v : a.vertices) scale = std::max(scale, v.cwiseAbs().maxCoeff());
-  for (const Vec3& v : b.vertices) scale = std::max(scale, v.cwiseAbs().maxCoeff());
   const Scalar margin = 1e-12 * scale;
   // Only edges that can beat the best face (with a rounding margin) are paired.
-  const Scalar limit = best.depth + 1e-9 * scale;
-  const EdgeList edges_a = useful_edges(a, inner_ball(b), limit);
-  const EdgeList edges_b = useful_edges(b, inner_ball(a), limit);
+  const Scalar limit = best.depth + slack;
+  const EdgeList edges_a = useful_edges(a, ball_b, limit);
+  const EdgeList edges_b = useful_edges(b, ball_a, limit);
   for_each_candidate_pair(
       edges_a, edges_b, [&](const ConvexPolytope::Edge& ea, const ConvexPolytope::Edge& eb) {
         const Scalar cba = -eb.n0.dot(ea.arc);

@@ -16,6 +16,10 @@ struct ConvexPolytope {
     Vec3 p0, p1;  ///< end points, world frame
     Vec3 n0, n1;  ///< outward unit normals of the two faces
     Vec3 arc;     ///< n1 x n0 (the Gauss-map arc's plane normal)
+    /// The arc lies in the spherical cap about `cap` (unit, n0 + n1 normalised) whose points are
+    /// within chord `chord` (= |n0 - cap|) of it.
+    Vec3 cap;
+    Scalar chord;
   };
   std::vector<Vec3> vertices;
   std::vector<Vec3> normals;     ///< one per non-degenerate triangle
