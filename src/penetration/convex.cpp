@@ -467,4 +467,24 @@ Vec3 convex_witness(const ConvexPolytope& a, const ConvexPolytope& b, const Conv
   return best;
 }
 
+Vec3 push_inside(const ConvexPolytope& a, const ConvexPolytope& b, Vec3 p, Scalar depth,
+                 Scalar& margin) {
+  for (int it = 0; it < 256; ++it) {
+    margin = -std::numeric_limits<Scalar>::infinity();
+    const Vec3* worst = nullptr;
+    for (const ConvexPolytope* poly : {&a, &b}) {
+      for (std::size_t i = 0; i < poly->normals.size(); ++i) {
+        const Scalar m = poly->normals[i].dot(p - poly->face_point[i]);
+        if (m > margin) {
+          margin = m;
+          worst = &poly->normals[i];
+        }
+      }
+    }
+    if (worst == nullptr || margin <= -depth) break;
+    p -= (margin + depth) * *worst;
+  }
+  return p;
+}
+
 }  // namespace antcd::detail

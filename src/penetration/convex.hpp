@@ -58,4 +58,10 @@ ConvexDepth convex_depth(const ConvexPolytope& a, const ConvexPolytope& b);
 Vec3 convex_witness(const ConvexPolytope& a, const ConvexPolytope& b, const ConvexDepth& d,
                     Scalar& margin);
 
+/// Moves `p` into both polytopes, at least `depth` inside their face planes, by projecting it onto
+/// the most violated (shrunk) half-space, up to 256 times (alternating projections converge for
+/// intersecting convex sets). Returns the point, its margin through `margin`.
+Vec3 push_inside(const ConvexPolytope& a, const ConvexPolytope& b, Vec3 p, Scalar depth,
+                 Scalar& margin);
+
 }  // namespace antcd::detail

@@ -8,6 +8,7 @@
 // step when none improves.
 #include "penetration/inside_point.hpp"
 
+#include <antcd/collide.hpp>
 #include <antcd/points.hpp>
 
 #include <algorithm>
@@ -23,6 +24,15 @@ constexpr std::size_t kVertexSeeds = 16;           // deepest vertices kept per 
 constexpr int kGrid = 10;                          // grid seeds per axis
 constexpr std::size_t kAscents = 4;                // best seeds refined
 constexpr int kAscentSteps = 60;
+constexpr std::size_t kContactSeeds = 64;  // surface crossings used as seeds
+
+Scalar volume_sign(const Mesh& mesh) {
+  Scalar vol = 0;
+  for (const TriangleIndices& t : mesh.triangles) {
+    vol += mesh.vertices[t[0]].dot(mesh.vertices[t[1]].cross(mesh.vertices[t[2]]));
+  }
+  return vol < 0 ? -1 : 1;
+}
 
 std::vector<Vec3> every_nth(std::span<const Vec3> points, std::size_t limit) {
   const std::size_t stride = std::max<std::size_t>(1, (points.size() + limit - 1) / limit);
@@ -98,6 +108,31 @@ void DepthProbe::vertex_seeds(const Model& m, const Transform& pose, const Model
   }
 }
 
+void DepthProbe::contact_seeds(std::vector<Vec3>& seeds) const {
+  // Where the surfaces cross, both solids lie behind both triangles: step from the crossing point
+  // against the sum of the two outward normals (outward: the sign of each mesh's volume).
+  CollisionRequest all;
+  all.all_contacts = true;
+  all.max_contacts = kContactSeeds;
+  const CollisionResult r = collide(a_, pose_a_, b_, pose_b_, all);
+  if (r.contacts.empty()) return;
+  const auto outward = [](const Model& m, const Transform& pose, std::uint32_t t, Scalar sign) {
+    const TriangleIndices& tri = m.mesh().triangles[t];
+    const Vec3& p0 = m.mesh().vertices[tri[0]];
+    const Vec3 n = (m.mesh().vertices[tri[1]] - p0).cross(m.mesh().vertices[tri[2]] - p0);
+    return Vec3(sign * pose.apply_vector(n).normalized());
+  };
+  const Scalar sign_a = volume_sign(a_.mesh());
+  const Scalar sign_b = volume_sign(b_.mesh());
+  const Scalar size = std::min(a_.root().radius, b_.root().radius);
+  for (const Contact& c : r.contacts) {
+    const Vec3 in =
+        -(outward(a_, pose_a_, c.triangle_a, sign_a) + outward(b_, pose_b_, c.triangle_b, sign_b));
+    if (!(in.norm() > 1e-6)) continue;
+    for (const Scalar step : {1e-3, 1e-2}) seeds.push_back(c.point + step * size * in.normalized());
+  }
+}
+
 DepthPoint DepthProbe::ascend(DepthPoint cur) const {
   Scalar step = cur.bound > 0 ? 0.25 * cur.bound : 1e-3 * scale_;
   const Scalar min_step = 1e-4 * std::max(cur.bound, 1e-6 * scale_);
@@ -130,6 +165,7 @@ DepthPoint DepthProbe::best_point(std::span<const Vec3> extra) const {
   std::vector<Vec3> seeds(extra.begin(), extra.end());
   vertex_seeds(a_, pose_a_, b_, pose_b_, seeds);
   vertex_seeds(b_, pose_b_, a_, pose_a_, seeds);
+  contact_seeds(seeds);
   const Aabb ba = world_box(a_, pose_a_);
   const Aabb bb = world_box(b_, pose_b_);
   Aabb overlap;

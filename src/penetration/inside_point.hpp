@@ -34,8 +34,9 @@ class DepthProbe {
   /// Size of the scene: the coordinates' magnitude plus both models' extents.
   [[nodiscard]] Scalar scale() const { return scale_; }
 
-  /// The best point found from seeds (vertices of each model inside the other, a grid over the
-  /// boxes' overlap, `extra`), refined by a local ascent of the bound. bound 0 when no point
+  /// The best point found from seeds (vertices of each model inside the other, points just
+  /// inside both from where the surfaces cross, a grid over the boxes' overlap, `extra`), refined
+  /// by a local ascent of the bound. bound 0 when no point
   /// inside both was found.
   [[nodiscard]] DepthPoint best_point(std::span<const Vec3> extra) const;
 
@@ -43,6 +44,7 @@ class DepthProbe {
   [[nodiscard]] DepthPoint ascend(DepthPoint start) const;
   void vertex_seeds(const Model& m, const Transform& pose, const Model& other,
                     const Transform& other_pose, std::vector<Vec3>& seeds) const;
+  void contact_seeds(std::vector<Vec3>& seeds) const;
 
   const Model& a_;
   const Model& b_;

@@ -193,11 +193,22 @@ void general(const Model& a, const Transform& pose_a, const Model& b, const Tran
     add(to_b + from_a);
     add(to_b);
     add(from_a);
-  } else {
+  }
+  // Where the surfaces cross: the normals of the deepest triangle pairs (each pair's own
+  // separating direction, from B towards A: the way to move A).
+  {
     CollisionRequest cr;
+    cr.all_contacts = true;
+    cr.max_contacts = 512;
     cr.contact_normals = true;
-    const CollisionResult c = collide(a, pose_a, b, pose_b, cr);
-    if (!c.contacts.empty()) add(c.contacts.front().normal);
+    CollisionResult c = collide(a, pose_a, b, pose_b, cr);
+    std::sort(c.contacts.begin(), c.contacts.end(),
+              [](const Contact& x, const Contact& y) { return x.depth > y.depth; });
+    for (std::size_t k = 0; k < std::min<std::size_t>(2, c.contacts.size()); ++k) {
+      add(c.contacts[k].normal);
+    }
+  }
+  if (!w.inside) {
     for (int k = 0; k < 3; ++k) {
       add(Vec3::Unit(k));
       add(-Vec3::Unit(k));
@@ -235,12 +246,40 @@ void convex(const detail::ConvexPolytope& pa, const detail::ConvexPolytope& pb, 
   out.overlapping = d.depth > 0;
   out.lower = out.upper = std::max<Scalar>(0, d.depth);
   if (!out.overlapping) return;
-  // A point inside both by the face planes, clear of them by far more than rounding; else (a
-  // sliver of overlap) the general search for one, checked by winding numbers.
+  // A point inside both by the face planes, clear of them by far more than rounding; else the
+  // general search for one, checked by winding numbers.
   Scalar margin = 0;
-  const Vec3 w = detail::convex_witness(pa, pb, d, margin);
+  Vec3 w = detail::convex_witness(pa, pb, d, margin);
   const detail::DepthProbe probe(a, pose_a, b, pose_b);
-  if (margin < -1e-9 * probe.scale()) {
+  const Scalar clear = -1e-9 * probe.scale();
+  if (margin >= clear) {
+    // A∩B is convex, so the centroid of points in it (where the surfaces cross, and the vertices
+    // of each inside the other) is in it, and inside it unless they are all coplanar.
+    CollisionRequest all;
+    all.all_contacts = true;
+    all.max_contacts = 1024;
+    Vec3 sum = Vec3::Zero();
+    std::size_t count = 0;
+    for (const Contact& c : collide(a, pose_a, b, pose_b, all).contacts) sum += c.point, ++count;
+    for (const Vec3& v : pa.vertices) {
+      if (pb.plane_margin(v) <= 0) sum += v, ++count;
+    }
+    for (const Vec3& v : pb.vertices) {
+      if (pa.plane_margin(v) <= 0) sum += v, ++count;
+    }
+    if (count > 0) {
+      const Vec3 c = sum / static_cast<Scalar>(count);
+      for (const Vec3& candidate : {c, Vec3(0.5 * (c + w))}) {
+        const Scalar m = std::max(pa.plane_margin(candidate), pb.plane_margin(candidate));
+        if (m < margin) {
+          margin = m;
+          w = candidate;
+        }
+      }
+    }
+  }
+  if (margin >= clear) w = detail::push_inside(pa, pb, w, 1e-3 * d.depth, margin);
+  if (margin < clear) {
     out.witness = w;
     return;
   }
