@@ -92,7 +92,8 @@ void bind_penetration(py::module_& m) {
 
   m.def(
       "is_convex", [](const Model& model) { return is_convex(model); }, py::arg("model"),
-      "Whether a closed model is convex (exact per-edge test; False for an open model).");
+      "Whether a closed model is convex: one piece, no reflex edge (heights within 1e-10 of its "
+      "size count as flat). False for an open model.");
 }
 
 }  // namespace antcd::python
