@@ -13,8 +13,9 @@ distance and, on request, the name(s) of the closest object(s) (a name; a 2-tupl
 order; a (this, other) tuple) and a ``DistanceData`` with the closest point and face index per name.
 
 The objects live in an ``antcd`` World (a dynamic AABB tree over the objects' boxes, exact
-triangle tests behind it); minimum distances are exact surface distances (``antcd.distance``)
-searched over object pairs in order of the gap between their boxes.
+triangle tests behind it); minimum distances (``antcd.distance``: signed for two closed meshes,
+the surface distance otherwise) are searched over object pairs in order of the gap between their
+boxes.
 
 Differences from trimesh/FCL, all documented on the methods: meshes may be ``antcd.Model``s
 (shared, built once), trimesh meshes, or ``(vertices, faces)`` pairs; collision means the surfaces
