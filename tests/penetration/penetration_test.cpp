@@ -8,8 +8,11 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <string>
+#include <thread>
+#include <vector>
 
 namespace antcd {
 namespace {
@@ -303,6 +306,34 @@ TEST(SignedDistance, NegativePenetrationDepthWhenSolidsOverlap) {
   EXPECT_THROW((void)distance(Model(open, {}, "open"), Transform::identity(), a,
                               Transform(Mat3::Identity(), Vec3(5, 0, 0)), req),
                ArgumentError);
+}
+
+}  // namespace
+}  // namespace antcd
+
+namespace antcd {
+namespace {
+
+TEST(Penetration, ConcurrentQueriesOnSharedModelsAgree) {
+  // Fresh models: the first queries build their convex and point caches concurrently.
+  const Model box(make_box(Vec3(1, 1, 1), 3));
+  const Model torus(make_torus(2, 0.5, 24, 12));
+  std::vector<Transform> poses;
+  for (int k = 0; k < 8; ++k) {
+    poses.push_back(Transform::from_axis_angle(Vec3(1, k, 2), 0.3 * k, Vec3(1.5 + 0.05 * k, 0, 0)));
+  }
+  const auto run = [&](std::size_t k) {
+    const PenetrationResult c = penetration(box, Transform::identity(), box, poses[k]);
+    const PenetrationResult g = penetration(torus, poses[k], box, Transform::identity());
+    return std::array<Scalar, 4>{c.lower, c.upper, g.lower, g.upper};
+  };
+  std::vector<std::array<Scalar, 4>> parallel(poses.size());
+  std::vector<std::thread> threads;
+  for (std::size_t k = 0; k < poses.size(); ++k) {
+    threads.emplace_back([&, k] { parallel[k] = run(k); });
+  }
+  for (std::thread& t : threads) t.join();
+  for (std::size_t k = 0; k < poses.size(); ++k) EXPECT_EQ(parallel[k], run(k)) << k;
 }
 
 }  // namespace
