@@ -12,8 +12,7 @@
 //   one triangle pair (FCL's mesh semantics), not the solids' depth.
 //
 // What is returned and what is guaranteed
-// - Convex pairs (both models convex: detected exactly, see Convexity, or declared through the
-//   request): exact = true, lower == upper == PD up to rounding (a few ulps of the coordinates),
+// - Convex pairs (both models convex, see Convexity): exact = true, lower == upper == PD up to rounding (a few ulps of the coordinates),
 //   found by the separating-axis theorem over the facets of the Minkowski difference A - B (face
 //   normals of A and B, and the edge pairs whose Gauss-map arcs cross). point_a on A's surface and
 //   point_b on B's surface with point_a + upper * direction == point_b (A moved by the depth
@@ -23,22 +22,23 @@
 //   * lower: for a point p strictly inside both solids, the balls of radius dist(p, ∂A) and
 //     dist(p, ∂B) about p lie in A and in B, so any translation separating the interiors is at
 //     least dist(p, ∂A) + dist(p, ∂B) long. lower is that sum at the best p found (witness), each
-//     distance reduced by a rounding allowance of 1e-12 of the coordinates' scale (far above the
+//     distance reduced by a rounding allowance of 1e-10 of the coordinates' scale (far above the
 //     rounding of the point queries), and 0 when no point inside both was found.
 //   * upper: |t| of a translation t (rounded up) for which collide() with volume = true, delta 0,
 //     at exactly the pose of A translated by t, reported the models apart (surfaces disjoint and
 //     neither inside the other): the interiors are then disjoint.
 //   The search refines both until upper - lower <= max(abs_tolerance, rel_tolerance * upper)
 //   (converged = true) or the budget (max_evaluations collide calls, max_seconds) runs out
-//   (converged = false; the interval is still certified). Moving A by upper * direction always
-//   separates the solids; point_a / point_b are then the closest points of the two surfaces of the
-//   witness's balls' directions (the nearest surface points of A and B from the witness).
+//   (converged = false; the interval is still certified; upper is +inf when no separating
+//   translation was found within the budget). Moving A by upper * direction always separates the
+//   solids; point_a / point_b are the points of A's and B's surfaces nearest to the witness.
 // - overlapping: true when the interiors certainly overlap (a point inside both was found, or the
 //   convex separating-axis test found no separating axis). False: the interiors are disjoint
 //   (collide found the models apart, or the convex test found a separating or touching axis), or,
 //   for general solids whose surfaces meet, no interior point was found: they touch or overlap by
 //   at most `upper` (PD is then in [0, upper]).
-// - witness: a world point inside both solids (winding numbers, points.hpp) when overlapping.
+// - witness: a world point inside both solids (winding numbers, points.hpp) when overlapping
+//   (convex pairs: inside both by the face planes, by more than 1e-9 of the coordinates' scale).
 //
 // Convexity (PenetrationRequest::shape = Auto): a closed mesh is convex when it is one connected
 // piece and no edge is reflex: the far vertex of each neighbouring triangle lies behind the other
@@ -46,9 +46,12 @@
 // face). A locally convex closed surface that covers itself twice would pass; declare
 // Shape::General for such input.
 //
-// Cost: convex pairs O(E_A * E_B) arc tests plus O(F * V) supports; general pairs a handful of
-// exact collide() calls (the budget) plus point queries (which build a per-model cache on first
-// use, see points.hpp).
+// Cost: convex pairs: the polytope of each Model is derived once (O(n log n), kept with the
+// Model), then per query O(F) supports by hill climbing and the edge pairs that survive an
+// inner-ball bound and a Gauss-map grid (at worst E_A * E_B; bench/penetration_bench.cpp). General
+// pairs: a few exact collide() calls (2 on the benchmark's pairs; at most max_evaluations), a
+// distance query, and point queries for the witness (their per-model cache is built on first use,
+// see points.hpp).
 //
 // Thread safety: penetration() only reads its Models; any number of threads may query the same
 // Models concurrently.
