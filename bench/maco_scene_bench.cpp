@@ -79,7 +79,7 @@ void bm_scene(benchmark::State& state, bool real_meshes) {
   SceneQuery maco;
   maco.method = Method::Maco;
   SceneQuery colony = maco;
-  colony.scan_covered_spaces = false;
+  colony.random.search.ant.scan_covered_spaces = false;
 
   std::vector<double> exact_ms, maco_ms, ratios, colony_ratios;
   double recall = 1, precision = 1, undecided = 0, evals = 0, colony_recall = 1,

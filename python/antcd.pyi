@@ -194,13 +194,13 @@ class Scene:
     def model(self, object: int) -> Model: ...
     def pose(self, object: int, frame: int) -> npt.NDArray[np.float64]: ...
     def run(self, *, method: _SceneMethod = "exact", frames: Union[None, int, Iterable[int]] = None,
-            delta: float = 0.0, feature_delta: float = 0.0, samples_per_side: int = 1000,
+            delta: float = 0.0, feature_delta: float | None = None, samples_per_side: int = 1000,
             seed: int = 1, iterations: int = 100, agents: int = 60, search_all: bool = False,
             threads: int = 1) -> SceneRun: ...
 
 def run_scene(path: Union[str, os.PathLike[str]], *, method: _SceneMethod = "exact",
               frames: Union[None, int, Iterable[int]] = None, delta: float = 0.0,
-              feature_delta: float = 0.0, samples_per_side: int = 1000, seed: int = 1,
+              feature_delta: float | None = None, samples_per_side: int = 1000, seed: int = 1,
               iterations: int = 100, agents: int = 60, search_all: bool = False,
               threads: int = 1) -> SceneRun: ...
 

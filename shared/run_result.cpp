@@ -80,9 +80,9 @@ RunResult run_scene(const Scene& scene, const SceneQuery& query, const std::stri
   out.frames.reserve(runs);
   const bool random = query.method != Method::Exact && query.method != Method::SphereObb;
   if (random) {
-    out.verdict = std::string(to_string(query.verdict));
+    out.verdict = std::string(to_string(query.random.search.verdict));
     out.memory = memory;
-    out.leaf_scan = query.scan_covered_spaces;
+    out.leaf_scan = query.random.search.ant.scan_covered_spaces;
   }
   SceneMemory colonies;
   for (std::size_t f = 0; f < frames; f += frame_step) {
@@ -94,7 +94,7 @@ RunResult run_scene(const Scene& scene, const SceneQuery& query, const std::stri
     rec.time_ms = r.time_ms;
     if (random) {
       rec.feature_hits = r.feature_hits;
-      if (query.count_feature_truth) rec.feature_truth = r.feature_truth;
+      if (query.random.count_truth) rec.feature_truth = r.feature_truth;
       rec.evaluations = r.evaluations;
       rec.undecided = names_of(scene, r.undecided);
     }

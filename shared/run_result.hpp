@@ -7,7 +7,7 @@
 // methods, "feature_hits" / "feature_truth", "evaluations" and "undecided" (candidate pairs left
 // without a witness when a frame budget ran out; same form as "pairs"); and at the top "scene",
 // "delta", "seed", "threads", and for random methods "verdict", "memory" (whether the colonies
-// were carried from frame to frame) and "leaf_scan" (SceneQuery::scan_covered_spaces).
+// were carried from frame to frame) and "leaf_scan" (AntParams::scan_covered_spaces).
 // "pairs" lists each colliding object pair once, the two names in scene order. On request
 // (add_distances, `antcd run --report-distance`), each frame also has "distances": the exact
 // minimum distance between the two surfaces of each pair (antcd::distance, 0 when they meet),
@@ -48,7 +48,7 @@ struct RunResult {
   int threads = 1;
   std::string verdict;  ///< random methods: "witness" or "paper-centroid"; empty otherwise
   bool memory = false;  ///< random methods: colonies carried from frame to frame (SceneMemory)
-  bool leaf_scan = false;  ///< random methods: SceneQuery::scan_covered_spaces
+  bool leaf_scan = false;  ///< random methods: AntParams::scan_covered_spaces
   bool volume = false;  ///< SceneQuery::volume was set
   double build_ms = 0;
   double total_ms = 0;  ///< sum of the frames' time_ms

@@ -62,9 +62,11 @@ void warn_degenerate(const Model& model) {
   }
 }
 
-CLI::Validator non_negative_finite() {
+namespace {
+
+CLI::Validator finite_at_least_zero(bool zero_allowed) {
   return CLI::Validator(
-      [](std::string& text) -> std::string {
+      [zero_allowed](std::string& text) -> std::string {
         double value = 0;
         std::size_t used = 0;
         try {
@@ -72,12 +74,19 @@ CLI::Validator non_negative_finite() {
         } catch (const std::exception&) {
           used = 0;
         }
-        if (used == 0 || used != text.size() || !std::isfinite(value) || value < 0) {
-          return "expected a finite number >= 0, got '" + text + "'";
+        if (used == 0 || used != text.size() || !std::isfinite(value) || value < 0 ||
+            (!zero_allowed && value == 0)) {
+          return std::string("expected a finite number ") + (zero_allowed ? ">= 0" : "> 0") +
+                 ", got '" + text + "'";
         }
         return {};
       },
-      "NUMBER >= 0");
+      zero_allowed ? "NUMBER >= 0" : "NUMBER > 0");
 }
+
+}  // namespace
+
+CLI::Validator non_negative_finite() { return finite_at_least_zero(true); }
+CLI::Validator positive_finite() { return finite_at_least_zero(false); }
 
 }  // namespace antcd::cli

@@ -41,6 +41,8 @@ void warn_degenerate(const Model& model);
 /// Option check for --delta and friends: a finite number >= 0. (CLI::NonNegativeNumber lets NaN
 /// through, and its message prints the largest double in full.)
 CLI::Validator non_negative_finite();
+/// The same, > 0.
+CLI::Validator positive_finite();
 
 /// Registers the subcommands; each returns its exit code through the callback's `code`.
 void add_collide_command(CLI::App& app, int& code);

@@ -137,7 +137,7 @@ int run_demo(const DemoOptions& o) {
   std::uint64_t truth_features = 0;
   if (ab_frames > 0) {
     SceneQuery ab = maco;
-    ab.count_feature_truth = true;
+    ab.random.count_truth = true;
     for (std::size_t k = 0; k < ab_frames; ++k) {
       const FrameResult fr = scene.run_frame(k * frames / ab_frames, ab);
       hits += fr.feature_hits;
@@ -174,7 +174,9 @@ int run_demo(const DemoOptions& o) {
       "overlapping leaf pairs, those cells are scanned instead of searched (complete: no witness\n"
       "there proves the pair separate). The colonies' pheromone and last witnesses are carried\n"
       "from frame to frame (docs/random-detection.md); %llu fitness evaluations in all.\n",
-      maco.agents, maco.iterations, maco.samples_per_side, result.frames.size(), frames,
+      maco.random.search.ant.ants, maco.random.search.iterations,
+      static_cast<std::size_t>(maco.random.samples_per_side),
+      result.frames.size(), frames,
       o.maco_step == 1 ? "" : " (every --maco-step-th)", static_cast<unsigned long long>(evaluations));
   if (ab_frames > 0) {
     std::printf(

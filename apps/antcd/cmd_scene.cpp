@@ -23,10 +23,10 @@ struct RunOptions {
   std::string scene;
   std::string method = "exact";
   double delta = 0;
-  double feature_delta = 0;
+  std::optional<double> feature_delta;
   std::uint64_t seed = 1;
   int threads = 1;
-  std::size_t samples = 1000;
+  std::uint32_t samples = 1000;
   std::uint32_t iterations = 100;
   std::uint32_t agents = 60;
   bool feature_truth = false;
@@ -69,21 +69,21 @@ int run_run(const RunOptions& o) {
     throw UsageError("--colony-only is for --method aco or maco, not " + o.method);
   }
   query.delta = o.delta;
-  query.feature_delta = o.feature_delta;
+  query.random.search.centroid_delta = o.feature_delta;
   query.seed = o.seed;
   query.threads = o.threads;
-  query.samples_per_side = o.samples;
-  query.iterations = o.iterations;
-  query.agents = o.agents;
-  query.count_feature_truth = o.feature_truth;
-  query.search_all = o.search_all;
+  query.random.samples_per_side = o.samples;
+  query.random.search.iterations = o.iterations;
+  query.random.search.set_agents(o.agents);
+  query.random.count_truth = o.feature_truth;
+  query.random.all_witnesses = o.search_all;
   try {
-    query.verdict = parse_verdict(o.verdict);
+    query.random.search.verdict = parse_verdict(o.verdict);
   } catch (const ArgumentError& e) {
     throw UsageError(std::string("--verdict: ") + e.what());
   }
   query.frame_evaluations = o.frame_evaluations;
-  query.scan_covered_spaces = !o.colony_only;
+  query.random.search.ant.scan_covered_spaces = !o.colony_only;
   query.frame_seconds = o.frame_seconds;
   query.volume = o.volume;
   const Scene scene(load_scene(o.scene));
@@ -209,8 +209,8 @@ void add_scene_commands(CLI::App& app, int& code) {
   cmd->add_option("--delta", run->delta, "Collision threshold δ in mesh units")
       ->check(non_negative_finite());
   cmd->add_option("--feature-delta", run->feature_delta,
-                  "Random methods: centroid threshold (default: from triangle sizes)")
-      ->check(non_negative_finite());
+                  "Random methods: centroid threshold, > 0 (default: from triangle sizes)")
+      ->check(positive_finite());
   cmd->add_option("--seed", run->seed, "Seed of the random methods");
   cmd->add_option("--threads", run->threads, "Worker threads")->check(CLI::Range(1, 256));
   cmd->add_option("--samples", run->samples, "Random methods: features sampled per side")

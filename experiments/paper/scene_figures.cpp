@@ -11,6 +11,7 @@
 #include <atomic>
 #include <iterator>
 #include <limits>
+#include <optional>
 #include <mutex>
 #include <ostream>
 #include <string>
@@ -72,12 +73,13 @@ void measure_scene_figures(const Scene& scene, const std::vector<FrameTruth>& tr
     out.delta = default_delta(a, b);
     // The library's section 4 flow for one pair: everything from the preliminary detection on is
     // in the time.
-    auto detect = [&](Method method, Verdict verdict, std::uint64_t budget, double centroid_delta,
-                      std::size_t salt) {
+    auto detect = [&](Method method, Verdict verdict, std::uint64_t budget,
+                      std::optional<double> centroid_delta, std::size_t salt) {
       DetectRequest req;
       req.delta = 0;
       req.samples_per_side = P.scene_samples;
       req.evaluations_per_leaf_pair = 0;  // the budget below is the only one
+      req.first_leaf_pairs = 32;          // the figures' protocol since they were first measured
       req.triangle_masks = false;         // the paper's preliminary detection: sphere and OBB only
       req.search = paper_request(method, shared::derive_seed(seed, 5, salt));
       req.search.verdict = verdict;
@@ -92,7 +94,7 @@ void measure_scene_figures(const Scene& scene, const std::vector<FrameTruth>& tr
     };
     for (std::size_t g = 0; g < std::size(kSceneSpecs); ++g) {
       for (const std::uint64_t budget : P.budgets) {
-        out.random.push_back(detect(kSceneSpecs[g].method, kSceneSpecs[g].verdict, budget, -1, g));
+        out.random.push_back(detect(kSceneSpecs[g].method, kSceneSpecs[g].verdict, budget, std::nullopt, g));
       }
     }
     for (const double scale : P.delta_scales) {

@@ -6,7 +6,9 @@
 // - SceneError: a scene file is invalid;
 // - ArgumentError: a library call got an invalid argument (a negative threshold, a frame out of
 //   range, a search request without agents, ...).
-// Besides these only std::bad_alloc can escape a library call (out of memory).
+// Besides these a library call lets escape only std::bad_alloc (out of memory) and
+// std::logic_error, which means an internal invariant failed (a bug in antcd, never bad input:
+// e.g. the hierarchy build's node-count check in src/bvh/build.cpp).
 #pragma once
 
 #include <antcd/export.hpp>

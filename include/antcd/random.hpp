@@ -42,6 +42,7 @@
 
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <string_view>
 #include <vector>
 
@@ -75,9 +76,10 @@ struct SamplingOptions {
   /// The collision threshold delta of collide() (>= 0, mesh units): the preliminary detection
   /// runs with it, and Verdict::Witness confirms pairs with it.
   Scalar delta = 0;
-  /// The centroid threshold delta_c of Verdict::PaperCentroid. Negative: default_delta(a, b). It
-  /// does not widen the preliminary detection.
-  Scalar centroid_delta = -1;
+  /// The centroid threshold delta_c of Verdict::PaperCentroid (finite, > 0: it is also the
+  /// colony's length unit). Unset: default_delta(a, b). It does not widen the preliminary
+  /// detection.
+  std::optional<Scalar> centroid_delta;
   FeatureOrder order = FeatureOrder::Leaf;
   /// Stop the preliminary detection after this many leaf pairs (0 = all). The traversal then
   /// visits the nearer children first, so the space holds the leaf pairs met first; a search that
@@ -146,10 +148,10 @@ struct ANTCD_API FeatureSpace {
   [[nodiscard]] bool empty() const { return a.size() == 0 || b.size() == 0; }
   /// Fitness f(i, j) of Eq. 6: distance between the two centroids (float arithmetic).
   [[nodiscard]] float distance(std::uint32_t i, std::uint32_t j) const;
-  /// Whether cell (i, j) collides under `verdict` (centroid threshold `centroid_delta`, negative:
+  /// Whether cell (i, j) collides under `verdict` (centroid threshold `centroid_delta`, unset:
   /// the space's). The witness test is exact (collide()'s triangle test at delta).
   [[nodiscard]] bool collides(std::uint32_t i, std::uint32_t j, Verdict verdict,
-                              Scalar centroid_delta = -1) const;
+                              std::optional<Scalar> centroid_delta = std::nullopt) const;
 };
 
 /// Median over A's non-degenerate triangles of the largest centroid-to-vertex distance ("feature
@@ -168,7 +170,7 @@ ANTCD_API Scalar default_delta(Scalar radius_a, Scalar radius_b);
 /// of that many equal runs of the leaf order), computes centroids, radii and vertices in the world
 /// frame and orders them (options.order). `seed` drives the sampling only. Models with no leaf
 /// pair give an empty space. Throws antcd::ArgumentError if samples_per_side is 0, delta is
-/// negative or not finite, or centroid_delta is not finite.
+/// negative or not finite, or a set centroid_delta is not finite and > 0.
 ANTCD_API FeatureSpace build_feature_space(const Model& a, const Transform& pose_a, const Model& b,
                                  const Transform& pose_b, const SamplingOptions& options = {},
                                  std::uint64_t seed = 0);
@@ -308,9 +310,9 @@ struct ColonyMemory {
 struct SearchRequest {
   Method method = Method::Maco;
   Verdict verdict = Verdict::Witness;
-  /// Centroid threshold of Verdict::PaperCentroid. Negative: the space's centroid_delta. NaN is
-  /// rejected. (Witness uses the space's delta.)
-  Scalar centroid_delta = -1;
+  /// Centroid threshold of Verdict::PaperCentroid (finite, > 0). Unset: the space's
+  /// FeatureSpace::centroid_delta. (Witness uses the space's delta.)
+  std::optional<Scalar> centroid_delta;
   /// N: iterations (generations) of one run; also the N of Eq. 11. Exhaustive and Grid ignore it.
   std::uint32_t iterations = 100;
   /// Further runs when a run ends its N iterations without meeting another stop criterion. PSO and
@@ -325,6 +327,14 @@ struct SearchRequest {
   GaParams ga;
   StopCriteria stop;
   std::uint64_t seed = 0;
+
+  /// The population of every engine at once: ant.ants, pso.particles and ga.population (the
+  /// paper's m; a scene run's --agents).
+  void set_agents(std::uint32_t agents) {
+    ant.ants = agents;
+    pso.particles = agents;
+    ga.population = agents;
+  }
 };
 
 /// When a search had found a given share of the space's colliding pairs.
@@ -375,34 +385,46 @@ ANTCD_API SearchResult search(const FeatureSpace& space, const SearchRequest& re
                     ColonyMemory* memory = nullptr);
 
 /// Number of colliding pairs in the space under `verdict` (centroid threshold `centroid_delta`,
-/// negative: the space's), by enumeration: the truth a detection rate is measured against.
-ANTCD_API std::uint64_t count_colliding(const FeatureSpace& space, Verdict verdict = Verdict::Witness,
-                              Scalar centroid_delta = -1);
+/// unset: the space's), by enumeration: the truth a detection rate is measured against.
+ANTCD_API std::uint64_t count_colliding(const FeatureSpace& space,
+                                        Verdict verdict = Verdict::Witness,
+                                        std::optional<Scalar> centroid_delta = std::nullopt);
 
 // ---- One model pair, the whole flow ----
 
 struct DetectRequest {
   /// collide()'s threshold delta (>= 0).
   Scalar delta = 0;
-  /// The search; its stop.first_hit is forced on (a verdict needs one witness) unless
-  /// `all_witnesses` is set.
+  /// The search: method, verdict, centroid threshold (unset: default_delta(a, b), which costs a
+  /// pass over both meshes; a caller that queries the same models often can pass it resolved),
+  /// engine parameters and seed (the sampling's seed too). Its stop criteria bound EACH search of
+  /// a space: the partial pass and, when that finds nothing, the full pass. stop.first_hit is
+  /// forced on (a verdict needs one witness) unless `all_witnesses` is set.
   SearchRequest search;
   /// Run the search to its budget and return every colliding feature pair it meets.
   bool all_witnesses = false;
+  /// Also count the colliding feature pairs of the searched space by enumeration
+  /// (DetectResult::feature_truth, the paper's A/B). Implies all_witnesses.
+  bool count_truth = false;
   std::uint32_t samples_per_side = 1000;
   FeatureOrder order = FeatureOrder::Leaf;
-  /// Leaf pairs of the first, partial preliminary detection (SamplingOptions::max_leaf_pairs; 0 =
-  /// all at once). Without a witness there, the space is rebuilt with every leaf pair.
-  std::uint32_t first_leaf_pairs = 32;
+  /// Leaf pairs of the first, partial preliminary detection (nearest first;
+  /// SamplingOptions::max_leaf_pairs; 0 = all at once). Without a witness there, the space is
+  /// rebuilt with every leaf pair. Skipped (all at once) when the memory says the last query of
+  /// the pair was a near miss (ColonyMemory::undecided).
+  std::uint32_t first_leaf_pairs = 8;
   /// SamplingOptions::triangle_masks.
   bool triangle_masks = true;
   /// Positions around each remembered witness scanned before any traversal
   /// (confirm_witnesses); 0 = the witnesses alone.
   std::uint32_t witness_neighbourhood = 4;
-  /// Budget per reported leaf pair, in evaluations, added to the request's own stop criteria
-  /// (0 = none): a pair of models whose leaves overlap but whose surfaces do not meet costs about
-  /// as many centroid distances as the exact test would test triangle pairs.
-  std::uint64_t evaluations_per_leaf_pair = 0;
+  /// Budget per reported leaf pair, in evaluations, for each search of a space, combined with the
+  /// search's own stop.max_evaluations (the smaller; 0 = none). A pair of models whose leaves
+  /// overlap but whose surfaces do not meet costs about as many centroid distances as the exact
+  /// test would test triangle pairs. When it covers every cell of the overlapping leaf pairs, the
+  /// colonies scan those cells instead (AntParams::scan_covered_spaces): complete, so a pair
+  /// without a witness is then proven separate.
+  std::uint64_t evaluations_per_leaf_pair = 32;
 };
 
 struct DetectResult {
@@ -411,10 +433,17 @@ struct DetectResult {
   bool by_memory = false;
   /// No leaf pair at delta: separate without a search.
   bool no_leaf_pair = false;
-  /// The search stopped on a budget (evaluations or time) without a witness: "separate" is then
-  /// a guess, not a proof. false when proves_separate() holds.
-  bool budget_exhausted = false;
+  /// Leaves overlapped, no witness was found, and the search did not prove the pair separate
+  /// (proves_separate): "separate" is then a guess, not a proof.
+  bool undecided = false;
   std::size_t leaf_pairs = 0;
+  /// Fitness evaluations the whole query spent (the memory's neighbourhood scan and every search).
+  std::uint64_t spent = 0;
+  /// Distinct colliding feature pairs the searches found.
+  std::uint64_t feature_hits = 0;
+  /// With count_truth: colliding feature pairs in the searched space.
+  std::uint64_t feature_truth = 0;
+  /// The last search; its evaluations and witness_tests count the whole query.
   SearchResult search;
 };
 
@@ -445,7 +474,10 @@ ANTCD_API WitnessCheck confirm_witnesses(const Model& a, const Transform& pose_a
 
 /// The whole random query of one model pair (section 4): the memory's witnesses first (each
 /// confirmed at the new poses by the exact test counts as a hit), else preliminary detection at
-/// delta (no leaf pair => separate), feature sampling, search. `memory` may be null. Throws
+/// delta (no leaf pair => separate; first the `first_leaf_pairs` nearest), feature sampling,
+/// search; without a witness in a partial space, the full one is built and searched. With a
+/// memory, the colony continues from it and leaves its state, witnesses and near-miss flag there.
+/// The scene runner (scene.hpp) runs exactly this per pair. `memory` may be null. Throws
 /// antcd::ArgumentError on invalid arguments.
 ANTCD_API DetectResult random_detect(const Model& a, const Transform& pose_a, const Model& b,
                            const Transform& pose_b, const DetectRequest& request,

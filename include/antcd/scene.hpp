@@ -72,49 +72,22 @@ struct SceneQuery {
   Method method = Method::Exact;
   /// Collision threshold δ in mesh units (exact and sphere-obb: triangle/volume distance).
   Scalar delta = 0;
-  /// Random methods: what a colliding feature pair is. Witness (default): the exact triangle test
-  /// at delta confirms it, so every reported pair is a contact. PaperCentroid: the paper's
-  /// centroid threshold (feature_delta), a proximity test.
-  Verdict verdict = Verdict::Witness;
-  /// Random methods, PaperCentroid: the centroid threshold; <= 0 means the default derived from
-  /// the two models' triangle sizes (see random.hpp). Also the colony's length unit.
-  Scalar feature_delta = 0;
-  /// Random methods: features sampled per side.
-  std::size_t samples_per_side = 1000;
+  /// Random methods (aco, maco, pso, ga, exhaustive, grid): each candidate pair's query is
+  /// random_detect's (random.hpp) with this request: verdict, centroid threshold, samples per
+  /// side, iterations, agents, all_witnesses (every search runs its N iterations and collects
+  /// FrameResult::feature_hits, as the paper's A/B needs), count_truth (FrameResult::
+  /// feature_truth), budgets, the partial first pass, the witness neighbourhood. Its `delta` and
+  /// `search.method` are ignored (this query's are used), and so is `search.seed`: each pair's
+  /// seed is scene_pair_seed(seed, frame, i, j). An unset `search.centroid_delta` is
+  /// default_delta of the two models, from the radii the scene caches.
+  DetectRequest random;
   /// Random methods: the seed of the whole run.
   std::uint64_t seed = 1;
-  /// Random methods: iterations N of each search (the paper's 100).
-  std::uint32_t iterations = 100;
-  /// Random methods: ants (aco/maco), particles (pso), population (ga); the paper's m = 60.
-  std::uint32_t agents = 60;
-  /// Random methods: the verdict of a pair needs one colliding feature pair, so by default each
-  /// search stops at its first hit (or after N iterations without one). Set to run every search
-  /// for its full N iterations and collect every colliding feature pair it meets (FrameResult::
-  /// feature_hits), as the paper's A/B needs. Same verdicts, more time.
-  bool search_all = false;
-  /// Random methods: also enumerate each searched feature space to count its truly colliding
-  /// feature pairs (FrameResult::feature_truth), for the paper's A/B. Costs one exhaustive pass.
-  /// Implies search_all.
-  bool count_feature_truth = false;
-  /// Random methods without a frame budget: each pair's search gets this many evaluations per
-  /// leaf pair of its preliminary detection (0 = only the N iterations bound it). When that
-  /// budget covers every cell of the overlapping leaf pairs, the colonies scan those cells instead
-  /// (AntParams::scan_covered_spaces, on by default): complete, so a pair without a witness is
-  /// then proven separate, not undecided. Less trades recall for time (docs/random-detection.md).
-  std::uint64_t evaluations_per_leaf_pair = 32;
-  /// Random methods with a SceneMemory: positions around each remembered witness scanned before
-  /// any traversal (confirm_witnesses, random.hpp); 0 = the witnesses alone.
-  std::uint32_t witness_neighbourhood = 4;
-  /// Random methods: leaf pairs of the first, partial preliminary detection (nearest first; 0 =
-  /// all at once). Without a witness there, the pair's space is rebuilt with every leaf pair.
-  std::uint32_t first_leaf_pairs = 8;
-  /// Random methods (colonies): AntParams::scan_covered_spaces. false: the colony searches even
-  /// when its budget covers every cell that can collide (the paper's method alone).
-  bool scan_covered_spaces = true;
   /// Random methods, anytime query: fitness evaluations shared by all candidate pairs of the
-  /// frame (0 = off). The budget is split equally over the pairs still undecided, in rounds; a
-  /// pair without a witness when it runs out is reported in FrameResult::undecided.
-  /// Deterministic (the split depends only on counts).
+  /// frame (0 = off). After each pair's witnesses and preliminary detection, the budget is split
+  /// equally over the pairs still undecided, in rounds of one search each (the per-leaf-pair
+  /// budget is then not used); a pair without a witness when it runs out is reported in
+  /// FrameResult::undecided. Deterministic (the split depends only on counts).
   std::uint64_t frame_evaluations = 0;
   /// Random methods, anytime query: wall time for the frame's searches (0 = off; not
   /// deterministic). May be combined with frame_evaluations.
@@ -125,6 +98,13 @@ struct SceneQuery {
   /// wholly inside the other (open ones keep surface semantics). Refused with other methods.
   bool volume = false;
 };
+
+/// The seed of object pair (i, j)'s random query in `frame` of a run seeded with `seed`: what
+/// Scene::run_frame passes random_detect as DetectRequest::search.seed (without a frame budget,
+/// random_detect with it, the scene's other settings and the pair's memory gives the same verdict
+/// and evaluations as the frame).
+ANTCD_API std::uint64_t scene_pair_seed(std::uint64_t seed, std::size_t frame, std::uint32_t i,
+                                        std::uint32_t j);
 
 /// What the random methods carry from frame to frame, per object pair: the colony's pheromone,
 /// its iteration count and the last witnesses (ColonyMemory, random.hpp). Pass the same memory to

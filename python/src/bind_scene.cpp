@@ -5,7 +5,9 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <cmath>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -46,17 +48,26 @@ py::array_t<std::uint32_t> pair_array(const std::vector<std::pair<std::uint32_t,
 }
 
 SceneRun run(const PyScene& s, const std::string& method, const py::object& frames_in, double delta,
-             double feature_delta, const py::handle samples_per_side, const py::handle seed,
+             std::optional<double> feature_delta, const py::handle samples_per_side, const py::handle seed,
              const py::handle iterations, const py::handle agents, bool search_all, const py::handle threads) {
   SceneQuery query;
   query.method = parse_method(method);
   query.delta = to_non_negative(delta, "delta");
-  query.feature_delta = to_non_negative(feature_delta, "feature_delta");
-  query.samples_per_side = to_count(samples_per_side, "samples_per_side", 1, 10'000'000);
+  if (feature_delta) {
+    if (!(*feature_delta > 0) || !std::isfinite(*feature_delta)) {
+      throw py::value_error("feature_delta must be a finite number > 0 (or None: derived from "
+                            "triangle sizes)");
+    }
+    query.random.search.centroid_delta = *feature_delta;
+  }
+  query.random.samples_per_side =
+      static_cast<std::uint32_t>(to_count(samples_per_side, "samples_per_side", 1, 10'000'000));
   query.seed = to_count(seed, "seed", 0, std::numeric_limits<std::uint64_t>::max());
-  query.iterations = static_cast<std::uint32_t>(to_count(iterations, "iterations", 1, 1'000'000'000));
-  query.agents = static_cast<std::uint32_t>(to_count(agents, "agents", 1, 1'000'000));
-  query.search_all = search_all;
+  query.random.search.iterations =
+      static_cast<std::uint32_t>(to_count(iterations, "iterations", 1, 1'000'000'000));
+  query.random.search.set_agents(
+      static_cast<std::uint32_t>(to_count(agents, "agents", 1, 1'000'000)));
+  query.random.all_witnesses = search_all;
   query.threads = static_cast<int>(to_count(threads, "threads", 1, 256));
 
   const std::size_t total = s.scene->description().frames;
@@ -179,13 +190,13 @@ void bind_scene(py::module_& m) {
           },
           py::arg("object"), py::arg("frame"), "4x4 pose of an object at a frame (scale not included).")
       .def("run", &run, py::kw_only(), py::arg("method") = "exact", py::arg("frames") = py::none(),
-           py::arg("delta") = 0.0, py::arg("feature_delta") = 0.0, py::arg("samples_per_side") = 1000,
+           py::arg("delta") = 0.0, py::arg("feature_delta") = py::none(), py::arg("samples_per_side") = 1000,
            py::arg("seed") = 1, py::arg("iterations") = 100, py::arg("agents") = 60,
            py::arg("search_all") = false, py::arg("threads") = 1,
            "Runs frames (None: all; an int; or an iterable of ints) with a method: 'exact' "
            "(default, ground truth), 'sphere-obb', 'aco', 'maco', 'pso', 'ga' or 'exhaustive'.\n"
            "delta: exact/sphere-obb threshold; feature_delta: random methods' centroid threshold "
-           "(0: derived from triangle sizes); samples_per_side, seed, iterations, agents: random "
+           "(> 0; None: derived from triangle sizes); samples_per_side, seed, iterations, agents: random "
            "methods; search_all: random methods search every pair for N iterations instead of "
            "stopping at the first hit; threads: narrow-phase workers (same answer at any count).\n"
            "The GIL is released while frames run.")
@@ -197,14 +208,14 @@ void bind_scene(py::module_& m) {
   m.def(
       "run_scene",
       [](const py::object& path, const std::string& method, const py::object& frames, double delta,
-         double feature_delta, const py::handle samples_per_side, const py::handle seed,
+         std::optional<double> feature_delta, const py::handle samples_per_side, const py::handle seed,
          const py::handle iterations, const py::handle agents, bool search_all, const py::handle threads) {
         const PyScene s = open_scene(path, py::int_(4), "area");
         return run(s, method, frames, delta, feature_delta, samples_per_side, seed, iterations, agents,
                    search_all, threads);
       },
       py::arg("path"), py::kw_only(), py::arg("method") = "exact", py::arg("frames") = py::none(),
-      py::arg("delta") = 0.0, py::arg("feature_delta") = 0.0, py::arg("samples_per_side") = 1000,
+      py::arg("delta") = 0.0, py::arg("feature_delta") = py::none(), py::arg("samples_per_side") = 1000,
       py::arg("seed") = 1, py::arg("iterations") = 100, py::arg("agents") = 60,
       py::arg("search_all") = false, py::arg("threads") = 1,
       "Scene(path).run(...): loads a scene file and runs its frames with a method. See Scene.run.");

@@ -1,4 +1,4 @@
-// Private: the search engines behind search_feature_space (aco.cpp, pso.cpp, ga.cpp,
+// Private: the search engines behind search() (aco.cpp, pso.cpp, ga.cpp,
 // exhaustive.cpp: the exhaustive scan and the grid).
 #pragma once
 

@@ -209,12 +209,11 @@ void run_grid(const FeatureSpace& space, Recorder& rec) {
 
 namespace antcd {
 
-std::uint64_t count_colliding(const FeatureSpace& space, Verdict verdict, Scalar centroid_delta) {
-  if (std::isnan(centroid_delta)) {
-    throw ArgumentError("count_colliding: centroid_delta is NaN");
-  }
+std::uint64_t count_colliding(const FeatureSpace& space, Verdict verdict,
+                              std::optional<Scalar> centroid_delta) {
+  const detail::Thresholds t =
+      detail::thresholds(space, verdict, centroid_delta, "count_colliding");
   if (space.empty()) return 0;
-  const detail::Thresholds t = detail::thresholds(space, verdict, centroid_delta);
   const bool witness = verdict == Verdict::Witness;
   std::uint64_t total = 0;
   const std::uint32_t nb = space.b.size();

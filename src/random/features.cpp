@@ -23,8 +23,9 @@ float FeatureSpace::distance(std::uint32_t i, std::uint32_t j) const {
 }
 
 bool FeatureSpace::collides(std::uint32_t i, std::uint32_t j, Verdict verdict,
-                            Scalar centroid_threshold) const {
-  const detail::Thresholds t = detail::thresholds(*this, verdict, centroid_threshold);
+                            std::optional<Scalar> centroid_threshold) const {
+  const detail::Thresholds t =
+      detail::thresholds(*this, verdict, centroid_threshold, "FeatureSpace::collides");
   const float dx = a.x[i] - b.x[j];
   const float dy = a.y[i] - b.y[j];
   const float dz = a.z[i] - b.z[j];
@@ -210,14 +211,14 @@ FeatureSpace build_feature_space(const Model& a, const Transform& pose_a, const 
   if (!(options.delta >= 0) || !std::isfinite(options.delta)) {
     throw ArgumentError("build_feature_space: delta must be finite and >= 0");
   }
-  if (!std::isfinite(options.centroid_delta)) {
-    throw ArgumentError(
-        "build_feature_space: centroid_delta must be finite (<= 0 = default)");
+  if (options.centroid_delta && !(*options.centroid_delta > 0 &&
+                                  std::isfinite(*options.centroid_delta))) {
+    throw ArgumentError("build_feature_space: centroid_delta must be finite and > 0 (or unset)");
   }
   FeatureSpace space;
   space.delta = options.delta;
-  space.centroid_delta =
-      options.centroid_delta > 0 ? options.centroid_delta : default_delta(a, b);
+  space.centroid_delta = options.centroid_delta.value_or(0) > 0 ? *options.centroid_delta
+                                                                 : default_delta(a, b);
 
   // Section 4 step 1: preliminary detection at the collision threshold itself.
   std::vector<LeafPair> pairs;
@@ -296,11 +297,16 @@ bool witness_test(const FeatureSpace& space, std::uint32_t i, std::uint32_t j) {
   return geometry::triangles_within(va[0], va[1], va[2], vb[0], vb[1], vb[2], space.delta);
 }
 
-Thresholds thresholds(const FeatureSpace& space, Verdict verdict, Scalar centroid_delta) {
+Thresholds thresholds(const FeatureSpace& space, Verdict verdict,
+                      std::optional<Scalar> centroid_delta, const char* caller) {
+  if (centroid_delta && !(*centroid_delta > 0 && std::isfinite(*centroid_delta))) {
+    throw ArgumentError(std::string(caller) +
+                        ": centroid_delta must be finite and > 0 (or unset)");
+  }
   Thresholds t;
   t.verdict = verdict;
   t.delta = round_up(space.delta, 1e-6);
-  const Scalar c = centroid_delta >= 0 ? centroid_delta : space.centroid_delta;
+  const Scalar c = centroid_delta.value_or(space.centroid_delta);
   t.centroid = static_cast<float>(c);
   t.centroid2 = t.centroid * t.centroid;
   return t;

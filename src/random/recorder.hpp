@@ -26,7 +26,13 @@ struct Thresholds {
   float centroid2 = 0;       ///< PaperCentroid: squared centroid threshold
   float centroid = 0;        ///< PaperCentroid: centroid threshold
 };
-Thresholds thresholds(const FeatureSpace& space, Verdict verdict, Scalar centroid_delta);
+/// Unset centroid_delta: the space's. A set one must be finite and >= 0, else ArgumentError naming
+/// `caller`.
+Thresholds thresholds(const FeatureSpace& space, Verdict verdict,
+                      std::optional<Scalar> centroid_delta, const char* caller);
+
+/// Throws ArgumentError naming `caller` and the field for an invalid SearchRequest (search.cpp).
+void validate_search(const SearchRequest& request, const char* caller = "antcd::search");
 
 /// Evaluates feature pairs for a search and applies the stop criteria. One per search call.
 class Recorder {

@@ -1,5 +1,5 @@
-// search(), random_detect() and random_collide(): request validation, the memory's witnesses, then
-// dispatch to one engine.
+// search() and random_collide(): request validation, the memory's witnesses, then dispatch to one
+// engine; confirm_witnesses() and proves_separate().
 #include <antcd/error.hpp>
 
 #include <algorithm>
@@ -12,52 +12,59 @@
 namespace antcd {
 namespace {
 
-void require(bool ok, const char* what) {
-  if (!ok) throw ArgumentError(std::string("antcd::search: ") + what);
+void require(bool ok, const char* caller, const char* what) {
+  if (!ok) throw ArgumentError(std::string(caller) + ": " + what);
 }
 
-void validate(const SearchRequest& r) {
-  require(std::isfinite(r.centroid_delta), "centroid_delta must be finite (negative = default)");
-  require(r.iterations >= 1, "iterations must be >= 1");
-  require(r.verdict == Verdict::Witness || r.verdict == Verdict::PaperCentroid,
+}  // namespace
+
+void detail::validate_search(const SearchRequest& r, const char* caller) {
+  require(!r.centroid_delta || (*r.centroid_delta > 0 && std::isfinite(*r.centroid_delta)), caller,
+          "centroid_delta must be finite and > 0 (or unset)");
+  require(r.iterations >= 1, caller, "iterations must be >= 1");
+  require(r.verdict == Verdict::Witness || r.verdict == Verdict::PaperCentroid, caller,
           "unknown verdict");
   const StopCriteria& s = r.stop;
-  require(s.target_share >= 0 && s.target_share <= 1, "stop.target_share must be in [0, 1]");
-  require(s.max_seconds >= 0 && !std::isnan(s.max_seconds), "stop.max_seconds must be >= 0");
+  require(s.target_share >= 0 && s.target_share <= 1, caller,
+          "stop.target_share must be in [0, 1]");
+  require(s.max_seconds >= 0 && !std::isnan(s.max_seconds), caller,
+          "stop.max_seconds must be >= 0");
   for (const double mark : r.progress_marks) {
-    require(mark > 0 && mark <= 1, "progress_marks must be in (0, 1]");
+    require(mark > 0 && mark <= 1, caller, "progress_marks must be in (0, 1]");
   }
   switch (r.method) {
     case Method::Aco:
     case Method::Maco: {
       const AntParams& p = r.ant;
-      require(p.ants >= 1, "ant.ants must be >= 1");
+      require(p.ants >= 1, caller, "ant.ants must be >= 1");
       require(p.alpha >= 0 && p.beta >= 0 && std::isfinite(p.alpha) && std::isfinite(p.beta),
-              "ant.alpha and ant.beta must be finite and >= 0");
-      require(p.rho >= 0 && p.rho <= 1, "ant.rho must be in [0, 1]");
-      require(p.q > 0 && std::isfinite(p.q), "ant.q must be > 0");
-      require(p.tau0 > 0 && std::isfinite(p.tau0), "ant.tau0 must be > 0");
-      require(p.n > 0 && std::isfinite(p.n), "ant.n must be > 0");
-      require(std::isfinite(p.theta) && std::isfinite(p.mu), "ant.theta and ant.mu must be finite");
-      require(p.pheromone_resolution >= 1, "ant.pheromone_resolution must be >= 1");
-      require(p.start == AntStart::LeafPairs || p.start == AntStart::Uniform,
+              caller, "ant.alpha and ant.beta must be finite and >= 0");
+      require(p.rho >= 0 && p.rho <= 1, caller, "ant.rho must be in [0, 1]");
+      require(p.q > 0 && std::isfinite(p.q), caller, "ant.q must be > 0");
+      require(p.tau0 > 0 && std::isfinite(p.tau0), caller, "ant.tau0 must be > 0");
+      require(p.n > 0 && std::isfinite(p.n), caller, "ant.n must be > 0");
+      require(std::isfinite(p.theta) && std::isfinite(p.mu), caller,
+              "ant.theta and ant.mu must be finite");
+      require(p.pheromone_resolution >= 1, caller, "ant.pheromone_resolution must be >= 1");
+      require(p.start == AntStart::LeafPairs || p.start == AntStart::Uniform, caller,
               "unknown ant.start");
       break;
     }
     case Method::Pso: {
       const PsoParams& p = r.pso;
-      require(p.particles >= 1, "pso.particles must be >= 1");
+      require(p.particles >= 1, caller, "pso.particles must be >= 1");
       require(std::isfinite(p.inertia) && std::isfinite(p.cognitive) && std::isfinite(p.social),
-              "pso coefficients must be finite");
-      require(p.max_velocity > 0 && std::isfinite(p.max_velocity), "pso.max_velocity must be > 0");
+              caller, "pso coefficients must be finite");
+      require(p.max_velocity > 0 && std::isfinite(p.max_velocity), caller,
+              "pso.max_velocity must be > 0");
       break;
     }
     case Method::Ga: {
       const GaParams& p = r.ga;
-      require(p.population >= 2, "ga.population must be >= 2");
-      require(p.tournament >= 1, "ga.tournament must be >= 1");
-      require(p.crossover >= 0 && p.crossover <= 1, "ga.crossover must be in [0, 1]");
-      require(!std::isnan(p.mutation) && p.mutation <= 1, "ga.mutation must be <= 1");
+      require(p.population >= 2, caller, "ga.population must be >= 2");
+      require(p.tournament >= 1, caller, "ga.tournament must be >= 1");
+      require(p.crossover >= 0 && p.crossover <= 1, caller, "ga.crossover must be in [0, 1]");
+      require(!std::isnan(p.mutation) && p.mutation <= 1, caller, "ga.mutation must be <= 1");
       break;
     }
     case Method::Exhaustive:
@@ -65,11 +72,13 @@ void validate(const SearchRequest& r) {
       break;
     case Method::Exact:
     case Method::SphereObb:
-      throw ArgumentError("antcd::search: method '" + std::string(method_name(r.method)) +
+      throw ArgumentError(std::string(caller) + ": method '" + std::string(method_name(r.method)) +
                           "' is not a random search (expected aco, maco, pso, ga, exhaustive or "
                           "grid)");
   }
 }
+
+namespace {
 
 /// The cells of the space that hold one of the memory's witnesses.
 std::vector<std::pair<std::uint32_t, std::uint32_t>> witness_cells(const FeatureSpace& space,
@@ -134,12 +143,11 @@ bool within(const FrameTriangle& ta, const FrameTriangle& tb, Scalar delta) {
 
 }  // namespace
 
-SearchResult search(const FeatureSpace& space, const SearchRequest& request,
-                    ColonyMemory* memory) {
-  validate(request);
+SearchResult search(const FeatureSpace& space, const SearchRequest& request, ColonyMemory* memory) {
+  detail::validate_search(request);
   SearchResult result;
   const detail::Thresholds t =
-      detail::thresholds(space, request.verdict, request.centroid_delta);
+      detail::thresholds(space, request.verdict, request.centroid_delta, "antcd::search");
   result.verdict = t.verdict;
   result.centroid_delta = t.centroid;
   if (space.empty()) {
@@ -147,11 +155,10 @@ SearchResult search(const FeatureSpace& space, const SearchRequest& request,
     return result;
   }
   const bool needs_truth = request.stop.target_share > 0 || !request.progress_marks.empty();
-  const std::uint64_t truth =
-      !needs_truth                        ? 0
-      : request.stop.reference_count != 0 ? request.stop.reference_count
-                                          : count_colliding(space, request.verdict,
-                                                            request.centroid_delta);
+  const std::uint64_t truth = !needs_truth ? 0
+                              : request.stop.reference_count != 0
+                                  ? request.stop.reference_count
+                                  : count_colliding(space, request.verdict, request.centroid_delta);
   std::uint64_t target = 0;
   if (request.stop.target_share > 0) {
     // A target of 0 (no colliding pair exists) cannot be met by finding pairs: the search runs to
@@ -161,8 +168,7 @@ SearchResult search(const FeatureSpace& space, const SearchRequest& request,
   }
   detail::Recorder rec(space, request, t, target, result);
   rec.set_marks(request.progress_marks, truth);
-  const bool colony =
-      request.method == Method::Aco || request.method == Method::Maco;
+  const bool colony = request.method == Method::Aco || request.method == Method::Maco;
   ColonyMemory scratch;
   ColonyMemory& mem = memory != nullptr && colony ? *memory : scratch;
   // Temporal coherence: last search's witnesses first.
@@ -285,80 +291,10 @@ bool proves_separate(const FeatureSpace& space, const SearchResult& result) {
          space.candidates_a == space.a.size() && space.candidates_b == space.b.size();
 }
 
-DetectResult random_detect(const Model& a, const Transform& pose_a, const Model& b,
-                           const Transform& pose_b, const DetectRequest& request,
-                           ColonyMemory* memory) {
-  validate(request.search);
-  if (request.samples_per_side == 0) {
-    throw ArgumentError("random_detect: samples_per_side must be >= 1");
-  }
-  DetectResult out;
-  const bool witness = request.search.verdict == Verdict::Witness;
-  if (memory != nullptr && witness && !request.all_witnesses) {
-    const WitnessCheck check = confirm_witnesses(a, pose_a, b, pose_b, request.delta, *memory,
-                                                 true, request.witness_neighbourhood);
-    out.search.evaluations = check.evaluations;
-    out.search.witness_tests = check.tests;
-    if (check.valid > 0) {
-      out.colliding = true;
-      out.by_memory = true;
-      return out;
-    }
-  }
-  SamplingOptions sampling;
-  sampling.samples_per_side = request.samples_per_side;
-  sampling.delta = request.delta;
-  sampling.centroid_delta = request.search.centroid_delta;
-  sampling.order = request.order;
-  sampling.max_leaf_pairs = request.all_witnesses ? 0 : request.first_leaf_pairs;
-  sampling.triangle_masks = request.triangle_masks;
-  FeatureSpace space = build_feature_space(a, pose_a, b, pose_b, sampling, request.search.seed);
-  out.leaf_pairs = space.leaf_pairs;
-  if (space.leaf_pairs == 0) {
-    out.no_leaf_pair = true;
-    if (memory != nullptr) memory->witnesses.clear();
-    return out;
-  }
-  SearchRequest search_request = request.search;
-  search_request.stop.first_hit = !request.all_witnesses;
-  if (request.evaluations_per_leaf_pair != 0) {
-    const std::uint64_t budget = request.evaluations_per_leaf_pair * space.leaf_pairs;
-    std::uint64_t& limit = search_request.stop.max_evaluations;
-    limit = limit == 0 ? budget : std::min(limit, budget);
-  }
-  SearchResult found = search(space, search_request, memory);
-  if (!found.found && !space.complete) {
-    // Nothing among the leaf pairs met first: every leaf pair, then search again.
-    const std::uint64_t partial = found.evaluations;
-    const std::uint64_t partial_tests = found.witness_tests;
-    sampling.max_leaf_pairs = 0;
-    space = build_feature_space(a, pose_a, b, pose_b, sampling, request.search.seed);
-    out.leaf_pairs = space.leaf_pairs;
-    if (request.evaluations_per_leaf_pair != 0) {
-      std::uint64_t& limit = search_request.stop.max_evaluations;
-      limit = std::max(limit, request.evaluations_per_leaf_pair * space.leaf_pairs);
-    }
-    found = search(space, search_request, memory);
-    found.evaluations += partial;
-    found.witness_tests += partial_tests;
-  }
-  const std::uint64_t pre_evaluations = out.search.evaluations;
-  const std::uint64_t pre_tests = out.search.witness_tests;
-  out.search = found;
-  out.search.evaluations += pre_evaluations;
-  out.search.witness_tests += pre_tests;
-  out.colliding = out.search.found;
-  out.budget_exhausted = !out.colliding && !proves_separate(space, found) &&
-                         (out.search.stop == StopReason::Evaluations ||
-                          out.search.stop == StopReason::Time ||
-                          out.search.stop == StopReason::Iterations);
-  return out;
-}
-
 SearchResult random_collide(const Model& a, const Transform& pose_a, const Model& b,
                             const Transform& pose_b, const SearchRequest& request,
                             const SamplingOptions& sampling) {
-  validate(request);
+  detail::validate_search(request);
   const FeatureSpace space = build_feature_space(a, pose_a, b, pose_b, sampling, request.seed);
   return search(space, request);
 }

@@ -9,15 +9,36 @@
 #include <cmath>
 #include <limits>
 
-namespace antcd::detail {
+#include "random/detect.hpp"
 
+namespace antcd {
+
+std::uint64_t scene_pair_seed(std::uint64_t seed, std::size_t frame, std::uint32_t i,
+                              std::uint32_t j) {
+  return mix_seed(mix_seed(mix_seed(seed) ^ frame) ^ (std::uint64_t{i} << 32 | j));
+}
+
+}  // namespace antcd
+
+namespace antcd::detail {
 namespace {
 
-std::uint64_t pair_seed(const SceneQuery& query, std::size_t frame, const PairSide& a,
-                        const PairSide& b, std::uint64_t round) {
-  const std::uint64_t base =
-      mix_seed(mix_seed(mix_seed(query.seed) ^ frame) ^ (std::uint64_t{a.index} << 32 | b.index));
-  return round == 0 ? base : mix_seed(base ^ round);
+/// Round r > 0 of a frame budget: a derived, unrelated stream.
+std::uint64_t round_seed(std::uint64_t pair_seed, std::uint64_t round) {
+  return round == 0 ? pair_seed : mix_seed(pair_seed ^ round);
+}
+
+DetectRequest pair_request(const SceneQuery& query, const PairSide& a, const PairSide& b,
+                           std::size_t frame) {
+  DetectRequest request = query.random;
+  request.delta = query.delta;
+  request.search.method = query.method;
+  request.search.seed = scene_pair_seed(query.seed, frame, a.index, b.index);
+  // default_delta(a, b), from the radii the scene cached (random.hpp).
+  if (!request.search.centroid_delta) {
+    request.search.centroid_delta = default_delta(a.feature_radius, b.feature_radius);
+  }
+  return request;
 }
 
 }  // namespace
@@ -35,79 +56,54 @@ PairOutcome query_pair(const PairSide& a, const PairSide& b, const SceneQuery& q
   return out;
 }
 
-void random_frame(const std::vector<std::pair<PairSide, PairSide>>& pairs,
-                  const SceneQuery& query, std::size_t frame,
-                  const std::vector<ColonyMemory*>& memory, std::vector<PairOutcome>& out,
-                  const ForEach& for_each) {
+void random_frame(const std::vector<std::pair<PairSide, PairSide>>& pairs, const SceneQuery& query,
+                  std::size_t frame, const std::vector<ColonyMemory*>& memory,
+                  std::vector<PairOutcome>& out, const ForEach& for_each) {
   const std::size_t m = pairs.size();
   out.assign(m, PairOutcome{});
-  const bool all = query.search_all || query.count_feature_truth;
-  const bool witness = query.verdict == Verdict::Witness;
-  std::vector<FeatureSpace> spaces(m);
-  std::vector<char> pending(m, 0);
+  const bool frame_budget = query.frame_evaluations > 0 || query.frame_seconds > 0;
+  std::vector<std::optional<PairDetection>> detections(m);
+  auto result_of = [&](std::size_t k) {
+    const DetectResult r = detections[k]->finish();
+    out[k].colliding = r.colliding;
+    out[k].feature_hits = r.feature_hits;
+    out[k].feature_truth = r.feature_truth;
+    out[k].evaluations = r.spent;
+    out[k].undecided = r.undecided;
+  };
 
-  SearchRequest base;
-  base.method = query.method;
-  base.verdict = query.verdict;
-  base.iterations = query.iterations;
-  base.ant.ants = query.agents;
-  base.ant.scan_covered_spaces = query.scan_covered_spaces;
-  base.pso.particles = query.agents;
-  base.ga.population = query.agents;
-  base.stop.first_hit = !all;
+  // Without a frame budget each pair is random_detect's query, whole.
+  if (!frame_budget) {
+    for_each(m, [&](std::size_t k) {
+      const auto& [a, b] = pairs[k];
+      detections[k].emplace(*a.model, a.pose, *b.model, b.pose, pair_request(query, a, b, frame),
+                            memory.empty() ? nullptr : memory[k]);
+      if (detections[k]->pending()) detections[k]->step(true);
+      result_of(k);
+    });
+    return;
+  }
 
-  // Phase 1, per pair: the memory's witnesses (temporal coherence), then the preliminary
-  // detection at delta and the sampling. A pair without a leaf pair is separate, with no search.
+  // With one, phase 1 (witnesses, preliminary detection, sampling) per pair, then the frame's
+  // budget shared in rounds: each round splits what is left equally over the pairs still
+  // undecided, each of which runs one search step with its share (its colony continuing from its
+  // memory). The split depends only on counts, so the answer is the same at any thread count.
+  const auto start = std::chrono::steady_clock::now();
   for_each(m, [&](std::size_t k) {
     const auto& [a, b] = pairs[k];
-    ColonyMemory* mem = memory.empty() ? nullptr : memory[k];
-    if (mem != nullptr && witness && !all && !mem->witnesses.empty()) {
-      const WitnessCheck check = confirm_witnesses(*a.model, a.pose, *b.model, b.pose,
-                                                   query.delta, *mem, true,
-                                                   query.witness_neighbourhood);
-      out[k].evaluations += check.evaluations;
-      if (check.valid > 0) {
-        out[k].colliding = true;
-        return;
-      }
-    }
-    SamplingOptions sampling;
-    sampling.samples_per_side = static_cast<std::uint32_t>(query.samples_per_side);
-    sampling.delta = query.delta;
-    // default_delta(a, b), from the radii the scene cached (random.hpp).
-    sampling.centroid_delta =
-        query.feature_delta > 0
-            ? query.feature_delta
-            : default_delta(a.feature_radius, b.feature_radius);
-    // A pair left undecided last frame is most likely still a near miss: the partial pass would
-    // only be repeated by the full one.
-    const bool straight_to_full = all || (mem != nullptr && mem->undecided);
-    sampling.max_leaf_pairs = straight_to_full ? 0 : query.first_leaf_pairs;
-    spaces[k] = build_feature_space(*a.model, a.pose, *b.model, b.pose, sampling,
-                                    pair_seed(query, frame, a, b, 0));
-    if (spaces[k].leaf_pairs == 0) {
-      if (mem != nullptr) mem->witnesses.clear();
-      return;
-    }
-    if (query.count_feature_truth) out[k].feature_truth = count_colliding(spaces[k], base.verdict);
-    pending[k] = 1;
+    detections[k].emplace(*a.model, a.pose, *b.model, b.pose, pair_request(query, a, b, frame),
+                          memory.empty() ? nullptr : memory[k]);
   });
-
-  // Phase 2: the searches. Without a frame budget each pair gets its own (evaluations per leaf
-  // pair, and N iterations). With one, the frame's budget is shared in rounds: each round splits
-  // what is left equally over the pairs still undecided, whose colonies continue from their
-  // memory. The split depends only on counts, so the answer is the same at any thread count.
-  const bool frame_budget = query.frame_evaluations > 0 || query.frame_seconds > 0;
-  const auto start = std::chrono::steady_clock::now();
   std::uint64_t left = query.frame_evaluations;
+  // The witness scans of phase 1 count against the frame budget too.
+  for (std::size_t k = 0; k < m; ++k) left -= std::min(left, detections[k]->spent());
   constexpr std::uint64_t kMaxRounds = 8;
   std::vector<std::uint64_t> spent(m, 0);
-  // The witness scans of phase 1 count against the frame budget too.
-  for (std::size_t k = 0; k < m; ++k) left -= std::min(left, out[k].evaluations);
-  for (std::uint64_t round = 0; round < (frame_budget ? kMaxRounds : 1); ++round) {
-    std::vector<std::size_t> todo;
+  std::vector<std::size_t> todo;
+  for (std::uint64_t round = 0; round < kMaxRounds; ++round) {
+    todo.clear();
     for (std::size_t k = 0; k < m; ++k) {
-      if (pending[k] != 0) todo.push_back(k);
+      if (detections[k]->pending()) todo.push_back(k);
     }
     if (todo.empty()) break;
     std::uint64_t share = 0;
@@ -128,62 +124,19 @@ void random_frame(const std::vector<std::pair<PairSide, PairSide>>& pairs,
     for_each(todo.size(), [&](std::size_t t) {
       const std::size_t k = todo[t];
       const auto& [a, b] = pairs[k];
-      SearchRequest request = base;
-      request.seed = pair_seed(query, frame, a, b, round);
-      if (frame_budget) {
-        request.stop.max_evaluations = share;
-        request.stop.max_seconds = seconds;
-        // The frame budget replaces the per-run limit: the colony keeps going (a restart keeps
-        // its pheromone and N_c) until its share is spent.
-        request.restarts = std::numeric_limits<std::uint32_t>::max() - 1;
-      } else if (query.evaluations_per_leaf_pair > 0) {
-        request.stop.max_evaluations = query.evaluations_per_leaf_pair * spaces[k].leaf_pairs;
-      }
-      ColonyMemory* mem = memory.empty() ? nullptr : memory[k];
-      SearchResult found = search(spaces[k], request, mem);
-      // Decided: a witness, or a complete scan of every overlapping leaf pair's triangles (judged
-      // on the space that was searched, before any rebuild below replaces it).
-      bool decided = found.found || proves_separate(spaces[k], found);
-      if (!found.found && !spaces[k].complete) {
-        // Nothing among the leaf pairs met first: every leaf pair, and (without a frame budget)
-        // search again; with one, the next round searches the full space.
-        SamplingOptions sampling;
-        sampling.samples_per_side = static_cast<std::uint32_t>(query.samples_per_side);
-        sampling.delta = query.delta;
-        sampling.centroid_delta = spaces[k].centroid_delta;
-        spaces[k] = build_feature_space(*a.model, a.pose, *b.model, b.pose, sampling,
-                                        pair_seed(query, frame, a, b, 0));
-        if (!frame_budget) {
-          const std::uint64_t partial = found.evaluations;
-          if (query.evaluations_per_leaf_pair > 0) {
-            request.stop.max_evaluations =
-                query.evaluations_per_leaf_pair * spaces[k].leaf_pairs;
-          }
-          found = search(spaces[k], request, mem);
-          decided = found.found || proves_separate(spaces[k], found);
-          found.evaluations += partial;
-        }
-      }
-      spent[k] = found.evaluations;
-      out[k].evaluations += found.evaluations;
-      out[k].feature_hits += found.hits.size();
-      if (found.found) out[k].colliding = true;
-      // A verdict needs one witness; collecting them all (search_all) takes one round.
-      if (decided || all || !frame_budget) pending[k] = 0;
-      if (!decided && !frame_budget) out[k].undecided = true;
+      DetectRequest& request = detections[k]->request();
+      request.search.seed = round_seed(scene_pair_seed(query.seed, frame, a.index, b.index), round);
+      // The frame budget replaces the per-leaf-pair limit: the colony keeps going (a restart
+      // keeps its pheromone and N_c) until its share is spent.
+      request.evaluations_per_leaf_pair = 0;
+      request.search.stop.max_evaluations = share;
+      request.search.stop.max_seconds = seconds;
+      request.search.restarts = std::numeric_limits<std::uint32_t>::max() - 1;
+      spent[k] = detections[k]->step(false);
     });
     for (const std::size_t k : todo) left -= std::min(left, spent[k]);
   }
-  for (std::size_t k = 0; k < m; ++k) {
-    if (pending[k] != 0 || (all && frame_budget && !out[k].colliding && spaces[k].leaf_pairs > 0)) {
-      out[k].undecided = true;
-    }
-    // The hint for the next frame: leaves overlapped and no witness (undecided, or proven
-    // separate by a scan); either way a near miss, whose next contact is a new one.
-    if (!memory.empty() && memory[k] != nullptr) {
-      memory[k]->undecided = !out[k].colliding && spaces[k].leaf_pairs > 0;
-    }
-  }
+  for (std::size_t k = 0; k < m; ++k) result_of(k);
 }
 
 }  // namespace antcd::detail

@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <utility>
 #include <vector>
 
@@ -33,11 +34,10 @@ PairOutcome query_pair(const PairSide& a, const PairSide& b, const SceneQuery& q
 /// Calls body(k) for k in [0, count), possibly in parallel.
 using ForEach = std::function<void(std::size_t, const std::function<void(std::size_t)>&)>;
 
-/// Runs a random method on every candidate pair of a frame (section 4's flow, per pair: the
-/// memory's witnesses, preliminary detection at delta, sampling, search; with a frame budget,
-/// shared in rounds). `memory` is empty or holds one ColonyMemory per pair. Deterministic:
-/// each pair's random stream depends on (query.seed, frame, a.index, b.index, round) and its
-/// memory only.
+/// Runs a random method on every candidate pair of a frame: random_detect's query per pair
+/// (random/detect.hpp), whole, or with a frame budget in steps that share the budget in rounds.
+/// `memory` is empty or holds one ColonyMemory per pair. Deterministic: each pair's random stream
+/// depends on (query.seed, frame, a.index, b.index, round) and its memory only.
 void random_frame(const std::vector<std::pair<PairSide, PairSide>>& pairs,
                   const SceneQuery& query, std::size_t frame,
                   const std::vector<ColonyMemory*>& memory, std::vector<PairOutcome>& out,

@@ -17,6 +17,7 @@
 #include <mutex>
 #include <stdexcept>
 
+#include "random/detect.hpp"
 #include "scene/pair_query.hpp"
 
 namespace antcd {
@@ -105,20 +106,10 @@ FrameResult Scene::run_frame(std::size_t frame, const SceneQuery& query,
                         std::string(method_name(query.method)));
   }
   if (query.method != Method::Exact && query.method != Method::SphereObb) {
-    if (query.iterations < 1) throw ArgumentError("iterations must be at least 1");
-    if (query.samples_per_side < 1 || query.samples_per_side > UINT32_MAX) {
-      throw ArgumentError("samples per side must be between 1 and 4294967295");
-    }
-    const std::uint32_t min_agents = query.method == Method::Ga ? 2 : 1;
-    if (query.method != Method::Exhaustive && query.agents < min_agents) {
-      throw ArgumentError(std::string(method_name(query.method)) + " needs at least " +
-                          std::to_string(min_agents) + (min_agents == 1 ? " agent" : " agents") +
-                          " (ants, particles or population)");
-    }
-    if (!std::isfinite(query.feature_delta)) throw ArgumentError("feature delta must be finite");
-    if (query.verdict != Verdict::Witness && query.verdict != Verdict::PaperCentroid) {
-      throw ArgumentError("unknown verdict");
-    }
+    DetectRequest request = query.random;
+    request.delta = query.delta;
+    request.search.method = query.method;
+    detail::validate_detect(request, "scene query");
     if (!(query.frame_seconds >= 0) || !std::isfinite(query.frame_seconds)) {
       throw ArgumentError("frame seconds must be finite and >= 0");
     }

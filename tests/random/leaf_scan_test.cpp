@@ -118,7 +118,7 @@ TEST(LeafScan, ProvenSeparationAgreesWithCollide) {
           if (det.colliding) {
             EXPECT_TRUE(truth);
             ++colliding;
-          } else if (!det.budget_exhausted && !det.no_leaf_pair) {
+          } else if (!det.undecided && !det.no_leaf_pair) {
             EXPECT_TRUE(det.search.scanned);
             EXPECT_FALSE(truth);
             ++proven;

@@ -219,10 +219,10 @@ TEST(Concurrency, SceneFramesFromManyThreadsMatchSingleThreaded) {
     SceneQuery q;
     q.method = m;
     q.seed = 3;
-    q.samples_per_side = 100;
-    q.iterations = 10;
-    q.agents = 20;
-    q.search_all = m == Method::Pso;
+    q.random.samples_per_side = 100;
+    q.random.search.iterations = 10;
+    q.random.search.set_agents(20);
+    q.random.all_witnesses = m == Method::Pso;
     jobs.push_back({q, {}});
   }
   std::size_t pairs = 0;

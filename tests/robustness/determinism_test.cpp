@@ -41,12 +41,12 @@ SceneQuery query_for(Method method, std::uint64_t seed, bool search_all) {
   SceneQuery q;
   q.method = method;
   q.seed = seed;
-  q.samples_per_side = 150;
-  q.iterations = 15;
-  q.agents = 20;
-  q.search_all = search_all;
+  q.random.samples_per_side = 150;
+  q.random.search.iterations = 15;
+  q.random.search.set_agents(20);
+  q.random.all_witnesses = search_all;
   // Pinned rather than the default, so that tuning the default does not move the goldens.
-  q.evaluations_per_leaf_pair = 64;
+  q.random.evaluations_per_leaf_pair = 64;
   return q;
 }
 
@@ -87,7 +87,7 @@ TEST(Determinism, SameSeedSameFramesAcrossRunsAndThreadCounts) {
     for (const bool search_all : {false, true}) {
       if (search_all && (m == Method::Exact || m == Method::SphereObb)) continue;
       SceneQuery q = query_for(m, 17, search_all);
-      q.count_feature_truth = search_all && m == Method::Maco;
+      q.random.count_truth = search_all && m == Method::Maco;
       const std::string what =
           std::string(method_name(m)) + (search_all ? " search_all" : " first hit");
       const std::vector<FrameResult> reference = run_all(scene, q, 1);

@@ -1,12 +1,14 @@
 // The scene engine against an all-pairs brute-force run, across methods and thread counts.
 #include <antcd/collide.hpp>
 #include <antcd/io.hpp>
+#include <antcd/random.hpp>
 #include <antcd/scene.hpp>
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <limits>
+#include <map>
 #include <random>
 #include <string>
 
@@ -98,8 +100,8 @@ TEST(Scene, ThreadsDoNotChangeAnyMethodsAnswer) {
     SceneQuery q;
     q.method = m;
     q.seed = 99;
-    q.samples_per_side = 200;
-    q.iterations = 20;
+    q.random.samples_per_side = 200;
+    q.random.search.iterations = 20;
     for (std::size_t f = 0; f < 6; ++f) {
       q.threads = 1;
       const FrameResult one = scene.run_frame(f, q);
@@ -135,9 +137,9 @@ TEST(Scene, RandomMethodsOnlyReportCandidatePairsAndAreSeeded) {
   SceneQuery q;
   q.method = Method::Maco;
   q.seed = 7;
-  q.count_feature_truth = true;
-  q.samples_per_side = 400;
-  q.iterations = 40;
+  q.random.count_truth = true;
+  q.random.samples_per_side = 400;
+  q.random.search.iterations = 40;
   for (std::size_t f = 0; f < 4; ++f) {
     const FrameResult a = scene.run_frame(f, q);
     const FrameResult b = scene.run_frame(f, q);
@@ -186,20 +188,20 @@ TEST(Scene, RejectsBadQueriesAndFrames) {
   };
   SceneQuery r;
   r.method = Method::Ga;
-  r.agents = 1;
-  expect_refused(r, "at least 2");
+  r.random.search.set_agents(1);
+  expect_refused(r, "scene query: ga.population must be >= 2");
   r.method = Method::Maco;
-  r.agents = 0;
-  expect_refused(r, "at least 1");
-  r.agents = 60;
-  r.iterations = 0;
+  r.random.search.set_agents(0);
+  expect_refused(r, "scene query: ant.ants must be >= 1");
+  r.random.search.set_agents(60);
+  r.random.search.iterations = 0;
   expect_refused(r, "iterations");
-  r.iterations = 100;
-  r.samples_per_side = 0;
+  r.random.search.iterations = 100;
+  r.random.samples_per_side = 0;
   expect_refused(r, "samples");
-  r.samples_per_side = 1000;
-  r.feature_delta = std::numeric_limits<Scalar>::infinity();
-  expect_refused(r, "feature delta");
+  r.random.samples_per_side = 1000;
+  r.random.search.centroid_delta = std::numeric_limits<Scalar>::infinity();
+  expect_refused(r, "centroid_delta must be finite and > 0");
 }
 
 // A verdict needs one colliding feature pair: stopping at the first hit (the default) and running
@@ -210,11 +212,11 @@ TEST(Scene, RandomVerdictsDoNotDependOnSearchingToTheEnd) {
   for (const Method m : {Method::Aco, Method::Maco, Method::Pso}) {
     SceneQuery first;
     first.method = m;
-    first.samples_per_side = 200;
-    first.iterations = 20;
-    first.agents = 10;
+    first.random.samples_per_side = 200;
+    first.random.search.iterations = 20;
+    first.random.search.set_agents(10);
     SceneQuery all = first;
-    all.search_all = true;
+    all.random.all_witnesses = true;
     std::size_t candidates = 0;
     for (std::size_t f = 0; f < 3; ++f) {
       const FrameResult a = scene.run_frame(f, first);
@@ -264,6 +266,63 @@ TEST(Scene, MemoryAndFrameBudgetAreDeterministicAndSound) {
       EXPECT_LE(one.pairs.size() + one.undecided.size(), one.candidates.size());
     }
     EXPECT_GT(one_memory.size(), 0u);
+  }
+}
+
+}  // namespace
+}  // namespace antcd
+
+namespace antcd {
+namespace {
+
+// `antcd run --method maco` (Scene::run_frame with a SceneMemory, as shared::run_scene calls it)
+// and random_detect are one implementation: per candidate pair, random_detect with the scene's
+// request, the pair's seed and the pair's own memory gives the same verdict, the same undecided
+// flag and the same evaluations, frame after frame.
+TEST(Scene, RandomRunIsRandomDetectPerPair) {
+  const auto dir = test::fresh_temp_dir("scene_detect_parity");
+  const Scene scene(small_scene(dir, 24, 8, 31));
+  for (const Method m : {Method::Maco, Method::Aco, Method::Pso}) {
+    SceneQuery q;
+    q.method = m;
+    q.seed = 5;
+    q.random.samples_per_side = 300;
+    q.random.search.iterations = 30;
+    q.random.evaluations_per_leaf_pair = m == Method::Pso ? 0 : 16;
+    SceneMemory memory;
+    std::map<std::pair<std::uint32_t, std::uint32_t>, ColonyMemory> own;
+    std::size_t checked = 0;
+    std::size_t colliding = 0;
+    for (std::size_t f = 0; f < 8; ++f) {
+      const FrameResult r = scene.run_frame(f, q, &memory);
+      std::uint64_t evaluations = 0;
+      for (const auto& [i, j] : r.candidates) {
+        DetectRequest request = q.random;
+        request.search.method = m;
+        request.delta = q.delta;
+        request.search.seed = scene_pair_seed(q.seed, f, i, j);
+        const auto& objects = scene.description().objects;
+        const std::pair<std::uint32_t, std::uint32_t> key{i, j};
+        ColonyMemory& mine = own[key];
+        const DetectResult d = random_detect(scene.model_of(i), objects[i].pose(f),
+                                             scene.model_of(j), objects[j].pose(f), request, &mine);
+        const bool in_pairs = std::binary_search(r.pairs.begin(), r.pairs.end(), key);
+        const bool in_undecided =
+            std::find(r.undecided.begin(), r.undecided.end(), key) != r.undecided.end();
+        EXPECT_EQ(d.colliding, in_pairs) << method_name(m) << " frame " << f << " " << i << "-" << j;
+        EXPECT_EQ(d.undecided, in_undecided) << method_name(m) << " frame " << f;
+        const ColonyMemory* kept = memory.find(i, j);
+        ASSERT_NE(kept, nullptr);
+        EXPECT_EQ(kept->witnesses, mine.witnesses);
+        EXPECT_EQ(kept->iterations, mine.iterations);
+        evaluations += d.spent;
+        colliding += d.colliding ? 1 : 0;
+        ++checked;
+      }
+      EXPECT_EQ(evaluations, r.evaluations) << method_name(m) << " frame " << f;
+    }
+    EXPECT_GT(checked, 20u) << method_name(m);
+    EXPECT_GT(colliding, 3u) << method_name(m);
   }
 }
 

@@ -86,7 +86,7 @@ TEST(RunScene, LeafScanDecidesEveryPairAndTheJsonSaysSo) {
   SceneQuery maco;
   maco.method = Method::Maco;
   const RunResult scanned = run_scene(scene, maco, "line");
-  maco.scan_covered_spaces = false;
+  maco.random.search.ant.scan_covered_spaces = false;
   const RunResult colony = run_scene(scene, maco, "line");
   EXPECT_TRUE(scanned.leaf_scan);
   EXPECT_FALSE(colony.leaf_scan);
@@ -105,7 +105,7 @@ TEST(RunScene, LeafScanDecidesEveryPairAndTheJsonSaysSo) {
     SceneQuery q;
     q.method = Method::Maco;
     q.frame_evaluations = budget;
-    q.first_leaf_pairs = 1;  // partial spaces of one leaf pair: most contacts lie beyond
+    q.random.first_leaf_pairs = 1;  // partial spaces of one leaf pair: most contacts lie beyond
     const RunResult r = run_scene(scene, q, "line");
     for (std::size_t f = 0; f < truth.frames.size(); ++f) {
       std::set<NamePair> open(r.frames[f].pairs.begin(), r.frames[f].pairs.end());
