@@ -74,6 +74,8 @@ std::uint32_t third(const TriangleIndices& t, std::uint32_t u, std::uint32_t v) 
   return t[0];
 }
 
+}  // namespace
+
 Scalar signed_volume6(const Mesh& mesh) {
   Scalar vol = 0;
   for (const TriangleIndices& t : mesh.triangles) {
@@ -81,8 +83,6 @@ Scalar signed_volume6(const Mesh& mesh) {
   }
   return vol;
 }
-
-}  // namespace
 
 std::size_t ConvexPolytope::support_index(const Vec3& n, std::size_t start) const {
   std::size_t cur = start;

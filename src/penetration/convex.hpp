@@ -37,6 +37,9 @@ struct ConvexPolytope {
   [[nodiscard]] Scalar plane_margin(const Vec3& p) const;
 };
 
+/// Six times the signed volume enclosed by the mesh (its sign: + outward, - inward orientation).
+Scalar signed_volume6(const Mesh& mesh);
+
 /// Whether a closed model is convex (every edge convex, heights within 1e-10 of its size count
 /// as flat, one connected piece); when it is and `out` is not null, fills `out` with the model
 /// posed by `pose`. The model-frame analysis is done once per Model (its cache, under a

@@ -8,6 +8,8 @@
 // step when none improves.
 #include "penetration/inside_point.hpp"
 
+#include "penetration/convex.hpp"
+
 #include <antcd/collide.hpp>
 #include <antcd/points.hpp>
 
@@ -25,14 +27,6 @@ constexpr int kGrid = 10;                          // grid seeds per axis
 constexpr std::size_t kAscents = 4;                // best seeds refined
 constexpr int kAscentSteps = 60;
 constexpr std::size_t kContactSeeds = 64;  // surface crossings used as seeds
-
-Scalar volume_sign(const Mesh& mesh) {
-  Scalar vol = 0;
-  for (const TriangleIndices& t : mesh.triangles) {
-    vol += mesh.vertices[t[0]].dot(mesh.vertices[t[1]].cross(mesh.vertices[t[2]]));
-  }
-  return vol < 0 ? -1 : 1;
-}
 
 std::vector<Vec3> every_nth(std::span<const Vec3> points, std::size_t limit) {
   const std::size_t stride = std::max<std::size_t>(1, (points.size() + limit - 1) / limit);
@@ -122,8 +116,8 @@ void DepthProbe::contact_seeds(std::vector<Vec3>& seeds) const {
     const Vec3 n = (m.mesh().vertices[tri[1]] - p0).cross(m.mesh().vertices[tri[2]] - p0);
     return Vec3(sign * pose.apply_vector(n).normalized());
   };
-  const Scalar sign_a = volume_sign(a_.mesh());
-  const Scalar sign_b = volume_sign(b_.mesh());
+  const Scalar sign_a = (signed_volume6(a_.mesh()) < 0 ? -1.0 : 1.0);
+  const Scalar sign_b = (signed_volume6(b_.mesh()) < 0 ? -1.0 : 1.0);
   const Scalar size = std::min(a_.root().radius, b_.root().radius);
   for (const Contact& c : r.contacts) {
     const Vec3 in =
