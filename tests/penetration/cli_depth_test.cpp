@@ -62,17 +62,12 @@ TEST_F(CliDepth, SignedDistanceAndErrors) {
       run({"distance", "box.obj", "box.obj", "--pose-b", "1.7,0.3,0.2", "--signed", "--json"});
   ASSERT_EQ(d.exit_code, 0) << d.err;
   EXPECT_NEAR(nlohmann::json::parse(d.out)["distance"].get<double>(), -0.3, 1e-12);
-  const test::CliRun u =
-      run({"distance", "box.obj", "box.obj", "--pose-b", "1.7,0.3,0.2", "--json"});
-  EXPECT_EQ(nlohmann::json::parse(u.out)["distance"].get<double>(), 0);
 
   const test::CliRun open = run({"depth", "open.obj", "box.obj"});
   EXPECT_EQ(open.exit_code, 2);
   EXPECT_NE(open.err.find("error: "), std::string::npos);
   EXPECT_NE(open.err.find("open.obj"), std::string::npos) << open.err;
   EXPECT_NE(open.err.find("not closed"), std::string::npos) << open.err;
-  const test::CliRun bad = run({"depth", "box.obj", "box.obj", "--rel-tolerance", "1.5"});
-  EXPECT_EQ(bad.exit_code, 2);
   const test::CliRun shape = run({"depth", "box.obj", "box.obj", "--shape", "round"});
   EXPECT_EQ(shape.exit_code, 2);
   EXPECT_NE(shape.err.find("--shape"), std::string::npos);
