@@ -79,7 +79,7 @@ struct SamplingOptions {
   /// The centroid threshold delta_c of Verdict::PaperCentroid (finite, > 0: it is also the
   /// colony's length unit). Unset: default_delta(a, b). It does not widen the preliminary
   /// detection.
-  std::optional<Scalar> centroid_delta;
+  std::optional<Scalar> centroid_delta = std::nullopt;
   FeatureOrder order = FeatureOrder::Leaf;
   /// Stop the preliminary detection after this many leaf pairs (0 = all). The traversal then
   /// visits the nearer children first, so the space holds the leaf pairs met first; a search that
@@ -312,7 +312,7 @@ struct SearchRequest {
   Verdict verdict = Verdict::Witness;
   /// Centroid threshold of Verdict::PaperCentroid (finite, > 0). Unset: the space's
   /// FeatureSpace::centroid_delta. (Witness uses the space's delta.)
-  std::optional<Scalar> centroid_delta;
+  std::optional<Scalar> centroid_delta = std::nullopt;
   /// N: iterations (generations) of one run; also the N of Eq. 11. Exhaustive and Grid ignore it.
   std::uint32_t iterations = 100;
   /// Further runs when a run ends its N iterations without meeting another stop criterion. PSO and
