@@ -47,6 +47,7 @@ CLI::Validator positive_finite();
 /// Registers the subcommands; each returns its exit code through the callback's `code`.
 void add_collide_command(CLI::App& app, int& code);
 void add_distance_command(CLI::App& app, int& code);
+void add_depth_command(CLI::App& app, int& code);
 void add_points_command(CLI::App& app, int& code);
 void add_info_command(CLI::App& app, int& code);
 void add_demo_command(CLI::App& app, int& code);

@@ -23,6 +23,7 @@ struct DistanceOptions {
   double abs_tolerance = 0;
   double rel_tolerance = 0;
   bool json = false;
+  bool signed_distance = false;
   std::uint32_t leaf_size = 4;
   std::string covariance = "area";
 };
@@ -44,6 +45,7 @@ int run_distance(const DistanceOptions& o) {
   request.upper_bound = o.upper_bound;
   request.abs_tolerance = o.abs_tolerance;
   request.rel_tolerance = o.rel_tolerance;
+  request.signed_distance = o.signed_distance;
   const auto start = std::chrono::steady_clock::now();
   const DistanceResult r = distance(a, pa, b, pb, request);
   const double query_ms =
@@ -58,6 +60,7 @@ int run_distance(const DistanceOptions& o) {
     j["distance"] = found ? nlohmann::json(r.distance) : nlohmann::json(nullptr);
     j["lower_bound"] = r.lower_bound;
     j["intersecting"] = r.intersecting;
+    j["signed"] = o.signed_distance;
     j["approximate"] = r.approximate;
     j["beyond_upper_bound"] = r.beyond_upper_bound;
     j["upper_bound"] =
@@ -80,9 +83,10 @@ int run_distance(const DistanceOptions& o) {
                 o.upper_bound, r.lower_bound);
   } else {
     std::printf("distance: %.17g%s\n", r.distance,
-                r.intersecting ? " (surfaces intersect)"
-                : r.approximate ? " (approximate)"
-                                : "");
+                r.distance < 0   ? " (solids overlap: minus the penetration depth)"
+                : r.intersecting ? " (surfaces intersect)"
+                : r.approximate  ? " (approximate)"
+                                 : "");
     if (r.approximate) std::printf("lower bound: %.17g\n", r.lower_bound);
     std::printf("closest point on A: %.17g %.17g %.17g (triangle %u)\n", r.point_a.x(),
                 r.point_a.y(), r.point_a.z(), r.triangle_a);
@@ -99,8 +103,8 @@ int run_distance(const DistanceOptions& o) {
 
 void add_distance_command(CLI::App& app, int& code) {
   auto opts = std::make_shared<DistanceOptions>();
-  CLI::App* cmd =
-      app.add_subcommand("distance", "Minimum distance and closest points between two posed meshes");
+  CLI::App* cmd = app.add_subcommand(
+      "distance", "Minimum distance and closest points between two posed meshes");
   cmd->add_option("A", opts->mesh_a, "First mesh file (OBJ, STL, PLY, OFF, glTF, ...)")->required();
   cmd->add_option("B", opts->mesh_b, "Second mesh file")->required();
   cmd->add_option("--pose-a", opts->pose_a, "Pose of A: tx,ty,tz[,qw,qx,qy,qz] (world frame)");
@@ -126,6 +130,10 @@ void add_distance_command(CLI::App& app, int& code) {
   cmd->add_option("--rel-tolerance", opts->rel_tolerance,
                   "Accept an answer this fraction above the minimum (0 <= value < 1)")
       ->check(non_negative_finite());
+  cmd->add_flag(
+      "--signed", opts->signed_distance,
+      "Signed distance of two closed meshes: -(penetration depth) when the solids overlap "
+      "(antcd depth)");
   cmd->add_flag("--json", opts->json, "Print the result as JSON");
   cmd->add_option("--leaf-size", opts->leaf_size, "Triangles per leaf of the hierarchy")
       ->check(CLI::Range(1, 1 << 20));

@@ -42,6 +42,7 @@ int main(int argc, char** argv) {
   int code = 0;
   antcd::cli::add_collide_command(app, code);
   antcd::cli::add_distance_command(app, code);
+  antcd::cli::add_depth_command(app, code);
   antcd::cli::add_points_command(app, code);
   antcd::cli::add_info_command(app, code);
   antcd::cli::add_demo_command(app, code);

@@ -13,16 +13,19 @@ distance and, on request, the name(s) of the closest object(s) (a name; a 2-tupl
 order; a (this, other) tuple) and a ``DistanceData`` with the closest point and face index per name.
 
 The objects live in an ``antcd`` World (a dynamic AABB tree over the objects' boxes, exact
-triangle tests behind it); minimum distances are exact surface distances (``antcd.distance``)
-searched over object pairs in order of the gap between their boxes.
+triangle tests behind it); minimum distances (``antcd.distance``: signed for two closed meshes,
+the surface distance otherwise) are searched over object pairs in order of the gap between their
+boxes.
 
 Differences from trimesh/FCL, all documented on the methods: meshes may be ``antcd.Model``s
 (shared, built once), trimesh meshes, or ``(vertices, faces)`` pairs; collision means the surfaces
-share a point (touching counts, a mesh entirely inside another does not collide); a contact's
-``depth`` is NaN because antcd does not compute penetration depth (``distance`` is 0 for
-intersecting triangles); a minimum distance is never negative (0 when surfaces meet, where FCL's
-signed distance may be negative) and is ``inf`` with the names and data ``None`` when there is no
-pair to measure.
+share a point (touching counts) or, for closed meshes, that one lies wholly inside the other
+(FCL reports the nested case only for its convex shapes); contacts (``ContactData``) are FCL's:
+one per pair with the solids' penetration depth for convex pairs (and nested ones), one per
+triangle pair with that pair's depth otherwise; a minimum distance between two closed meshes is
+signed like FCL's (minus the penetration depth of overlapping solids, nested ones included),
+between open meshes the surface distance (never negative); it is ``inf`` with the names and data
+``None`` when there is no pair to measure.
 """
 from __future__ import annotations
 
@@ -58,24 +61,36 @@ def _unit_normals(model: Model, pose: np.ndarray, triangles: np.ndarray) -> np.n
 
 
 class ContactData:
-    """One contact: a pair of colliding triangles of two named objects.
+    """One contact between two named objects.
 
     ``names`` is the set of the two names; ``index(name)`` the face index of that object's
-    triangle; ``point`` a world-frame point both triangles share (or, with a collision threshold,
-    the midpoint of their closest points); ``normal`` the world-frame unit normal of the first
-    object's triangle (its winding order); ``distance`` the triangle distance (0 when they
-    intersect); ``depth`` NaN: antcd does not compute penetration depth.
+    triangle (-1 for a solid contact); ``point`` a world-frame point; ``normal`` a world-frame
+    unit normal; ``depth`` a penetration depth; ``distance`` the triangle distance.
+
+    Two kinds, as FCL gives them (trimesh's manager on python-fcl):
+
+    - Two convex meshes, or a closed mesh wholly inside another: ONE contact per pair, for the
+      solids (antcd.penetration): ``depth`` the solids' penetration depth, ``normal`` the unit
+      direction in which to move the first-named object by ``depth`` to separate them, ``point``
+      the midpoint of the two surface points that meet after that move (convex), or a point inside
+      both (nested). ``index`` is -1 for both names.
+    - Otherwise one contact per colliding triangle pair: ``point`` a point both triangles share
+      (or, with a collision threshold, the midpoint of their closest points), ``normal`` the unit
+      normal of the first object's triangle (its winding order), ``depth`` that TRIANGLE PAIR's
+      penetration depth (FCL's mesh semantics; not the solids' depth), ``distance`` 0 when they
+      intersect.
     """
 
-    __slots__ = ("names", "_inds", "_point", "_normal", "_distance")
+    __slots__ = ("names", "_inds", "_point", "_normal", "_distance", "_depth")
 
     def __init__(self, names: tuple[str, str], triangles: tuple[int, int], point: np.ndarray,
-                 normal: np.ndarray, distance: float) -> None:
+                 normal: np.ndarray, distance: float, depth: float = math.nan) -> None:
         self.names = set(names)
         self._inds = {names[0]: int(triangles[0]), names[1]: int(triangles[1])}
         self._point = point
         self._normal = normal
         self._distance = float(distance)
+        self._depth = float(depth)
 
     @property
     def point(self) -> np.ndarray:
@@ -84,21 +99,21 @@ class ContactData:
 
     @property
     def normal(self) -> np.ndarray:
-        """(3,) float: unit normal of the first object's triangle, world frame."""
+        """(3,) float: unit normal, world frame (see the class documentation)."""
         return self._normal
 
     @property
     def depth(self) -> float:
-        """Penetration depth: NaN, antcd does not compute it (see ``distance``)."""
-        return math.nan
+        """Penetration depth: of the solids (convex or nested pair) or of the triangle pair."""
+        return self._depth
 
     @property
     def distance(self) -> float:
-        """Distance between the two triangles (0 when they intersect)."""
+        """Distance between the two triangles (0 when they intersect or for a solid contact)."""
         return self._distance
 
     def index(self, name: str) -> int:
-        """Face index of the triangle in contact on the object called ``name``."""
+        """Face index of the triangle in contact on the object called ``name`` (-1: solid)."""
         return self._inds[name]
 
     def __repr__(self) -> str:
@@ -145,13 +160,36 @@ class DistanceData:
         return f"<antcd.DistanceData {sorted(self.names)} distance={self._distance!r}>"
 
 
-def _contacts(names: tuple[str, str], model: Model, pose: np.ndarray,
+def _contacts(names: tuple[str, str], model: Model, pose: Any, other: Model, other_pose: Any,
               result: CollisionResult) -> Iterable[ContactData]:
+    """The contacts of a colliding pair (see ContactData): one solid contact for a convex pair or
+    a nested one (no surface contact), else one per triangle pair."""
+    if len(result) == 0 or (_antcd.is_convex(model) and _antcd.is_convex(other)):
+        yield _solid_contact(names, model, pose, other, other_pose)
+        return
     ta, tb = result.triangles_a, result.triangles_b
-    points, distances = result.points, result.distances
-    normals = _unit_normals(model, pose, ta)
+    points, distances, depths = result.points, result.distances, result.depths
+    normals = _unit_normals(model, _as_matrix(pose), ta)
     for k in range(len(ta)):
-        yield ContactData(names, (ta[k], tb[k]), points[k], normals[k], distances[k])
+        yield ContactData(names, (ta[k], tb[k]), points[k], normals[k], distances[k], depths[k])
+
+
+def _solid_contact(names: tuple[str, str], model: Model, pose: Any, other: Model,
+                   other_pose: Any) -> ContactData:
+    r = _antcd.penetration(model, pose, other, other_pose)
+    point = 0.5 * (r.point_a + r.point_b) if r.exact else r.witness
+    return ContactData(names, (-1, -1), point, r.direction, 0.0, r.upper)
+
+
+def _as_matrix(pose: Any) -> np.ndarray:
+    if pose is None:
+        return np.eye(4)
+    if isinstance(pose, (tuple, list)) and len(pose) == 2:
+        m = np.eye(4)
+        m[:3, :3] = np.asarray(pose[0], dtype=float)
+        m[:3, 3] = np.asarray(pose[1], dtype=float)
+        return m
+    return np.asarray(pose, dtype=float)
 
 
 def _answer(result: Any, names: Any, data: Any, return_names: bool, return_data: bool) -> Any:
@@ -192,6 +230,8 @@ class CollisionManager:
         # id -> name. Ids are never reused and entries are kept after removal, so a query racing a
         # removal in another thread can still name what it found.
         self._names: dict[int, str] = {}
+        # name -> (model, pose) for queries on one named object (min_distance_internal(name=)).
+        self._posed: dict[str, tuple[Model, Any]] = {}
 
     def add_object(self, name: str, mesh: Any, transform: Any = None) -> Model:
         """Adds (or, for a name already present, replaces) an object.
@@ -208,6 +248,7 @@ class CollisionManager:
             self._world.remove(old_id)
         self._ids[name] = new_id
         self._names[new_id] = name
+        self._posed[name] = (model, np.eye(4) if transform is None else transform)
         return model
 
     def remove_object(self, name: str) -> None:
@@ -215,6 +256,7 @@ class CollisionManager:
         if name not in self._ids:
             raise ValueError(f"{name} not in collision manager!")
         self._world.remove(self._ids.pop(name))
+        del self._posed[name]
 
     def set_transform(self, name: str, transform: Any) -> None:
         """Replaces an object's pose; ValueError if there is none by that name or the transform
@@ -222,6 +264,7 @@ class CollisionManager:
         if name not in self._ids:
             raise ValueError(f"{name} not in collision manager!")
         self._world.set_pose(self._ids[name], transform)
+        self._posed[name] = (self._posed[name][0], transform)
 
     def in_collision_single(self, mesh: Any, transform: Any = None, return_names: bool = False,
                             return_data: bool = False) -> Any:
@@ -238,7 +281,8 @@ class CollisionManager:
             name = self._names[object_id]
             names.add(name)
             if return_data:
-                data.extend(_contacts((name, "__external"), object_model, object_pose, result))
+                data.extend(_contacts((name, "__external"), object_model, object_pose, model,
+                                      transform, result))
         return _answer(bool(hits), names, data, return_names, return_data)
 
     def in_collision_internal(self, return_names: bool = False, return_data: bool = False) -> Any:
@@ -278,14 +322,42 @@ class CollisionManager:
                 data = DistanceData((name, "__external"), result)
         return _answer(_distance_of(nearest), name, data, return_name, return_data)
 
-    def min_distance_internal(self, return_names: bool = False, return_data: bool = False) -> Any:
-        """Minimum distance between any two objects.
+    def min_distance_internal(self, return_names: bool = False, return_data: bool = False,
+                              name: str | None = None) -> Any:
+        """Minimum distance between any two objects, or (name, as trimesh >= 4.10) between the
+        object called ``name`` and any other (ValueError if there is none by that name).
 
-        Returns the distance, plus (return_names) the 2-tuple of the closest objects' names in
-        alphabetical order and (return_data) a DistanceData. Fewer than two objects: inf and None.
+        Signed for two closed meshes: minus their penetration depth when the solids overlap
+        (``antcd.penetration``; nested ones included). Returns the distance, plus (return_names)
+        the 2-tuple of the closest objects' names in alphabetical order and (return_data) a
+        DistanceData. Fewer than two objects: inf and None.
         """
+        if name is not None:
+            return self._min_distance_named(name, return_names, return_data)
         nearest = self._world.distance_internal()
         return self._closest(nearest, self, return_names, return_data, sort_names=True)
+
+    def _min_distance_named(self, name: str, return_names: bool, return_data: bool) -> Any:
+        if name not in self._ids:
+            raise ValueError(f"{name} not in collision manager!")
+        model, pose = self._posed[name]
+        best = None
+        for other in sorted(self._ids):
+            if other == name:
+                continue
+            other_model, other_pose = self._posed[other]
+            try:  # signed for two closed meshes; an open one is a ValueError: surface distance
+                result = _antcd.distance(model, pose, other_model, other_pose, signed=True)
+            except ValueError:
+                result = _antcd.distance(model, pose, other_model, other_pose)
+            if best is None or result.distance < best[1].distance:
+                best = (other, result)
+        if best is None:
+            return _answer(math.inf, None, None, return_names, return_data)
+        other, result = best
+        names = tuple(sorted((name, other)))
+        data = DistanceData((name, other), result) if return_data else None
+        return _answer(float(result.distance), names, data, return_names, return_data)
 
     def min_distance_other(self, other_manager: "CollisionManager", return_names: bool = False,
                            return_data: bool = False) -> Any:
@@ -318,7 +390,8 @@ class CollisionManager:
             pair = (self._names[id_a], other._names[id_b])
             names.add(tuple(sorted(pair)) if sort_names else pair)
             if return_data:
-                data.extend(_contacts(pair, model_a, pose_a, result))
+                model_b, pose_b = other._posed[pair[1]]
+                data.extend(_contacts(pair, model_a, pose_a, model_b, pose_b, result))
         return _answer(bool(hits), names, data, return_names, return_data)
 
     def __len__(self) -> int:

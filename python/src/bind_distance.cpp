@@ -19,7 +19,8 @@ void bind_distance(py::module_& m) {
       "The answer of distance(): the minimum distance between two models' surfaces, the triangles "
       "and world-frame points where it is reached.")
       .def_readonly("distance", &DistanceResult::distance,
-                    "Minimum surface distance (0 when the surfaces meet; never negative). With "
+                    "Minimum surface distance (0 when the surfaces meet; negative only for signed=True: minus "
+                    "the solids' penetration depth). With "
                     "beyond_upper_bound, only the closest pair seen (possibly inf).")
       .def_readonly("lower_bound", &DistanceResult::lower_bound, "A proven lower bound of the distance.")
       .def_property_readonly(
@@ -51,7 +52,7 @@ void bind_distance(py::module_& m) {
   m.def(
       "distance",
       [](const Model& a, const py::handle pose_a, const Model& b, const py::handle pose_b,
-         double upper_bound, double abs_tolerance, double rel_tolerance) {
+         double upper_bound, double abs_tolerance, double rel_tolerance, bool signed_distance) {
         const Transform pa = to_transform(pose_a, "pose_a");
         const Transform pb = to_transform(pose_b, "pose_b");
         if (!(upper_bound >= 0)) {
@@ -59,6 +60,7 @@ void bind_distance(py::module_& m) {
         }
         DistanceRequest request;
         request.upper_bound = upper_bound;
+        request.signed_distance = signed_distance;
         request.abs_tolerance = to_non_negative(abs_tolerance, "abs_tolerance");
         request.rel_tolerance = to_non_negative(rel_tolerance, "rel_tolerance");
         if (request.rel_tolerance >= 1) {
@@ -69,12 +71,14 @@ void bind_distance(py::module_& m) {
       },
       py::arg("a"), py::arg("pose_a"), py::arg("b"), py::arg("pose_b"), py::kw_only(),
       py::arg("upper_bound") = std::numeric_limits<double>::infinity(), py::arg("abs_tolerance") = 0.0,
-      py::arg("rel_tolerance") = 0.0,
+      py::arg("rel_tolerance") = 0.0, py::arg("signed") = false,
       "Minimum distance between the surfaces of two posed models (0 when they meet).\n\n"
       "pose_a, pose_b: as for collide(). Exact by default; abs_tolerance / rel_tolerance (>= 0, "
       "rel < 1) accept an answer within max(abs, rel * distance) above the true distance; "
       "upper_bound (>= 0) stops once the distance is known to exceed it (beyond_upper_bound). "
-      "A mesh wholly inside another is at a positive distance: this is a surface query. "
+      "A mesh wholly inside another is at a positive distance: this is a surface query, unless "
+      "signed=True: then both models must be closed, and overlapping solids (nested included) "
+      "give minus their penetration depth (see penetration()). "
       "The GIL is released while the query runs.");
 }
 

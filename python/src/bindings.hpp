@@ -10,6 +10,7 @@ void bind_collide(pybind11::module_& m);
 void bind_random(pybind11::module_& m);
 void bind_scene(pybind11::module_& m);
 void bind_distance(pybind11::module_& m);
+void bind_penetration(pybind11::module_& m);
 void bind_manager(pybind11::module_& m);
 void bind_batch(pybind11::module_& m);
 void bind_ccd(pybind11::module_& m);

@@ -18,13 +18,18 @@ using Id = ManagedWorld::Id;
 
 Id pack(ObjectId id) { return (static_cast<Id>(id.slot) << 32) | id.generation; }
 ObjectId unpack(Id id) {
-  return ObjectId{static_cast<std::uint32_t>(id >> 32), static_cast<std::uint32_t>(id & 0xffffffffU)};
+  return ObjectId{static_cast<std::uint32_t>(id >> 32),
+                  static_cast<std::uint32_t>(id & 0xffffffffU)};
 }
 
 CollisionRequest request_for(ManagedWorld::Mode mode, Scalar delta) {
   CollisionRequest request;
   request.delta = delta;
   request.all_contacts = mode == ManagedWorld::Mode::Contacts;
+  // Closed meshes collide as solids: one wholly inside another collides (no contacts then).
+  request.volume = true;
+  // Each contact's triangle-pair depth and normal (FCL's mesh semantics), for ContactData.
+  request.contact_normals = mode == ManagedWorld::Mode::Contacts;
   return request;
 }
 
@@ -96,10 +101,15 @@ ManagedWorld::Nearest closest(const std::vector<Posed>& left, const std::vector<
   ManagedWorld::Nearest best;
   DistanceRequest request;
   for (const Candidate& c : candidates) {
-    if (best.found && (c.bound > best.result.distance || best.result.distance == 0)) break;
-    request.upper_bound = best.found ? best.result.distance : std::numeric_limits<Scalar>::infinity();
+    // Signed distances (closed pairs) go below 0, so a pair at 0 does not end the search.
+    if (best.found && c.bound > best.result.distance) break;
+    request.upper_bound = best.found ? std::max<Scalar>(0, best.result.distance)
+                                     : std::numeric_limits<Scalar>::infinity();
     const Posed& a = left[c.left];
     const Posed& b = right[c.right];
+    // Two solids: signed distance (-penetration depth when they overlap, nested included), as
+    // FCL's signed distance that trimesh's manager reports; open meshes: the surface distance.
+    request.signed_distance = a.model->is_closed() && b.model->is_closed();
     DistanceResult r = distance(*a.model, *a.pose, *b.model, *b.pose, request);
     if (r.beyond_upper_bound || !std::isfinite(r.distance)) continue;
     if (!best.found || r.distance < best.result.distance) {
@@ -155,20 +165,21 @@ std::vector<ManagedWorld::Hit> ManagedWorld::collide_internal(Mode mode, Scalar 
   std::shared_lock lock(mutex_);
   std::vector<Hit> hits;
   for (PairContacts& p : world_.collide_all(request_for(mode, delta))) {
-    hits.push_back(Hit{pack(p.a), pack(p.b), as_result(std::move(p.contacts)), world_.model_ptr(p.a),
-                       world_.pose(p.a)});
+    hits.push_back(Hit{pack(p.a), pack(p.b), as_result(std::move(p.contacts)),
+                       world_.model_ptr(p.a), world_.pose(p.a)});
   }
   return hits;
 }
 
-std::vector<ManagedWorld::Hit> ManagedWorld::collide_single(const Model& model, const Transform& pose,
-                                                            Mode mode, Scalar delta) const {
+std::vector<ManagedWorld::Hit> ManagedWorld::collide_single(const Model& model,
+                                                            const Transform& pose, Mode mode,
+                                                            Scalar delta) const {
   std::shared_lock lock(mutex_);
   std::vector<Hit> hits;
   for (ObjectContacts& o : world_.collide_model(model, pose, request_for(mode, delta))) {
     swap_sides(o.contacts);
-    hits.push_back(Hit{pack(o.object), 0, as_result(std::move(o.contacts)), world_.model_ptr(o.object),
-                       world_.pose(o.object)});
+    hits.push_back(Hit{pack(o.object), 0, as_result(std::move(o.contacts)),
+                       world_.model_ptr(o.object), world_.pose(o.object)});
   }
   return hits;
 }
@@ -187,8 +198,9 @@ std::vector<ManagedWorld::Hit> ManagedWorld::collide_other(const ManagedWorld& o
                            world_.model_ptr(o.object), world_.pose(o.object)});
       }
     }
-    std::sort(hits.begin(), hits.end(),
-              [](const Hit& p, const Hit& q) { return std::pair{p.a, p.b} < std::pair{q.a, q.b}; });
+    std::sort(hits.begin(), hits.end(), [](const Hit& p, const Hit& q) {
+      return std::pair{p.a, p.b} < std::pair{q.a, q.b};
+    });
     return hits;
   });
 }
@@ -206,13 +218,15 @@ ManagedWorld::Nearest ManagedWorld::distance_internal() const {
   return closest(objects, objects, std::move(candidates));
 }
 
-ManagedWorld::Nearest ManagedWorld::distance_single(const Model& model, const Transform& pose) const {
+ManagedWorld::Nearest ManagedWorld::distance_single(const Model& model,
+                                                    const Transform& pose) const {
   const std::vector<Posed> query{Posed{0, &model, &pose, world_box(model, pose)}};
   std::shared_lock lock(mutex_);
   const std::vector<Posed> objects = posed_objects(world_);
   std::vector<Candidate> candidates;
   candidates.reserve(objects.size());
-  for (std::size_t i = 0; i < objects.size(); ++i) candidates.push_back({box_gap(objects[i].box, query[0].box), i, 0});
+  for (std::size_t i = 0; i < objects.size(); ++i)
+    candidates.push_back({box_gap(objects[i].box, query[0].box), i, 0});
   return closest(objects, query, std::move(candidates));
 }
 

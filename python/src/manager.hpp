@@ -2,7 +2,8 @@
 // reader/writer lock, with the queries trimesh's manager asks for.
 //
 // Objects (a shared Model and a pose) are added, moved and removed through the World (its dynamic
-// AABB tree is the broad phase); collision queries are the World's (collide_all, collide_model),
+// AABB tree is the broad phase); collision queries are the World's (collide_all, collide_model)
+// with CollisionRequest::volume (a closed object wholly inside another collides),
 // minimum-distance queries run antcd::distance over object pairs in order of a lower bound (the gap
 // between the objects' world boxes), each bounded by the best distance found so far.
 //
@@ -69,7 +70,9 @@ class ManagedWorld {
   /// object then also meets itself, as two managers holding the same objects would).
   [[nodiscard]] std::vector<Hit> collide_other(const ManagedWorld& other, Mode mode, Scalar delta = 0) const;
 
-  /// The closest pair of distinct objects of this world (exact surface distance, distance.hpp).
+  /// The closest pair of distinct objects of this world: signed distance (distance.hpp,
+  /// signed_distance: -penetration depth when two closed objects overlap) for closed pairs, the
+  /// surface distance otherwise.
   [[nodiscard]] Nearest distance_internal() const;
   /// The object closest to `model` at `pose`.
   [[nodiscard]] Nearest distance_single(const Model& model, const Transform& pose) const;

@@ -34,6 +34,7 @@ PYBIND11_MODULE(_antcd, m) {
   antcd::python::bind_random(m);
   antcd::python::bind_scene(m);
   antcd::python::bind_distance(m);
+  antcd::python::bind_penetration(m);
   antcd::python::bind_manager(m);
   antcd::python::bind_batch(m);
   antcd::python::bind_ccd(m);

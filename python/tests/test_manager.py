@@ -29,12 +29,29 @@ def _random_pose(rng):
     return random_pose(rng, 1.6)
 
 
+def _pair_truth(ma, pa, mb, pb):
+    """The contacts the manager reports for a pair as (triangle, triangle) index pairs, None when
+    the pair does not collide: the surfaces' colliding triangle pairs, or one solid contact
+    (-1, -1) for two convex meshes, or for closed ones whose surfaces are apart but whose solids
+    overlap (nested)."""
+    r = antcd.collide(ma, pa, mb, pb, all_contacts=True)
+    if r:
+        if antcd.is_convex(ma) and antcd.is_convex(mb):
+            return {(-1, -1)}
+        return set(zip(r.triangles_a.tolist(), r.triangles_b.tolist()))
+    try:
+        nested = antcd.penetration(ma, pa, mb, pb).overlapping
+    except ValueError:  # an open mesh: surfaces only
+        nested = False
+    return {(-1, -1)} if nested else None
+
+
 def _brute_internal(objects):
     hits = {}
     for (na, (ma, pa)), (nb, (mb, pb)) in itertools.combinations(sorted(objects.items()), 2):
-        r = antcd.collide(ma, pa, mb, pb, all_contacts=True)
-        if r:
-            hits[(na, nb)] = set(zip(r.triangles_a.tolist(), r.triangles_b.tolist()))
+        truth = _pair_truth(ma, pa, mb, pb)
+        if truth:
+            hits[(na, nb)] = truth
     return hits
 
 
@@ -80,9 +97,9 @@ def test_internal_equals_brute_force_over_random_sequences(shapes, seed):
         probe_model, probe_pose = shapes[step % len(shapes)], _random_pose(rng)
         single_truth = {}
         for n, (m, p) in objects.items():
-            r = antcd.collide(m, p, probe_model, probe_pose, all_contacts=True)
-            if r:
-                single_truth[(n, "__external")] = set(zip(r.triangles_a.tolist(), r.triangles_b.tolist()))
+            truth_np = _pair_truth(m, p, probe_model, probe_pose)
+            if truth_np:
+                single_truth[(n, "__external")] = truth_np
         hit, single_names = manager.in_collision_single(probe_model, probe_pose, return_names=True)
         assert hit == bool(single_truth) and single_names == {n for n, _ in single_truth}
         hit, single_data = manager.in_collision_single(probe_model, probe_pose, return_data=True)
@@ -95,9 +112,9 @@ def test_internal_equals_brute_force_over_random_sequences(shapes, seed):
             other_truth = {}
             for n, (m, p) in objects.items():
                 for on, (om, op_) in other_objects.items():
-                    r = antcd.collide(m, p, om, op_, all_contacts=True)
-                    if r:
-                        other_truth[(n, on)] = set(zip(r.triangles_a.tolist(), r.triangles_b.tolist()))
+                    truth_no = _pair_truth(m, p, om, op_)
+                    if truth_no:
+                        other_truth[(n, on)] = truth_no
             assert manager.in_collision_other(other, return_names=True) == (bool(other_truth), set(other_truth))
             hit, other_data = manager.in_collision_other(other, return_data=True)
             assert hit == bool(other_truth)
@@ -123,7 +140,9 @@ def test_return_conventions_match_trimesh(shapes):
     assert data and all(c.names == {"a", "b"} for c in data)
     c = data[0]
     assert c.point.shape == (3,) and c.normal.shape == (3,) and np.isclose(np.linalg.norm(c.normal), 1)
-    assert 0 <= c.index("a") < 12 and 0 <= c.index("b") < 12 and c.distance == 0 and np.isnan(c.depth)
+    # Two convex boxes: one solid contact, FCL-Convex-like: the solids' depth (0.2 along x).
+    assert len(data) == 1 and c.index("a") == -1 and c.index("b") == -1 and c.distance == 0
+    assert c.depth == pytest.approx(0.2) and np.allclose(np.abs(c.normal), [1, 0, 0])
 
     single = manager.in_collision_single(box, shifted, return_names=True, return_data=True)
     assert single[0] and single[1] == {"a", "b"}

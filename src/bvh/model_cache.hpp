@@ -14,6 +14,9 @@ struct ModelCache {
   std::shared_ptr<const void> point_index;
   std::once_flag point_tree_once;
   std::shared_ptr<const void> point_tree;
+  /// Penetration depth (src/penetration/convex.cpp): convexity and the model-frame polytope.
+  std::once_flag convex_once;
+  std::shared_ptr<const void> convex;
 };
 
 struct ModelCacheAccess {

@@ -10,6 +10,8 @@
 // request's upper bound; the smallest bound pruned below the best distance is kept, which makes
 // DistanceResult::lower_bound a proof.
 #include <antcd/distance.hpp>
+#include <antcd/penetration.hpp>
+#include <antcd/points.hpp>
 
 #include "bvh/traverse.hpp"
 #include "distance/node_bound.hpp"
@@ -29,15 +31,15 @@ constexpr Scalar kInf = std::numeric_limits<Scalar>::infinity();
 void check_request(const DistanceRequest& r) {
   if (!(r.upper_bound >= 0)) {
     throw ArgumentError("distance: upper_bound must be >= 0 (or +inf), got " +
-                                std::to_string(r.upper_bound));
+                        std::to_string(r.upper_bound));
   }
   if (!(r.abs_tolerance >= 0) || !std::isfinite(r.abs_tolerance)) {
     throw ArgumentError("distance: abs_tolerance must be finite and >= 0, got " +
-                                std::to_string(r.abs_tolerance));
+                        std::to_string(r.abs_tolerance));
   }
   if (!(r.rel_tolerance >= 0 && r.rel_tolerance < 1)) {
     throw ArgumentError("distance: rel_tolerance must be in [0, 1), got " +
-                                std::to_string(r.rel_tolerance));
+                        std::to_string(r.rel_tolerance));
   }
 }
 
@@ -117,11 +119,8 @@ class Search {
   std::uint32_t jb_ = 0;
 };
 
-}  // namespace
-
-DistanceResult distance(const Model& a, const Transform& pose_a, const Model& b,
-                        const Transform& pose_b, const DistanceRequest& request) {
-  check_request(request);
+DistanceResult surface_distance(const Model& a, const Transform& pose_a, const Model& b,
+                                const Transform& pose_b, const DistanceRequest& request) {
   DistanceResult result;
   Search search(request);
   // delta 0: the frame's margin is then only the rounding allowance of the volume tests.
@@ -222,17 +221,15 @@ DistanceResult distance(const Model& a, const Transform& pose_a, const Model& b,
           Scalar lb = detail::box_gap(lo_a, hi_a, m.lo, m.hi);
           if (search.prune(lb)) continue;
           if (!search.hunting()) {
-            lb = std::max({lb,
-                           detail::plane_gap(n_a, ta[0], m.v.data()) - frame.margin,
+            lb = std::max({lb, detail::plane_gap(n_a, ta[0], m.v.data()) - frame.margin,
                            detail::plane_gap(m.n, m.v[0], ta) - frame.margin});
             if (search.prune(lb)) continue;
             lb = std::max(lb, detail::centroid_axis_gap(c_a, m.c, ta, m.v.data()) - frame.margin);
             if (search.prune(lb)) continue;
           }
           ++result.triangle_tests;
-          search.offer(
-              geometry::triangle_distance(ta[0], ta[1], ta[2], m.v[0], m.v[1], m.v[2]), ta,
-              m.v.data(), ia, first + k);
+          search.offer(geometry::triangle_distance(ta[0], ta[1], ta[2], m.v[0], m.v[1], m.v[2]), ta,
+                       m.v.data(), ia, first + k);
           if (search.done()) return;
         }
       }
@@ -288,6 +285,46 @@ DistanceResult distance(const Model& a, const Transform& pose_a, const Model& b,
     for (int k = 0; k < n; ++k) stack[top++] = kids[k];
   }
   search.finish(pose_a, a.leaf_triangles(), b.leaf_triangles(), result);
+  return result;
+}
+
+// One of two closed models whose surfaces are apart lies inside the other: a vertex of one is
+// inside the other (then all are).
+bool nested(const Model& a, const Transform& pose_a, const Model& b, const Transform& pose_b) {
+  const Vec3 pa[1] = {pose_a.apply(a.leaf_corners()(0, 0))};
+  const Vec3 pb[1] = {pose_b.apply(b.leaf_corners()(0, 0))};
+  return contains(b, pose_b, pa)[0] != 0 || contains(a, pose_a, pb)[0] != 0;
+}
+
+}  // namespace
+
+DistanceResult distance(const Model& a, const Transform& pose_a, const Model& b,
+                        const Transform& pose_b, const DistanceRequest& request) {
+  check_request(request);
+  if (request.signed_distance) {
+    for (const Model* m : {&a, &b}) {
+      if (!m->is_closed()) {
+        throw ArgumentError("distance: signed_distance needs closed models; model '" + m->source() +
+                            "' is not closed");
+      }
+    }
+  }
+  DistanceResult result = surface_distance(a, pose_a, b, pose_b, request);
+  if (!request.signed_distance) return result;
+  if (!result.intersecting && !nested(a, pose_a, b, pose_b)) return result;
+  PenetrationRequest pr;
+  if (request.abs_tolerance > 0 || request.rel_tolerance > 0) {
+    pr.abs_tolerance = request.abs_tolerance;
+    pr.rel_tolerance = request.rel_tolerance;
+  }
+  const PenetrationResult pd = penetration(a, pose_a, b, pose_b, pr);
+  if (!pd.overlapping) return result;  // touching: distance 0
+  result.distance = -pd.upper;
+  result.lower_bound = -pd.upper;
+  result.approximate = !pd.exact;
+  result.beyond_upper_bound = false;
+  result.point_a = pd.point_a;
+  result.point_b = pd.point_b;
   return result;
 }
 
