@@ -35,23 +35,16 @@
 #include <utility>
 #include <vector>
 
+#include "scaled_mesh.hpp"
+
 namespace {
 
 using namespace antcd;
+using bench::scaled;
 
 constexpr std::size_t kCalibrationPoses = 200;
 constexpr std::size_t kPoses = 1000;
 constexpr double kTargetColliding = 0.4;
-
-// The mesh scaled about its bounding-box centre to bounding radius `radius`.
-Mesh scaled(Mesh m, Scalar radius) {
-  const Aabb b = m.bounds();
-  const Vec3 c = 0.5 * (b.min + b.max);
-  Scalar r = 0;
-  for (const Vec3& v : m.vertices) r = std::max(r, (v - c).norm());
-  for (Vec3& v : m.vertices) v = (v - c) * (radius / r);
-  return m;
-}
 
 // Seeded poses: a uniform random rotation (normalized Gaussian quaternion) and a translation
 // uniform in [-half, half]^3.
@@ -154,7 +147,8 @@ void protocol_run(benchmark::State& state, const char* env_file, const char* rob
       const Transform& t = p->poses[i];
       const fcl::Transform3d ft = peers::to_fcl(t);
       const auto t0 = Clock::now();
-      const bool hit = collide(*p->env, Transform{}, *p->rob, t, CollisionRequest{0, false, 0}, r_bool);
+      const bool hit =
+          collide(*p->env, Transform{}, *p->rob, t, CollisionRequest{0, false, 0}, r_bool);
       const auto t1 = Clock::now();
       f_bool.clear();
       fcl::collide(p->env_fcl.get(), identity, p->rob_fcl.get(), ft, fcl_bool, f_bool);

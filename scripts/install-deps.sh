@@ -11,7 +11,7 @@ packages=(
   libfcl-dev libbullet-dev
   libkainjow-mustache-dev
   libtorch-dev
-  assimp-testmodels gnuplot-nox
+  assimp-testmodels gnuplot-nox valgrind
   python3-dev python3-pybind11 pybind11-dev python3-numpy python3-pytest python3-matplotlib
   chromium
   "$@"

@@ -38,6 +38,7 @@ int main(int argc, char** argv) {
   antcd::cli::add_bench_commands(app, code);
   antcd::cli::add_view_command(app, code);
   antcd::cli::add_learn_commands(app, code);
+  antcd::cli::add_ccd_commands(app, code);
   // CLI11 would only say "A subcommand is required" for a mistyped command: name it.
   if (argc > 1 && argv[1][0] != '-' &&
       app.get_subcommands([&](CLI::App* sub) { return sub->check_name(argv[1]); }).empty()) {

@@ -2,7 +2,8 @@
 
 Meshes are numpy arrays in and out: ``load_mesh`` gives ``(vertices float64[n, 3], faces int64[m, 3])``,
 ``Model(vertices, faces)`` builds the Sphere-OBB hierarchy once, ``collide`` answers exactly,
-``distance`` gives the exact minimum surface distance with its closest points,
+``distance`` gives the exact minimum surface distance with its closest points, ``sweep`` the
+first time two moving models touch (continuous collision, never missing a contact),
 ``random_collide`` runs the paper's improved ant colony (MACO) and its baselines, ``Scene`` /
 ``run_scene`` play an antcd-scene/1 file, and ``CollisionManager`` is a drop-in for
 ``trimesh.collision.CollisionManager``.
@@ -18,12 +19,15 @@ from ._antcd import (
     RandomResult,
     Scene,
     SceneRun,
+    SweepContact,
+    SweepResult,
     __version__,
     collide,
     distance,
     load_mesh,
     random_collide,
     run_scene,
+    sweep,
 )
 from .collision import CollisionManager, ContactData, DistanceData
 
@@ -37,10 +41,13 @@ __all__ = [
     "RandomResult",
     "Scene",
     "SceneRun",
+    "SweepContact",
+    "SweepResult",
     "__version__",
     "collide",
     "distance",
     "load_mesh",
     "random_collide",
     "run_scene",
+    "sweep",
 ]

@@ -13,14 +13,6 @@
 
 namespace antcd::python {
 
-namespace {
-
-py::array_t<double> to_point(const Vec3& p) {
-  return make_vector<double>(3, [&](std::size_t k) { return p[static_cast<int>(k)]; });
-}
-
-}  // namespace
-
 void bind_distance(py::module_& m) {
   py::class_<DistanceResult>(
       m, "DistanceResult",

@@ -11,5 +11,6 @@ void bind_random(pybind11::module_& m);
 void bind_scene(pybind11::module_& m);
 void bind_distance(pybind11::module_& m);
 void bind_manager(pybind11::module_& m);
+void bind_ccd(pybind11::module_& m);
 
 }  // namespace antcd::python

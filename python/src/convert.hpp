@@ -68,4 +68,9 @@ py::array_t<T> make_vector(std::size_t count, Value&& value) {
   return a;
 }
 
+/// A fresh float64[3] array holding p (a point or a vector).
+inline py::array_t<double> to_point(const Vec3& p) {
+  return make_vector<double>(3, [&](std::size_t k) { return p[static_cast<int>(k)]; });
+}
+
 }  // namespace antcd::python

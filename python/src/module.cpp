@@ -36,4 +36,5 @@ PYBIND11_MODULE(_antcd, m) {
   antcd::python::bind_scene(m);
   antcd::python::bind_distance(m);
   antcd::python::bind_manager(m);
+  antcd::python::bind_ccd(m);
 }

@@ -44,29 +44,33 @@ struct PairFrame {
     // rounding allowance never changes an answer; it keeps exactly touching configurations from
     // being culled by rounding in the box fit or in the separating-axis arithmetic.
     const Scalar scale = a.root().radius + b.root().radius + a.root().center.norm() +
-                         b.root().center.norm() +
-                         b_to_a.translation.norm();
+                         b.root().center.norm() + b_to_a.translation.norm();
     margin = delta + 1e-9 * scale;
   }
 };
 
-/// Separating-axis test between A's node box and B's node box, B given in its model frame with the
-/// rotation `rot` into A's model frame: the 15 axes, tolerances and margin of
+/// B's node box axes mapped into A's model frame by the rotation `rot`: R b0, R b1 and their cross
+/// product as B's third axis, equal to R (b0 x b1) up to rounding (which the margin covers, like
+/// the rest of the separating-axis arithmetic).
+struct PosedAxes {
+  Vec3 b0 = Vec3::Zero(), b1 = Vec3::Zero(), b2 = Vec3::Zero();
+  PosedAxes() = default;
+  PosedAxes(const BvhNode& b, const Mat3& rot) : b0(rot * b.axis0), b1(rot * b.axis1) {
+    b2 = b0.cross(b1);
+  }
+};
+
+/// Separating-axis test between A's node box (third axis `a2` = a.axis0 x a.axis1) and B's node
+/// box with axes `rb` and centre `cb` in A's model frame: the 15 axes, tolerances and margin of
 /// geometry::obb_overlap, inlined into the traversal. True when a separating axis was found.
-/// B's third axis in A's frame is taken as (R b0) x (R b1), equal to R (b0 x b1) up to rounding
-/// (which the margin covers, like the rest of the separating-axis arithmetic).
-/// `cb` is B's centre in A's frame (rot * b.center + trans), which the sphere test computed.
-inline bool obb_disjoint(const BvhNode& a, const BvhNode& b, const Mat3& rot, const Vec3& cb,
-                         Scalar margin) {
-  const Vec3 rb0 = rot * b.axis0;
-  const Vec3 rb1 = rot * b.axis1;
-  const Vec3 rb2 = rb0.cross(rb1);
-  const Vec3 a2 = a.axis0.cross(a.axis1);
+[[gnu::always_inline]] inline bool obb_disjoint(const BvhNode& a, const Vec3& a2, const BvhNode& b,
+                                                const PosedAxes& rb, const Vec3& cb,
+                                                Scalar margin) {
   const Vec3 d = cb - a.center;
   Mat3 r;
-  r << a.axis0.dot(rb0), a.axis0.dot(rb1), a.axis0.dot(rb2),  //
-      a.axis1.dot(rb0), a.axis1.dot(rb1), a.axis1.dot(rb2),   //
-      a2.dot(rb0), a2.dot(rb1), a2.dot(rb2);
+  r << a.axis0.dot(rb.b0), a.axis0.dot(rb.b1), a.axis0.dot(rb.b2),  //
+      a.axis1.dot(rb.b0), a.axis1.dot(rb.b1), a.axis1.dot(rb.b2),   //
+      a2.dot(rb.b0), a2.dot(rb.b1), a2.dot(rb.b2);
   const Vec3 t(a.axis0.dot(d), a.axis1.dot(d), a2.dot(d));
   return geometry::detail::obb_separated(a.half_extents().array() + margin, b.half_extents(), r, t);
 }
@@ -133,6 +137,13 @@ TraversalStats dual_traverse(const Model& a, const Model& b, const PairFrame& fr
   };
   std::array<Item, 512> stack;
   std::size_t top = 0;
+  constexpr std::uint32_t kNone = ~std::uint32_t{0};
+  std::uint32_t centre_of = kNone;  // the node of B whose centre cb holds
+  std::uint32_t axes_of = kNone;    // the node of B whose axes rb holds
+  std::uint32_t third_of = kNone;   // the node of A whose third axis a2 holds
+  Vec3 cb = Vec3::Zero();
+  PosedAxes rb;
+  Vec3 a2 = Vec3::Zero();
   stack[top++] = {0, 0, kAll, kAll};
   while (top > 0) {
     Item item = stack[--top];
@@ -140,7 +151,13 @@ TraversalStats dual_traverse(const Model& a, const Model& b, const PairFrame& fr
     const BvhNode& nb = nodes_b[item.ib];
     ++stats.node_pairs;
 
-    const Vec3 cb = rot * nb.center + trans;
+    // B's node in A's frame (centre, then box axes) and A's third axis are kept while consecutive
+    // pairs share the node (one tree is descended under a fixed node of the other): the same
+    // values as computed afresh, without the cost.
+    if (item.ib != centre_of) {
+      centre_of = item.ib;
+      cb = rot * nb.center + trans;
+    }
     const Scalar radius_a = na.radius;
     const Scalar radius_b = nb.radius;
     const Scalar rsum = radius_a + radius_b + frame.margin;
@@ -148,7 +165,15 @@ TraversalStats dual_traverse(const Model& a, const Model& b, const PairFrame& fr
       ++stats.sphere_rejects;
       continue;
     }
-    if (obb_disjoint(na, nb, rot, cb, frame.margin)) {
+    if (item.ib != axes_of) {
+      axes_of = item.ib;
+      rb = PosedAxes(nb, rot);
+    }
+    if (item.ia != third_of) {
+      third_of = item.ia;
+      a2 = na.axis0.cross(na.axis1);
+    }
+    if (obb_disjoint(na, a2, nb, rb, cb, frame.margin)) {
       ++stats.obb_rejects;
       continue;
     }
@@ -156,8 +181,7 @@ TraversalStats dual_traverse(const Model& a, const Model& b, const PairFrame& fr
     const bool leaf_a = na.is_leaf();
     const bool leaf_b = nb.is_leaf();
     if constexpr (kMasks) {
-      if (leaf_a && na.count > 1 && na.count <= kMaskedLeaf &&
-          radius_a > kMaskRatio * radius_b) {
+      if (leaf_a && na.count > 1 && na.count <= kMaskedLeaf && radius_a > kMaskRatio * radius_b) {
         // A's triangles in B's node box coordinates: u = (R b)^T (v - (R c_b + t)).
         const Mat3 m = (rot * nb.axes()).transpose();
         const Vec3 off = -(m * cb);
@@ -168,8 +192,7 @@ TraversalStats dual_traverse(const Model& a, const Model& b, const PairFrame& fr
           continue;
         }
       }
-      if (leaf_b && nb.count > 1 && nb.count <= kMaskedLeaf &&
-          radius_b > kMaskRatio * radius_a) {
+      if (leaf_b && nb.count > 1 && nb.count <= kMaskedLeaf && radius_b > kMaskRatio * radius_a) {
         // B's triangles in A's node box coordinates: u = a^T (R v + t - c_a).
         const Mat3 axes_a = na.axes();
         const Mat3 m = axes_a.transpose() * rot;

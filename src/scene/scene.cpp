@@ -5,6 +5,7 @@
 #include <antcd/scene.hpp>
 #include <antcd/world.hpp>
 
+#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
@@ -26,15 +27,61 @@ struct Scene::Broad {
   std::mutex mutex;
   World world;
   std::vector<ObjectId> ids;  ///< per object index; ids[i].slot == i
+  /// The objects with a pose per frame (the others keep the pose they were added with), their
+  /// ids, and room for their poses of a frame.
+  std::vector<std::uint32_t> moving;
+  std::vector<ObjectId> moving_ids;
+  std::vector<Transform> moving_poses;
+
+  /// The frame's poses into the World (the moving objects' only), then its candidate pairs: one
+  /// caller at a time (the World's mutations must not overlap its queries).
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> candidates(
+      const std::vector<SceneObject>& objects, std::size_t frame, Scalar delta) {
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> out;
+    const std::lock_guard<std::mutex> lock(mutex);
+    moving_poses.clear();
+    for (const std::uint32_t i : moving) moving_poses.push_back(objects[i].pose(frame));
+    world.set_poses(moving_ids, moving_poses);
+    const std::vector<ObjectPair> pairs = world.candidate_pairs(delta);
+    out.reserve(pairs.size());
+    for (const ObjectPair& p : pairs) out.emplace_back(p.a.slot, p.b.slot);
+    return out;
+  }
 };
+
+namespace {
+
+/// The calling thread's task arena of `threads` slots, made once per thread and thread count:
+/// making and initialising an arena (oneTBB reads the thread's stack bounds, through
+/// /proc/self/maps) cost about three quarters of the instructions of a two-object scene's frame
+/// (callgrind), more than its collide() calls.
+tbb::task_arena& thread_arena(int threads) {
+  thread_local std::vector<std::pair<int, std::unique_ptr<tbb::task_arena>>> arenas;
+  for (auto& [n, arena] : arenas) {
+    if (n == threads) return *arena;
+  }
+  arenas.emplace_back(threads, std::make_unique<tbb::task_arena>(threads));
+  return *arenas.back().second;
+}
+
+void check_frame(std::size_t frame, std::size_t frames, Scalar delta) {
+  if (frame >= frames) {
+    throw ArgumentError("frame " + std::to_string(frame) + " out of range (scene has " +
+                        std::to_string(frames) + " frames)");
+  }
+  if (!(delta >= 0) || !std::isfinite(delta)) throw ArgumentError("delta must be finite and >= 0");
+}
+
+}  // namespace
 
 Scene::Scene(Scene&&) noexcept = default;
 Scene& Scene::operator=(Scene&&) noexcept = default;
 Scene::~Scene() = default;
 
 Scene::Scene(SceneDescription description, const BuildOptions& options)
-    : Scene(std::move(description), [](const SceneObject& o) { return load_mesh(o.mesh); },
-            options) {}
+    : Scene(
+          std::move(description), [](const SceneObject& o) { return load_mesh(o.mesh); }, options) {
+}
 
 Scene::Scene(SceneDescription description,
              const std::function<Mesh(const SceneObject&)>& mesh_source,
@@ -65,41 +112,28 @@ Scene::Scene(SceneDescription description,
   for (std::size_t i = 0; i < description_.objects.size(); ++i) {
     const SceneObject& o = description_.objects[i];
     broad_->ids.push_back(broad_->world.add(models_[model_index_[i]], o.pose(0), {o.name}));
+    if (o.poses.size() > 1) {
+      broad_->moving.push_back(static_cast<std::uint32_t>(i));
+      broad_->moving_ids.push_back(broad_->ids.back());
+    }
   }
+  // oneTBB's one-time set-up (its allocator library, the thread's stack bounds read from
+  // /proc/self/maps: milliseconds in a process with many libraries mapped) belongs to the build,
+  // not to the first frame's time.
+  thread_arena(1).initialize();
   build_ms_ =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
 std::vector<std::pair<std::uint32_t, std::uint32_t>> Scene::broad_phase(std::size_t frame,
-                                                                      Scalar delta) const {
-  if (frame >= description_.frames) {
-    throw ArgumentError("frame " + std::to_string(frame) + " out of range (scene has " +
-                        std::to_string(description_.frames) + " frames)");
-  }
-  if (!(delta >= 0) || !std::isfinite(delta)) throw ArgumentError("delta must be finite and >= 0");
-  // The frame's poses into the World, then its candidate pairs: one caller at a time (the World's
-  // mutations must not overlap its queries).
-  const std::size_t n = description_.objects.size();
-  std::vector<Transform> poses(n);
-  for (std::size_t i = 0; i < n; ++i) poses[i] = description_.objects[i].pose(frame);
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> candidates;
-  const std::lock_guard<std::mutex> lock(broad_->mutex);
-  broad_->world.set_poses(broad_->ids, poses);
-  const std::vector<ObjectPair> pairs = broad_->world.candidate_pairs(delta);
-  candidates.reserve(pairs.size());
-  for (const ObjectPair& p : pairs) candidates.emplace_back(p.a.slot, p.b.slot);
-  return candidates;
+                                                                        Scalar delta) const {
+  check_frame(frame, description_.frames, delta);
+  return broad_->candidates(description_.objects, frame, delta);
 }
 
 FrameResult Scene::run_frame(std::size_t frame, const SceneQuery& query,
                              SceneMemory* memory) const {
-  if (frame >= description_.frames) {
-    throw ArgumentError("frame " + std::to_string(frame) + " out of range (scene has " +
-                        std::to_string(description_.frames) + " frames)");
-  }
-  if (!(query.delta >= 0) || !std::isfinite(query.delta)) {
-    throw ArgumentError("delta must be finite and >= 0");
-  }
+  check_frame(frame, description_.frames, query.delta);
   if (query.threads < 1) throw ArgumentError("threads must be at least 1");
   if (query.volume && query.method != Method::Exact) {
     throw ArgumentError("volume queries are for the exact method, not " +
@@ -117,54 +151,92 @@ FrameResult Scene::run_frame(std::size_t frame, const SceneQuery& query,
   const auto start = std::chrono::steady_clock::now();
   FrameResult result;
   result.frame = frame;
-  const std::size_t n = description_.objects.size();
+  const auto pose = [&](std::uint32_t i) -> const Transform& {
+    return description_.objects[i].pose(frame);
+  };
 
-  // Poses of the frame, then the World's broad phase inside this query's arena, so that
-  // threads = 1 keeps the whole frame on the calling thread.
-  std::vector<Transform> poses(n);
-  for (std::size_t i = 0; i < n; ++i) poses[i] = description_.objects[i].pose(frame);
-  tbb::task_arena arena(query.threads);
-  result.candidates = arena.execute([&] { return broad_phase(frame, query.delta); });
+  // Exact narrow phase: collide() on each candidate pair, a boolean query. Serially into a
+  // result kept by the thread (collide() spawns no tasks, so no other call can interleave on this
+  // thread and no frame allocates once its buffers have grown); in parallel, one per range.
+  const auto exact_frame = [&] {
+    CollisionRequest request{query.delta, false, 0};
+    request.volume = query.volume;
+    const auto& cand = result.candidates;
+    const std::size_t m = cand.size();
+    const auto hit = [&](std::size_t k, CollisionResult& scratch) {
+      const auto [i, j] = cand[k];
+      return collide(model_of(i), pose(i), model_of(j), pose(j), request, scratch);
+    };
+    if (query.threads == 1 || m < 2) {
+      thread_local CollisionResult scratch;
+      for (std::size_t k = 0; k < m; ++k) {
+        if (hit(k, scratch)) result.pairs.push_back(cand[k]);
+      }
+      return;
+    }
+    std::vector<char> colliding(m, 0);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, m),
+                      [&](const tbb::blocked_range<std::size_t>& range) {
+                        CollisionResult scratch;
+                        for (std::size_t k = range.begin(); k != range.end(); ++k) {
+                          colliding[k] = hit(k, scratch) ? 1 : 0;
+                        }
+                      });
+    for (std::size_t k = 0; k < m; ++k) {
+      if (colliding[k] != 0) result.pairs.push_back(cand[k]);
+    }
+  };
 
-  // Narrow phase, one independent task per candidate pair.
-  const std::size_t m = result.candidates.size();
-  std::vector<detail::PairOutcome> outcomes(m);
-  const detail::ForEach for_each = [&](std::size_t count,
-                                       const std::function<void(std::size_t)>& body) {
-    if (query.threads == 1 || count < 2) {
-      for (std::size_t k = 0; k < count; ++k) body(k);
+  // The other methods: one independent task per candidate pair.
+  const auto other_frame = [&] {
+    const std::size_t m = result.candidates.size();
+    std::vector<detail::PairOutcome> outcomes(m);
+    const detail::ForEach for_each = [&](std::size_t count,
+                                         const std::function<void(std::size_t)>& body) {
+      if (query.threads == 1 || count < 2) {
+        for (std::size_t k = 0; k < count; ++k) body(k);
+      } else {
+        tbb::parallel_for(std::size_t{0}, count, [&](std::size_t k) { body(k); });
+      }
+    };
+    const auto side = [&](std::uint32_t i) {
+      return detail::PairSide{&model_of(i), pose(i), feature_radius_[model_index_[i]], i};
+    };
+    if (query.method == Method::SphereObb) {
+      for_each(m, [&](std::size_t k) {
+        const auto [i, j] = result.candidates[k];
+        outcomes[k] = detail::query_pair(side(i), side(j), query);
+      });
     } else {
-      tbb::task_arena arena(query.threads);
-      arena.execute(
-          [&] { tbb::parallel_for(std::size_t{0}, count, [&](std::size_t k) { body(k); }); });
+      std::vector<std::pair<detail::PairSide, detail::PairSide>> pairs;
+      pairs.reserve(m);
+      std::vector<ColonyMemory*> memories;
+      for (const auto& [i, j] : result.candidates) {
+        pairs.emplace_back(side(i), side(j));
+        // Entries are created here, serially; each task then touches only its own.
+        if (memory != nullptr) memories.push_back(&memory->pairs_[{i, j}]);
+      }
+      detail::random_frame(pairs, query, frame, memories, outcomes, for_each);
+    }
+    for (std::size_t k = 0; k < m; ++k) {
+      if (outcomes[k].colliding) result.pairs.push_back(result.candidates[k]);
+      result.feature_hits += outcomes[k].feature_hits;
+      result.feature_truth += outcomes[k].feature_truth;
+      result.evaluations += outcomes[k].evaluations;
+      if (outcomes[k].undecided) result.undecided.push_back(result.candidates[k]);
     }
   };
-  const auto side = [&](std::uint32_t i) {
-    return detail::PairSide{&model_of(i), poses[i], feature_radius_[model_index_[i]], i};
-  };
-  if (query.method == Method::Exact || query.method == Method::SphereObb) {
-    for_each(m, [&](std::size_t k) {
-      const auto [i, j] = result.candidates[k];
-      outcomes[k] = detail::query_pair(side(i), side(j), query);
-    });
-  } else {
-    std::vector<std::pair<detail::PairSide, detail::PairSide>> pairs;
-    pairs.reserve(m);
-    std::vector<ColonyMemory*> memories;
-    for (const auto& [i, j] : result.candidates) {
-      pairs.emplace_back(side(i), side(j));
-      // Entries are created here, serially; each task then touches only its own.
-      if (memory != nullptr) memories.push_back(&memory->pairs_[{i, j}]);
+
+  // The whole frame runs in one task arena of query.threads slots, kept by the calling thread
+  // from frame to frame, so that threads = 1 keeps it on the calling thread.
+  thread_arena(query.threads).execute([&] {
+    result.candidates = broad_->candidates(description_.objects, frame, query.delta);
+    if (query.method == Method::Exact) {
+      exact_frame();
+    } else {
+      other_frame();
     }
-    detail::random_frame(pairs, query, frame, memories, outcomes, for_each);
-  }
-  for (std::size_t k = 0; k < m; ++k) {
-    if (outcomes[k].colliding) result.pairs.push_back(result.candidates[k]);
-    result.feature_hits += outcomes[k].feature_hits;
-    result.feature_truth += outcomes[k].feature_truth;
-    result.evaluations += outcomes[k].evaluations;
-    if (outcomes[k].undecided) result.undecided.push_back(result.candidates[k]);
-  }
+  });
   result.time_ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   return result;

@@ -5,6 +5,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <bit>
@@ -25,7 +26,8 @@ using Object = World::Impl::Object;
 using Bounds = World::Impl::Bounds;
 using SlotPair = std::pair<std::uint32_t, std::uint32_t>;
 
-// Below these sizes a query stays on the calling thread: handing work to oneTBB costs more.
+// Below these sizes (or in an arena of one thread) a query stays on the calling thread: handing
+// work to oneTBB costs more.
 constexpr std::size_t kParallelObjects = 64;
 constexpr std::size_t kParallelPairs = 64;
 // Broad-phase tasks per query: enough to balance a few threads, each still thousands of node visits
@@ -83,7 +85,7 @@ std::vector<SlotPair> self_pairs(const World::Impl& w, Scalar gap) {
     };
   };
   std::vector<SlotPair> out;
-  if (w.live < kParallelObjects) {
+  if (w.live < kParallelObjects || tbb::this_task_arena::max_concurrency() == 1) {
     w.tree.pairs(w.tree.all_pairs(), gap, emit_into(out));
   } else {
     const std::vector<detail::AabbTree::PairTask> tasks = w.tree.pair_tasks(gap, kPairTasks);
@@ -116,7 +118,7 @@ void for_each_pair(std::size_t m, Test&& test, Warm&& warm) {
       test(k);
     }
   };
-  if (m < kParallelPairs) {
+  if (m < kParallelPairs || tbb::this_task_arena::max_concurrency() == 1) {
     run(0, m);
   } else {
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, m),

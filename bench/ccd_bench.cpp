@@ -1,0 +1,294 @@
+// bench/ccd_bench.cpp — continuous collision detection: primitive queries, mesh sweeps against the
+// discrete boolean collide() at the end pose, and FCL's continuousCollide on the same motions.
+//
+// Primitives (ccd_primitive/<set>): the degenerate corpus and 2000 random near misses per kind of
+// tests/ccd (exact_truth.cpp, linked here for its query generators), and 4000 generic queries
+// (random corners and motions, mostly apart). Each query is timed alone
+// (200 repetitions, mean); the counters give the median and 90th percentile over the queries, in
+// microseconds; the benchmark loop runs the whole set.
+//
+// Mesh sweeps (sweep/<pair>, collide_end/<pair>, fcl_ca/<pair>): 16 seeded motions per pair, A
+// passing by or through B (which turns a little) while turning up to 2.5 rad, half of them
+// touching. sweep runs antcd::sweep on every motion; collide_end the boolean collide() of the same
+// pair at the end poses (what a discrete check per frame costs; here the end poses are apart, so
+// it is a root-level rejection); collide_at_contact the boolean collide() at each touching
+// motion's first sub-stepped contact (a discrete check where it works); fcl_ca FCL's
+// continuousCollide (conservative advancement, RSS, CCDM_LINEAR interpolation = the same motion:
+// linear translation, constant angular velocity about the model origin, toc_err 1e-6, 1000
+// iterations). Before timing every motion's first contact is found by 1000-step dense sub-stepping
+// with exact collide(); the counters of fcl_ca count FCL's misses (no contact reported where
+// sub-stepping finds one) and late answers (time of contact after the sub-stepped one), those of
+// sweep the same for antcd (both must be 0).
+#include <antcd/ccd.hpp>
+#include <antcd/collide.hpp>
+#include <antcd/mesh.hpp>
+#include <antcd/sweep.hpp>
+
+#include <benchmark/benchmark.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <memory>
+#include <optional>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "ccd/exact_truth.hpp"
+
+#ifdef ANTCD_BENCH_FCL
+#include <fcl/math/bv/RSS.h>
+#include <fcl/narrowphase/continuous_collision.h>
+
+#include "peers/adapters/fcl.hpp"
+#include "peers/adapters/peer_mesh.hpp"
+#endif
+
+namespace {
+
+using antcd::Scalar;
+using antcd::Transform;
+using antcd::Vec3;
+using antcd::test::CcdKind;
+using antcd::test::CcdQuery;
+
+// ---- primitives ---------------------------------------------------------------------------
+
+/// Generic queries: corners uniform in [-1, 1]^3, each moving by up to 0.25 per axis, half vf,
+/// half ee (most are far apart: the easy bulk of a simulation's queries).
+std::vector<CcdQuery> generic_queries(std::size_t count) {
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<Scalar> unit(-1, 1);
+  std::vector<CcdQuery> out(count);
+  for (std::size_t i = 0; i < count; ++i) {
+    out[i].kind = i % 2 == 0 ? CcdKind::VertexFace : CcdKind::EdgeEdge;
+    for (std::size_t k = 0; k < 4; ++k) {
+      out[i].at_t0[k] = Vec3(unit(rng), unit(rng), unit(rng));
+      out[i].at_t1[k] = out[i].at_t0[k] + 0.25 * Vec3(unit(rng), unit(rng), unit(rng));
+    }
+  }
+  return out;
+}
+
+std::vector<CcdQuery> primitive_set(int which) {
+  if (which == 0) return antcd::test::degenerate_corpus();
+  if (which == 3) return generic_queries(4000);
+  return antcd::test::near_miss_queries(which == 1 ? CcdKind::VertexFace : CcdKind::EdgeEdge, 2000,
+                                        which);
+}
+
+bool run_query(const CcdQuery& q) {
+  return q.kind == CcdKind::VertexFace ? antcd::ccd::vertex_face(q.at_t0, q.at_t1).hit
+                                       : antcd::ccd::edge_edge(q.at_t0, q.at_t1).hit;
+}
+
+void ccd_primitive(benchmark::State& state) {
+  const auto queries = primitive_set(static_cast<int>(state.range(0)));
+  std::vector<double> per_query;
+  per_query.reserve(queries.size());
+  for (const CcdQuery& q : queries) {
+    constexpr int kReps = 200;
+    const auto start = std::chrono::steady_clock::now();
+    int hits = 0;
+    for (int r = 0; r < kReps; ++r) hits += run_query(q) ? 1 : 0;
+    benchmark::DoNotOptimize(hits);
+    per_query.push_back(
+        std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start)
+            .count() /
+        kReps);
+  }
+  std::sort(per_query.begin(), per_query.end());
+  for (auto _ : state) {
+    int hits = 0;
+    for (const CcdQuery& q : queries) hits += run_query(q) ? 1 : 0;
+    benchmark::DoNotOptimize(hits);
+  }
+  state.counters["queries"] = static_cast<double>(queries.size());
+  state.counters["median_us"] = per_query[per_query.size() / 2];
+  state.counters["p90_us"] = per_query[per_query.size() * 9 / 10];
+  state.counters["max_us"] = per_query.back();
+  const char* labels[] = {"degenerate corpus", "vf near misses", "ee near misses", "generic"};
+  state.SetLabel(labels[state.range(0)]);
+  int hits = 0;
+  for (const CcdQuery& q : queries) hits += run_query(q) ? 1 : 0;
+  state.counters["hits"] = hits;
+}
+BENCHMARK(ccd_primitive)->Arg(0)->Arg(1)->Arg(2)->Arg(3)->Unit(benchmark::kMillisecond);
+
+// ---- mesh sweeps --------------------------------------------------------------------------
+
+struct Motion {
+  Transform a0, a1, b0, b1;
+  std::optional<Scalar> first;  // dense sub-stepping's first contact
+};
+
+struct Pair {
+  std::string name;
+  std::unique_ptr<antcd::Model> a, b;
+  std::vector<Motion> motions;
+};
+
+std::optional<Scalar> dense_first(const Pair& p, const Motion& m) {
+  antcd::CollisionResult res;
+  for (int k = 0; k <= 1000; ++k) {
+    const Scalar t = k / 1000.0;
+    if (antcd::collide(*p.a, antcd::ccd::interpolate_pose(m.a0, m.a1, t), *p.b,
+                       antcd::ccd::interpolate_pose(m.b0, m.b1, t), {}, res)) {
+      return t;
+    }
+  }
+  return std::nullopt;
+}
+
+Pair make_pair(int which) {
+  Pair p;
+  if (which == 0) {
+    p.name = "torus10k_sphere5k";
+    p.a = std::make_unique<antcd::Model>(antcd::make_torus(1.0, 0.3, 100, 50),
+                                         antcd::BuildOptions{}, "torus");
+    p.b = std::make_unique<antcd::Model>(antcd::make_sphere(0.8, 72, 36), antcd::BuildOptions{},
+                                         "sphere");
+  } else {
+    p.name = "sheet_sheet_thin";
+    p.a = std::make_unique<antcd::Model>(antcd::make_box({1, 1, 0.005}, 8), antcd::BuildOptions{},
+                                         "sheet_a");
+    p.b = std::make_unique<antcd::Model>(antcd::make_box({1, 1, 0.005}, 8), antcd::BuildOptions{},
+                                         "sheet_b");
+  }
+  std::mt19937_64 rng(100 + static_cast<std::uint64_t>(which));
+  std::uniform_real_distribution<Scalar> unit(-1, 1);
+  const Scalar reach = p.a->root().radius + p.b->root().radius + 0.5;
+  for (int i = 0; i < 16; ++i) {
+    Motion m;
+    const Vec3 dir = Vec3(unit(rng), unit(rng), unit(rng)).normalized();
+    // Half the motions pass through B's middle, half well off to one side.
+    const Vec3 side = Vec3(unit(rng), unit(rng), unit(rng)).cross(dir).normalized() *
+                      (i % 2 == 0 ? 0.2 : 0.8) * reach;
+    const Transform turn0 =
+        Transform::from_axis_angle(Vec3(unit(rng), unit(rng), unit(rng)), 3 * unit(rng));
+    m.a0 = turn0;
+    m.a0.translation = -reach * dir + side;
+    m.a1 =
+        Transform::from_axis_angle(Vec3(unit(rng), unit(rng), unit(rng)), 2.5 * unit(rng)) * turn0;
+    m.a1.translation = reach * dir + side;
+    m.b0 = Transform::identity();
+    m.b1 = Transform::from_axis_angle(Vec3(unit(rng), unit(rng), unit(rng)), 0.3);
+    m.first = dense_first(p, m);
+    p.motions.push_back(m);
+  }
+  return p;
+}
+
+const Pair& pair(int which) {
+  static std::vector<std::unique_ptr<Pair>> pairs(2);
+  auto& slot = pairs[static_cast<std::size_t>(which)];
+  if (!slot) slot = std::make_unique<Pair>(make_pair(which));
+  return *slot;
+}
+
+void sweep(benchmark::State& state) {
+  const Pair& p = pair(static_cast<int>(state.range(0)));
+  int misses = 0, late = 0, hits = 0, touching = 0;
+  double iterations = 0;
+  for (const Motion& m : p.motions) {
+    const auto r = antcd::sweep(*p.a, m.a0, m.a1, *p.b, m.b0, m.b1);
+    hits += r.hit ? 1 : 0;
+    touching += m.first ? 1 : 0;
+    misses += m.first && !r.hit ? 1 : 0;
+    late += m.first && r.hit && r.toi > *m.first ? 1 : 0;
+    iterations += r.iterations;
+  }
+  for (auto _ : state) {
+    for (const Motion& m : p.motions) {
+      benchmark::DoNotOptimize(antcd::sweep(*p.a, m.a0, m.a1, *p.b, m.b0, m.b1).toi);
+    }
+  }
+  state.counters["per_motion"] = benchmark::Counter(
+      static_cast<double>(p.motions.size()),
+      benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+  state.counters["touching"] = touching;
+  state.counters["hits"] = hits;
+  state.counters["misses"] = misses;
+  state.counters["late"] = late;
+  state.counters["distance_queries"] = iterations / static_cast<double>(p.motions.size());
+  state.SetLabel(p.name);
+}
+BENCHMARK(sweep)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
+
+void collide_end(benchmark::State& state) {
+  const Pair& p = pair(static_cast<int>(state.range(0)));
+  antcd::CollisionResult res;
+  for (auto _ : state) {
+    for (const Motion& m : p.motions) {
+      benchmark::DoNotOptimize(antcd::collide(*p.a, m.a1, *p.b, m.b1, {}, res));
+    }
+  }
+  state.counters["per_motion"] = benchmark::Counter(
+      static_cast<double>(p.motions.size()),
+      benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+  state.SetLabel(p.name);
+}
+BENCHMARK(collide_end)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
+
+/// The boolean collide() at each touching motion's first sub-stepped contact: a discrete check
+/// of the same pair where it does its work (the end poses of these motions are far apart).
+void collide_at_contact(benchmark::State& state) {
+  const Pair& p = pair(static_cast<int>(state.range(0)));
+  std::vector<std::pair<Transform, Transform>> poses;
+  for (const Motion& m : p.motions) {
+    if (!m.first) continue;
+    poses.emplace_back(antcd::ccd::interpolate_pose(m.a0, m.a1, *m.first),
+                       antcd::ccd::interpolate_pose(m.b0, m.b1, *m.first));
+  }
+  antcd::CollisionResult res;
+  for (auto _ : state) {
+    for (const auto& [pa, pb] : poses) {
+      benchmark::DoNotOptimize(antcd::collide(*p.a, pa, *p.b, pb, {}, res));
+    }
+  }
+  state.counters["per_motion"] = benchmark::Counter(
+      static_cast<double>(poses.size()),
+      benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+  state.SetLabel(p.name);
+}
+BENCHMARK(collide_at_contact)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
+
+#ifdef ANTCD_BENCH_FCL
+void fcl_ca(benchmark::State& state) {
+  const Pair& p = pair(static_cast<int>(state.range(0)));
+  using antcd::peers::to_fcl;
+  const auto a = antcd::peers::build_fcl<fcl::RSSd>(antcd::peers::peer_mesh(p.a->mesh()));
+  const auto b = antcd::peers::build_fcl<fcl::RSSd>(antcd::peers::peer_mesh(p.b->mesh()));
+  const fcl::ContinuousCollisionRequestd request(1000, 1e-6, fcl::CCDM_LINEAR, fcl::GST_LIBCCD,
+                                                 fcl::CCDC_CONSERVATIVE_ADVANCEMENT);
+  auto query = [&](const Motion& m) {
+    fcl::ContinuousCollisionResultd result;
+    fcl::continuousCollide(a.get(), to_fcl(m.a0), to_fcl(m.a1), b.get(), to_fcl(m.b0), to_fcl(m.b1),
+                           request, result);
+    return result;
+  };
+  int misses = 0, late = 0, hits = 0;
+  for (const Motion& m : p.motions) {
+    const auto r = query(m);
+    hits += r.is_collide ? 1 : 0;
+    misses += m.first && !r.is_collide ? 1 : 0;
+    late += m.first && r.is_collide && r.time_of_contact > *m.first ? 1 : 0;
+  }
+  for (auto _ : state) {
+    for (const Motion& m : p.motions) benchmark::DoNotOptimize(query(m).time_of_contact);
+  }
+  state.counters["per_motion"] = benchmark::Counter(
+      static_cast<double>(p.motions.size()),
+      benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+  state.counters["hits"] = hits;
+  state.counters["misses"] = misses;
+  state.counters["late"] = late;
+  state.SetLabel(p.name);
+}
+BENCHMARK(fcl_ca)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
+#endif
+
+}  // namespace
+
+BENCHMARK_MAIN();

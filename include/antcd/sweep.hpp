@@ -1,0 +1,81 @@
+// antcd/sweep.hpp — continuous collision detection between two rigidly moving meshes.
+//
+// Definitions (see antcd/ccd.hpp for the motion): model A moves from pose_a0 at t = 0 to pose_a1
+// at t = 1, B from pose_b0 to pose_b1, each with its translation interpolated linearly and its
+// rotation at constant angular velocity about its model origin (ccd::interpolate_pose). Both
+// surfaces are closed sets of non-degenerate triangles, as in collide() and distance(). The time
+// of impact t* is the first t in [0, 1] at which the surfaces are within min_separation.
+//
+// Method: conservative advancement on the Sphere-OBB hierarchy. At time t, distance() (the
+// hierarchy's branch-and-bound, certified lower bounds) gives a lower bound L of the distance;
+// no point of either surface moves relative to the other faster than
+//   mu = |(T_a1 - T_a0) - (T_b1 - T_b0)| + theta_a r_a + theta_b r_b,
+// theta the rotation angle of a motion, r the radius about the model origin of the model's
+// hierarchy root sphere (|p| <= |centre| + radius for every vertex p), so the surfaces stay more
+// than min_separation apart until t + (L - min_separation) / mu and the search advances there.
+// A rounding allowance (1e-12 of the scene's size: coordinates, radii, translations) is taken off
+// every L, covering the rounding of the interpolated poses, of the distance and of t.
+//
+// Guarantees
+// - Conservative: if the surfaces come within min_separation at some t in [0, 1], the result is a
+//   hit with toi <= t*. A miss is a proof that they never do.
+// - A hit is proven (tolerance_decided false) when at toi the exact test finds the surfaces
+//   intersecting or a triangle pair's distance computed at toi is within min_separation less the
+//   allowance. Otherwise the surfaces are at toi within min_separation + mu * time_tolerance +
+//   allowance (result.distance is a pair's distance there): the search stops only that close, and
+//   a step from any farther reaches at least time_tolerance / 2 ahead.
+// - After max_iterations distance queries the search stops with a hit at the time reached
+//   (tolerance_decided and budget_exhausted set): still toi <= t*.
+// - contact: a triangle pair at toi whose distance is within mu * time_tolerance / 2 of the
+//   minimum (an intersecting pair when the surfaces intersect), world frame: point is the common
+//   point or the closest points' midpoint, normal and depth as in collide.hpp (from B towards A).
+//
+// Thread safety: sweep() only reads its Models; any number of threads may sweep the same Models.
+// Errors: ArgumentError for min_separation < 0 or not finite, time_tolerance <= 0 or not finite,
+// max_iterations == 0, a pose with a non-finite entry or a rotation that is not orthonormal
+// (|R^T R - I| > 1e-6) with determinant +1; the message names the argument.
+#pragma once
+
+#include <antcd/bvh.hpp>
+#include <antcd/collide.hpp>
+#include <antcd/export.hpp>
+
+#include <cstdint>
+
+namespace antcd {
+
+struct SweepRequest {
+  /// Contact distance (mesh units, >= 0).
+  Scalar min_separation = 0;
+  /// Time tolerance (> 0), see the guarantees above.
+  Scalar time_tolerance = 1e-6;
+  /// Largest number of distance queries (>= 1).
+  std::uint32_t max_iterations = 100000;
+};
+
+struct SweepResult {
+  bool hit = false;
+  /// Time of impact in [0, 1] when hit (1 otherwise).
+  Scalar toi = 1;
+  /// The contact at toi (when hit): triangles, world point, distance, normal and depth.
+  Contact contact;
+  /// The hit rests on the tolerance, not on a proof (see the header comment).
+  bool tolerance_decided = false;
+  /// max_iterations ran out (the hit is then a conservative stop).
+  bool budget_exhausted = false;
+  /// When hit: the contact pair's distance at toi (within mu * time_tolerance / 2 above the
+  /// surfaces' distance); else the proven lower bound of the distance at the last time examined.
+  Scalar distance = 0;
+  /// mu: the bound on the relative speed of the surfaces (mesh units per unit time).
+  Scalar motion_bound = 0;
+  /// Distance queries made.
+  std::uint32_t iterations = 0;
+};
+
+/// Continuous collision query between A moving from pose_a0 to pose_a1 and B moving from pose_b0
+/// to pose_b1 over t in [0, 1].
+ANTCD_API SweepResult sweep(const Model& a, const Transform& pose_a0, const Transform& pose_a1,
+                            const Model& b, const Transform& pose_b0, const Transform& pose_b1,
+                            const SweepRequest& request = {});
+
+}  // namespace antcd

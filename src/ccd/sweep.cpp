@@ -1,0 +1,155 @@
+// Mesh–mesh sweep by conservative advancement on the hierarchy's distance query; see
+// antcd/sweep.hpp for the motion bound and the guarantees.
+#include <antcd/ccd.hpp>
+#include <antcd/distance.hpp>
+#include <antcd/error.hpp>
+#include <antcd/geometry.hpp>
+#include <antcd/sweep.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+
+namespace antcd {
+namespace {
+
+/// Relative slack of the rounding allowance (see sweep.hpp): the poses, the distance and the
+/// time steps are each within a few 1e-16 of the scene's size; 1e-12 leaves ample room.
+constexpr Scalar kAllowance = 1e-12;
+/// The loop's distance queries may stop within this fraction of the distance (the lower bound is
+/// still proven); only the stopping decision needs the exact distance.
+constexpr Scalar kStepRelTolerance = 0.5;
+
+void check_pose(const Transform& p, const char* name) {
+  if (!p.rotation.allFinite() || !p.translation.allFinite()) {
+    throw ArgumentError(std::string("sweep: ") + name + " has a non-finite entry");
+  }
+  if ((p.rotation.transpose() * p.rotation - Mat3::Identity()).cwiseAbs().maxCoeff() > 1e-6 ||
+      !(p.rotation.determinant() > 0)) {
+    throw ArgumentError(std::string("sweep: ") + name + " rotation is not a proper rotation");
+  }
+}
+
+/// Angle of the rotation from r0 to r1 along the shorter arc (the slerp's total angle), rounded up.
+Scalar rotation_angle(const Mat3& r0, const Mat3& r1) {
+  const Scalar angle = Quat(r0).angularDistance(Quat(r1));
+  return angle * (1 + 1e-12) + 1e-15;
+}
+
+/// Radius about the model origin holding every vertex of the model's tree (root sphere).
+Scalar origin_radius(const Model& m) {
+  return m.root().center.norm() + static_cast<Scalar>(m.root().radius);
+}
+
+/// The larger of the two lower bounds distance() proves: its lower_bound, and its distance less
+/// the tolerance it was allowed (`slack`).
+Scalar proven_lower_bound(const DistanceResult& d, Scalar slack) {
+  return std::isfinite(d.distance) ? std::max(d.lower_bound, d.distance - slack) : d.lower_bound;
+}
+
+void fill_contact(const Model& a, const Transform& pa, const Model& b, const Transform& pb,
+                  const DistanceResult& d, Contact& c) {
+  c.triangle_a = d.triangle_a;
+  c.triangle_b = d.triangle_b;
+  c.point = (d.point_a + d.point_b) / 2;
+  c.distance = d.distance;
+  const auto& ta = a.mesh().triangles[d.triangle_a];
+  const auto& tb = b.mesh().triangles[d.triangle_b];
+  const auto& va = a.mesh().vertices;
+  const auto& vb = b.mesh().vertices;
+  const geometry::TrianglePenetration pen =
+      geometry::triangle_penetration(pa.apply(va[ta[0]]), pa.apply(va[ta[1]]), pa.apply(va[ta[2]]),
+                                     pb.apply(vb[tb[0]]), pb.apply(vb[tb[1]]), pb.apply(vb[tb[2]]));
+  c.normal = pen.normal;
+  c.depth = pen.depth;
+}
+
+}  // namespace
+
+SweepResult sweep(const Model& a, const Transform& pose_a0, const Transform& pose_a1,
+                  const Model& b, const Transform& pose_b0, const Transform& pose_b1,
+                  const SweepRequest& request) {
+  check_pose(pose_a0, "pose_a0");
+  check_pose(pose_a1, "pose_a1");
+  check_pose(pose_b0, "pose_b0");
+  check_pose(pose_b1, "pose_b1");
+  const Scalar ms = request.min_separation;
+  const Scalar tol = request.time_tolerance;
+  if (!(ms >= 0) || !std::isfinite(ms)) {
+    throw ArgumentError("sweep: min_separation must be finite and >= 0");
+  }
+  if (!(tol > 0) || !std::isfinite(tol)) {
+    throw ArgumentError("sweep: time_tolerance must be finite and > 0");
+  }
+  if (request.max_iterations == 0) throw ArgumentError("sweep: max_iterations must be >= 1");
+
+  const Scalar ra = origin_radius(a);
+  const Scalar rb = origin_radius(b);
+  const Vec3 relative_move =
+      (pose_a1.translation - pose_a0.translation) - (pose_b1.translation - pose_b0.translation);
+  const Scalar mu =
+      (relative_move.norm() + rotation_angle(pose_a0.rotation, pose_a1.rotation) * ra +
+       rotation_angle(pose_b0.rotation, pose_b1.rotation) * rb) *
+      (1 + 1e-12);
+  const Scalar scale = ra + rb + ms + pose_a0.translation.norm() + pose_a1.translation.norm() +
+                       pose_b0.translation.norm() + pose_b1.translation.norm();
+  const Scalar allowance = kAllowance * scale;
+
+  SweepResult result;
+  result.motion_bound = mu;
+  Scalar t = 0;
+  while (true) {
+    if (result.iterations >= request.max_iterations) {
+      result.hit = true;
+      result.toi = t;
+      result.tolerance_decided = true;
+      result.budget_exhausted = true;
+      break;
+    }
+    const Transform pa = ccd::interpolate_pose(pose_a0, pose_a1, t);
+    const Transform pb = ccd::interpolate_pose(pose_b0, pose_b1, t);
+    // Free for the rest of the motion once the distance exceeds what mu can close by t = 1.
+    DistanceRequest step;
+    step.rel_tolerance = kStepRelTolerance;
+    step.upper_bound = ms + allowance + mu * (1 - t);
+    DistanceResult d = distance(a, pa, b, pb, step);
+    ++result.iterations;
+    if (d.beyond_upper_bound) {
+      result.distance = d.lower_bound;
+      break;
+    }
+    // distance() promises both its lower bound and distance * (1 - rel_tolerance).
+    Scalar gap = proven_lower_bound(d, kStepRelTolerance * d.distance) - ms - allowance;
+    if (gap <= mu * tol || d.intersecting) {
+      // Near enough to stop: decide on a distance within mu * tol / 2 of the minimum (an exact
+      // one costs far more where many pairs are about equally close, e.g. a ball in a ring).
+      // d.distance is a pair's distance (>= the minimum) and the minimum is at most mu * tol / 2
+      // below it, so a stop here is within reach and a step from here is >= tol / 2.
+      DistanceRequest settle;
+      settle.abs_tolerance = mu * tol / 2;
+      d = distance(a, pa, b, pb, settle);
+      ++result.iterations;
+      const bool proven = d.intersecting || d.distance + allowance <= ms;
+      if (proven || d.distance - ms - allowance <= mu * tol) {
+        result.hit = true;
+        result.toi = t;
+        result.tolerance_decided = !proven;
+        result.distance = d.distance;
+        fill_contact(a, pa, b, pb, d, result.contact);
+        break;
+      }
+      gap = proven_lower_bound(d, settle.abs_tolerance) - ms - allowance;
+    }
+    // No contact before t + gap / mu (rounded down; the allowance covers the sum's rounding).
+    const Scalar advance = gap / mu * (1 - 1e-15);
+    if (!(t + advance < 1)) {
+      result.distance = d.lower_bound;
+      break;
+    }
+    t += advance;
+  }
+  return result;
+}
+
+}  // namespace antcd
