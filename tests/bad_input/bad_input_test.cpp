@@ -485,6 +485,28 @@ TEST(BadMeshFile, NonFiniteInMemoryMeshIsRefusedByModel) {
 
 // ---- only degenerate triangles ----
 
+TEST(BadMeshFile, CoordinateMagnitudeLimits) {
+  // docs/guarantees.md promises 1e-75 .. 1e75; beyond the zero-area test's range a model of only
+  // such triangles is refused with a clear message (never accepted with wrong areas).
+  const struct {
+    double scale;
+    bool accepted;
+  } table[] = {{1e-75, true}, {1e75, true}, {1, true}, {1e-90, false}, {1e100, false}};
+  for (const auto& row : table) {
+    Mesh m;
+    m.vertices = {Vec3(0, 0, 0), Vec3(row.scale, 0, 0), Vec3(0, row.scale, 0),
+                  Vec3(0, 0, row.scale)};
+    m.triangles = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
+    try {
+      const Model model(std::move(m));
+      EXPECT_TRUE(row.accepted) << row.scale;
+    } catch (const MeshError& e) {
+      EXPECT_FALSE(row.accepted) << row.scale << ": " << e.what();
+      EXPECT_NE(std::string(e.what()).find("non-zero area"), std::string::npos) << e.what();
+    }
+  }
+}
+
 TEST(BadMeshFile, OnlyDegenerateTriangles) {
   const auto dir = fresh_temp_dir("degenerate");
   // Collinear corners, a repeated corner, a point, and a binary STL of zeroed facets (a common
@@ -870,8 +892,10 @@ TEST_F(Cli, OutOfRangeIntegers) {
       {{"points", "tet.obj", "--random", "3", "--seed", "-1"}, "--seed"},
       {{"points", "tet.obj", "--random", "3", "--seed", "18446744073709551616"}, "--seed"},
       {{"points", "tet.obj", "--random", "3", "--seed", "1e3"}, "--seed"},
-      {{"run", "scene.json", "--seed", "99999999999999999999999", "--out", "result.json"}, "--seed"},
-      {{"run", "scene.json", "--method", "maco", "--frame-evaluations", "-1"}, "--frame-evaluations"},
+      {{"run", "scene.json", "--seed", "99999999999999999999999", "--out", "result.json"},
+       "--seed"},
+      {{"run", "scene.json", "--method", "maco", "--frame-evaluations", "-1"},
+       "--frame-evaluations"},
       {{"scene", "generate", "--out", "generated", "--seed", "0x10"}, "--seed"},
       {{"demo", "--seed", "-7"}, "--seed"},
   };
