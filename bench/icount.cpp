@@ -19,6 +19,7 @@
 // so that a count change can be told apart from an answer change.
 #include <antcd/collide.hpp>
 #include <antcd/distance.hpp>
+#include <antcd/load.hpp>
 #include <antcd/rng.hpp>
 #include <antcd/scene.hpp>
 #include <antcd/world.hpp>

@@ -14,6 +14,7 @@
 // the lower bound of that path. Each benchmark reports `triangles`.
 // Medians: --benchmark_repetitions=3 --benchmark_report_aggregates_only=true.
 #include <antcd/bvh.hpp>
+#include <antcd/load.hpp>
 #include <antcd/mesh.hpp>
 
 #include <assimp/postprocess.h>

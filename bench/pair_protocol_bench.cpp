@@ -17,6 +17,7 @@
 // robot triangle) pairs must be equal, otherwise the row stops with an error naming the pose.
 #include <antcd/bvh.hpp>
 #include <antcd/collide.hpp>
+#include <antcd/load.hpp>
 #include <antcd/mesh.hpp>
 
 #include <benchmark/benchmark.h>

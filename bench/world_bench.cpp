@@ -22,6 +22,7 @@
 // The numbers only mean something in one run on an otherwise idle machine; quote ratios of the two
 // engines measured in the same run.
 #include <antcd/distance.hpp>
+#include <antcd/load.hpp>
 #include <antcd/world.hpp>
 
 #include <benchmark/benchmark.h>

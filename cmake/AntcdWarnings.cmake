@@ -1,5 +1,12 @@
-# antcd_set_warnings(<target>): the project's warning flags, PRIVATE to the target.
+# antcd_set_warnings(<target>): the project's warning flags, PRIVATE to the target (MSVC: /W4).
 function(antcd_set_warnings target)
+  if(MSVC)
+    target_compile_options(${target} PRIVATE /W4)
+    if(ANTCD_WARNINGS_AS_ERRORS)
+      target_compile_options(${target} PRIVATE /WX)
+    endif()
+    return()
+  endif()
   target_compile_options(${target} PRIVATE -Wall -Wextra -Wpedantic)
   if(ANTCD_WARNINGS_AS_ERRORS)
     target_compile_options(${target} PRIVATE -Werror)

@@ -12,6 +12,7 @@
 // 16 MB buffer per file, which held the fuzzer to about 15 inputs a second.)
 #include <antcd/bvh.hpp>
 #include <antcd/collide.hpp>
+#include <antcd/load.hpp>
 #include <antcd/mesh.hpp>
 
 #include <unistd.h>

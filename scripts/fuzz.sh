@@ -28,6 +28,7 @@ jobs="${ANTCD_FUZZ_JOBS:-$(nproc)}"
 
 # ---- clang and its libFuzzer runtime (Debian 12: clang, libclang-rt-dev) ----
 ./scripts/install-deps.sh clang libclang-rt-dev
+. scripts/compiler-cache.sh
 
 # ---- build ----
 cmake -S "$repo" -B "$build_dir" \

@@ -5,10 +5,10 @@
 set -euo pipefail
 
 packages=(
-  build-essential cmake pkg-config git
+  build-essential cmake pkg-config git ccache
   libeigen3-dev libassimp-dev libtinyobjloader-dev libtbb-dev libcli11-dev nlohmann-json3-dev
   libgtest-dev libgmock-dev libbenchmark-dev libcgal-dev
-  libfcl-dev libbullet-dev
+  libfcl-dev libbullet-dev clang-format
   libkainjow-mustache-dev
   libtorch-dev
   assimp-testmodels gnuplot-nox valgrind

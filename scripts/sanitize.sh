@@ -23,6 +23,7 @@ case "$mode" in
 esac
 
 ./scripts/install-deps.sh
+. scripts/compiler-cache.sh
 jobs="$(nproc)"
 root="$(pwd)"
 
@@ -33,7 +34,9 @@ root="$(pwd)"
 #   LoadMeshLarge.FiveMillionTriangleBinaryStl: one 5M-triangle file through assimp and the
 #   hierarchy build (31-190 s under ASan on a shared machine); the same loader and build paths run
 #   under ASan on every other mesh test and under the fuzzer.
-asan_exclude='^(ExactCollide\.GeneratedShapesMatchBruteForceOnRandomPoses|LoadMeshLarge\.FiveMillionTriangleBinaryStl)$'
+#   consumer_core_serial: configures, builds and installs the core once more without oneTBB (a
+#   build check, ~3 min of compiling; the serial paths it checks are the oneTBB paths' code).
+asan_exclude='^(ExactCollide\.GeneratedShapesMatchBruteForceOnRandomPoses|LoadMeshLarge\.FiveMillionTriangleBinaryStl|consumer_core_serial)$'
 
 run_asan() {
   local dir="${ANTCD_ASAN_BUILD_DIR:-build-asan}"

@@ -5,6 +5,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 ./scripts/install-deps.sh
+. scripts/compiler-cache.sh
 build_dir="${ANTCD_BUILD_DIR:-build}"
 cmake -S . -B "$build_dir" -DCMAKE_BUILD_TYPE=Release -DANTCD_WARNINGS_AS_ERRORS=ON
 cmake --build "$build_dir" -j "$(nproc)"

@@ -1,5 +1,6 @@
 #include "cli_util.hpp"
 
+#include <antcd/load.hpp>
 #include <antcd/mesh.hpp>
 
 #include <cmath>

@@ -1,5 +1,6 @@
 // antcd — command-line front end of the antcd collision library.
 #include "cli_util.hpp"
+#include "lab.hpp"
 
 #include <antcd/error.hpp>
 #include <antcd/io.hpp>
@@ -21,6 +22,10 @@ int fail(const std::string& message) {
 }  // namespace
 
 int main(int argc, char** argv) {
+#if !defined(ANTCD_LAB)
+  // learn, bench, run --method box-*: antcd-lab's (lab.hpp).
+  if (antcd::cli::runs_in_lab(argc, argv)) return antcd::cli::exec_lab(argc, argv);
+#endif
   CLI::App app{
       "antcd: collision detection between triangle meshes (hybrid Sphere-OBB hierarchy, "
       "exact triangle tests, ant-colony random detection)",
@@ -35,10 +40,14 @@ int main(int argc, char** argv) {
   antcd::cli::add_info_command(app, code);
   antcd::cli::add_demo_command(app, code);
   antcd::cli::add_scene_commands(app, code);
-  antcd::cli::add_bench_commands(app, code);
   antcd::cli::add_view_command(app, code);
-  antcd::cli::add_learn_commands(app, code);
   antcd::cli::add_ccd_commands(app, code);
+#if defined(ANTCD_LAB)
+  antcd::cli::add_bench_commands(app, code);
+  antcd::cli::add_learn_commands(app, code);
+#else
+  antcd::cli::add_lab_commands(app);
+#endif
   // CLI11 would only say "A subcommand is required" for a mistyped command: name it.
   if (argc > 1 && argv[1][0] != '-' &&
       app.get_subcommands([&](CLI::App* sub) { return sub->check_name(argv[1]); }).empty()) {

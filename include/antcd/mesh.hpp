@@ -1,4 +1,5 @@
-// antcd/mesh.hpp — triangle meshes: loading, validation, simple generated shapes.
+// antcd/mesh.hpp — triangle meshes: validation, simple generated shapes, OBJ output. Loading mesh
+// files is antcd/load.hpp (the antcd::io target).
 //
 // A Mesh is plain data: vertex positions and triangles as index triples (counter-clockwise seen
 // from outside when the source file says so; antcd does not rely on orientation). Coordinates are
@@ -30,17 +31,6 @@ struct ANTCD_API Mesh {
   /// the hierarchy.
   [[nodiscard]] std::size_t degenerate_triangle_count() const;
 };
-
-/// Loads every triangle of every mesh in a file (OBJ, STL ASCII/binary, PLY, OFF, glTF/GLB and the
-/// other formats assimp reads), with node transforms of the file's scene graph applied, polygons
-/// triangulated and identical vertices joined. Points and lines are ignored.
-/// Precision: OBJ, OFF and PLY (ASCII, and binary little-endian doubles) coordinates are the
-/// nearest doubles to the file's text (a binary double bit for bit); OFF/PLY layouts the loader
-/// does not follow, and the other formats, are read by assimp in single precision
-/// (docs/guarantees.md).
-/// Throws MeshError (naming the path) when the file is missing, is not a readable mesh, holds no
-/// triangle, has non-finite coordinates or out-of-range indices.
-ANTCD_API Mesh load_mesh(const std::filesystem::path& path);
 
 /// Checks a mesh built in memory: at least one triangle, finite coordinates, indices in range.
 /// Throws MeshError with `source` as the name.

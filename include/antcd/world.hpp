@@ -21,7 +21,8 @@
 //   ignore_pair) must not run concurrently with anything else on the same World. Every const
 //   member function (all queries) may run from any number of threads at once between mutations.
 //   Queries spread their work over oneTBB workers of the calling thread's task arena (wrap a call
-//   in a tbb::task_arena to bound it); the answer does not depend on how many.
+//   in a tbb::task_arena to bound it); the answer does not depend on how many. A build without
+//   oneTBB (ANTCD_USE_TBB=OFF) runs them on the calling thread, with the same answers.
 // - Errors: an invalid argument (an unknown or removed ObjectId, a non-finite or non-rigid pose, a
 //   negative or non-finite distance, a zero ray direction, a null model) throws ArgumentError
 //   (error.hpp) whose message names the function, the argument and the object.

@@ -1,5 +1,6 @@
 // python/src/bind_model.cpp — antcd.load_mesh and antcd.Model.
 #include <antcd/bvh.hpp>
+#include <antcd/load.hpp>
 #include <antcd/mesh.hpp>
 
 #include <pybind11/numpy.h>

@@ -1,4 +1,6 @@
 // The generator's file mode: given meshes placed in pairs, one static and one passing through it.
+#include <antcd/load.hpp>
+
 #include "shared/production_line/modes.hpp"
 
 #include "shared/production_line/poses.hpp"

@@ -8,6 +8,7 @@
 #include "bvh/split.hpp"
 #include "geometry/obb_fit.hpp"
 #include "util/huge_pages.hpp"
+#include "util/parallel.hpp"
 
 #include <algorithm>
 #include <atomic>
@@ -17,10 +18,6 @@
 #include <stdexcept>
 
 #include <memory>
-
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-#include <tbb/parallel_invoke.h>
 
 namespace antcd {
 
@@ -60,15 +57,14 @@ void for_blocks(std::size_t n, const Body& body) {
     body(std::size_t{0}, n);
     return;
   }
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096),
-                    [&](const tbb::blocked_range<std::size_t>& r) { body(r.begin(), r.end()); });
+  parallel::for_ranges(0, n, 4096, body);
 }
 
 /// f() and g(), at once in oneTBB tasks when `large`.
 template <class F, class G>
 void invoke_both(bool large, const F& f, const G& g) {
   if (large) {
-    tbb::parallel_invoke(f, g);
+    parallel::invoke(f, g);
   } else {
     f();
     g();
@@ -107,8 +103,8 @@ class NodeCounts {
       const std::size_t mid = detail::split_triangles(items, depth);
       std::size_t left = 0;
       std::size_t right = 0;
-      tbb::parallel_invoke([&] { left = count(items.first(mid), depth + 1, 2 * heap + 1); },
-                           [&] { right = count(items.subspan(mid), depth + 1, 2 * heap + 2); });
+      parallel::invoke([&] { left = count(items.first(mid), depth + 1, 2 * heap + 1); },
+                       [&] { right = count(items.subspan(mid), depth + 1, 2 * heap + 2); });
       n = 1 + left + right;
     }
     counts_[heap] = n;
@@ -143,7 +139,7 @@ class Builder {
     const std::size_t right_index = index + 1 + counts_[2 * heap + 1];
     std::size_t left_height = 0;
     std::size_t right_height = 0;
-    tbb::parallel_invoke(
+    parallel::invoke(
         [&] { left_height = build_task(begin, mid, depth + 1, 2 * heap + 1, index + 1); },
         [&] { right_height = build_task(mid, end, depth + 1, 2 * heap + 2, right_index); });
     node.first_or_right = static_cast<std::uint32_t>(right_index);

@@ -14,6 +14,7 @@
 // its NullLogger, so loading prints nothing. The one exception seen over all of assimp-testmodels:
 // the OpenDDL parser inside the OpenGEX reader writes "nullptr returned by creating DDLNode." to
 // stderr for OpenGEX/empty_camera.ogex, past assimp's logger.
+#include <antcd/load.hpp>
 #include <antcd/mesh.hpp>
 
 #include "mesh/exact_coordinates.hpp"

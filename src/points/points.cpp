@@ -3,9 +3,7 @@
 
 #include "points/point_index.hpp"
 #include "points/point_tree.hpp"
-
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
+#include "util/parallel.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -36,14 +34,13 @@ template <typename Body>
 void for_each_point(std::span<const Vec3> local, const Body& body) {
   const std::vector<std::size_t> order = detail::coherent_order(local);
   const std::size_t blocks = (local.size() + kBlock - 1) / kBlock;
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, blocks, 4),
-                    [&](const tbb::blocked_range<std::size_t>& r) {
-                      for (std::size_t b = r.begin(); b != r.end(); ++b) {
-                        std::uint32_t hint = detail::kNoHint;
-                        const std::size_t end = std::min(local.size(), (b + 1) * kBlock);
-                        for (std::size_t j = b * kBlock; j < end; ++j) hint = body(order[j], hint);
-                      }
-                    });
+  parallel::for_ranges(0, blocks, 4, [&](std::size_t first, std::size_t last) {
+    for (std::size_t b = first; b != last; ++b) {
+      std::uint32_t hint = detail::kNoHint;
+      const std::size_t end = std::min(local.size(), (b + 1) * kBlock);
+      for (std::size_t j = b * kBlock; j < end; ++j) hint = body(order[j], hint);
+    }
+  });
 }
 
 /// The points in the model's frame.

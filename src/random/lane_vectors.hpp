@@ -8,6 +8,12 @@
 #include <cstdint>
 #include <cstring>
 
+#include "util/portable.hpp"
+
+#if !ANTCD_HAVE_VECTOR_EXTENSIONS
+#error "src/random/lane_vectors.hpp needs GCC (12+) or Clang vector extensions (util/portable.hpp)"
+#endif
+
 // The helpers below and their callers pass 256-bit vectors by value; all of it is inlined into
 // run_colony, so GCC's note that such a call's ABI differs with and without AVX concerns no real
 // call. Silenced for the file that includes this header (aco.cpp only).

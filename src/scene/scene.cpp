@@ -1,13 +1,10 @@
 // The scene engine: shared models in one World (its incremental broad phase), and the narrow
 // phase of the chosen method on each surviving pair.
 #include <antcd/collide.hpp>
+#include <antcd/load.hpp>
 #include <antcd/random.hpp>
 #include <antcd/scene.hpp>
 #include <antcd/world.hpp>
-
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <chrono>
@@ -20,6 +17,7 @@
 
 #include "random/detect.hpp"
 #include "scene/pair_query.hpp"
+#include "util/parallel.hpp"
 
 namespace antcd {
 
@@ -50,19 +48,6 @@ struct Scene::Broad {
 };
 
 namespace {
-
-/// The calling thread's task arena of `threads` slots, made once per thread and thread count:
-/// making and initialising an arena (oneTBB reads the thread's stack bounds, through
-/// /proc/self/maps) cost about three quarters of the instructions of a two-object scene's frame
-/// (callgrind), more than its collide() calls.
-tbb::task_arena& thread_arena(int threads) {
-  thread_local std::vector<std::pair<int, std::unique_ptr<tbb::task_arena>>> arenas;
-  for (auto& [n, arena] : arenas) {
-    if (n == threads) return *arena;
-  }
-  arenas.emplace_back(threads, std::make_unique<tbb::task_arena>(threads));
-  return *arenas.back().second;
-}
 
 void check_frame(std::size_t frame, std::size_t frames, Scalar delta) {
   if (frame >= frames) {
@@ -120,7 +105,7 @@ Scene::Scene(SceneDescription description,
   // oneTBB's one-time set-up (its allocator library, the thread's stack bounds read from
   // /proc/self/maps: milliseconds in a process with many libraries mapped) belongs to the build,
   // not to the first frame's time.
-  thread_arena(1).initialize();
+  parallel::prepare_thread_arena(1);
   build_ms_ =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
@@ -175,13 +160,10 @@ FrameResult Scene::run_frame(std::size_t frame, const SceneQuery& query,
       return;
     }
     std::vector<char> colliding(m, 0);
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, m),
-                      [&](const tbb::blocked_range<std::size_t>& range) {
-                        CollisionResult scratch;
-                        for (std::size_t k = range.begin(); k != range.end(); ++k) {
-                          colliding[k] = hit(k, scratch) ? 1 : 0;
-                        }
-                      });
+    parallel::for_ranges(0, m, 1, [&](std::size_t first, std::size_t last) {
+      CollisionResult scratch;
+      for (std::size_t k = first; k != last; ++k) colliding[k] = hit(k, scratch) ? 1 : 0;
+    });
     for (std::size_t k = 0; k < m; ++k) {
       if (colliding[k] != 0) result.pairs.push_back(cand[k]);
     }
@@ -196,7 +178,7 @@ FrameResult Scene::run_frame(std::size_t frame, const SceneQuery& query,
       if (query.threads == 1 || count < 2) {
         for (std::size_t k = 0; k < count; ++k) body(k);
       } else {
-        tbb::parallel_for(std::size_t{0}, count, [&](std::size_t k) { body(k); });
+        parallel::for_each_index(0, count, [&](std::size_t k) { body(k); });
       }
     };
     const auto side = [&](std::uint32_t i) {
@@ -229,7 +211,7 @@ FrameResult Scene::run_frame(std::size_t frame, const SceneQuery& query,
 
   // The whole frame runs in one task arena of query.threads slots, kept by the calling thread
   // from frame to frame, so that threads = 1 keeps it on the calling thread.
-  thread_arena(query.threads).execute([&] {
+  parallel::in_thread_arena(query.threads, [&] {
     result.candidates = broad_->candidates(description_.objects, frame, query.delta);
     if (query.method == Method::Exact) {
       exact_frame();

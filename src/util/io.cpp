@@ -1,5 +1,5 @@
+#include <antcd/error.hpp>
 #include <antcd/io.hpp>
-#include <antcd/mesh.hpp>
 
 #include <algorithm>
 #include <atomic>
@@ -11,11 +11,24 @@
 #include <sstream>
 #include <system_error>
 
+#if defined(_WIN32)
+#include <io.h>
+#else
 #include <unistd.h>
+#endif
 
 namespace antcd {
 
 namespace {
+
+// Flushes the file's data to the device (POSIX fsync, Windows _commit). 0 on success.
+int sync_to_disk(std::FILE* file) {
+#if defined(_WIN32)
+  return ::_commit(::_fileno(file));
+#else
+  return ::fsync(::fileno(file));
+#endif
+}
 
 // A temporary name beside the target, unique across threads and processes: the target's own name,
 // hidden, with a random suffix. The file is created exclusively, so a clash fails loudly.
@@ -41,7 +54,7 @@ void write_file_atomic(const std::filesystem::path& path, std::string_view conte
   };
   if (path.filename().empty()) fail("the path names no file");
   const std::filesystem::path tmp = temporary_beside(path);
-  std::FILE* file = std::fopen(tmp.c_str(), "wbx");
+  std::FILE* file = std::fopen(tmp.string().c_str(), "wbx");
   if (file == nullptr) fail(std::strerror(errno));
 
   // Every exit that does not reach the rename closes and removes the temporary file.
@@ -65,7 +78,7 @@ void write_file_atomic(const std::filesystem::path& path, std::string_view conte
   }
   if (std::fflush(file) != 0) fail(std::strerror(errno));
   // Durable before the rename publishes it, so a crash never leaves a torn file under `path`.
-  if (::fsync(::fileno(file)) != 0) fail(std::strerror(errno));
+  if (sync_to_disk(file) != 0) fail(std::strerror(errno));
   const int closed = std::fclose(file);
   file = nullptr;
   if (closed != 0) fail(std::strerror(errno));

@@ -8,7 +8,7 @@
 // the insertion order. Rebuilds and refits: aabb_tree.hpp.
 #include "world/aabb_tree.hpp"
 
-#include <tbb/parallel_invoke.h>
+#include "util/parallel.hpp"
 
 #include <algorithm>
 #include <bit>
@@ -146,8 +146,8 @@ Scalar AabbTree::refit_subtree(std::int32_t i) {
   Scalar below1 = 0;
   Scalar below2 = 0;
   if (height_[i] > kParallelHeight) {  // disjoint subtrees: in parallel, same sums in any case
-    tbb::parallel_invoke([&] { below1 = refit_subtree(n.child1); },
-                         [&] { below2 = refit_subtree(n.child2); });
+    parallel::invoke([&] { below1 = refit_subtree(n.child1); },
+                     [&] { below2 = refit_subtree(n.child2); });
   } else {
     below1 = refit_subtree(n.child1);
     below2 = refit_subtree(n.child2);
@@ -225,8 +225,8 @@ void AabbTree::rebuild() {
     const auto left = at + 1;
     const auto right = at + 2 * static_cast<std::int32_t>(count / 2);
     if (count > kParallelBuild) {  // disjoint ranges and node positions: the same tree in parallel
-      tbb::parallel_invoke([&] { self(self, first, mid, left, at); },
-                           [&] { self(self, mid, last, right, at); });
+      parallel::invoke([&] { self(self, first, mid, left, at); },
+                       [&] { self(self, mid, last, right, at); });
     } else {
       self(self, first, mid, left, at);
       self(self, mid, last, right, at);

@@ -19,6 +19,8 @@
 
 #include <antcd/math.hpp>
 
+#include "util/portable.hpp"
+
 #include <cmath>
 #include <cstdint>
 #include <vector>
@@ -69,7 +71,7 @@ class AabbTree {
   /// Starts loading the leaf of `object` (if any), for a later box() or set_box().
   void prefetch(std::uint32_t object) const {
     if (object < leaf_of_.size() && leaf_of_[object] != kNull) {
-      __builtin_prefetch(&nodes_[leaf_of_[object]], 1);
+      ANTCD_PREFETCH_WRITE(&nodes_[leaf_of_[object]]);
     }
   }
   [[nodiscard]] std::size_t size() const { return leaves_; }
@@ -170,8 +172,8 @@ class AabbTree {
       for (const std::int32_t i : {a, b}) {
         const Node& n = nodes_[i];
         if (n.child1 != kNull) {
-          __builtin_prefetch(&nodes_[n.child1]);
-          __builtin_prefetch(&nodes_[n.child2]);
+          ANTCD_PREFETCH(&nodes_[n.child1]);
+          ANTCD_PREFETCH(&nodes_[n.child2]);
         }
         if (a == b) break;
       }

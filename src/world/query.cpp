@@ -1,20 +1,17 @@
 // The World's queries: pairs from the broad-phase tree, exact narrow phase on each pair (spread
 // over oneTBB workers, results in a fixed order), and ray casts.
+#include <antcd/error.hpp>
 #include <antcd/world.hpp>
-
-#include <tbb/blocked_range.h>
-#include <tbb/enumerable_thread_specific.h>
-#include <tbb/parallel_for.h>
-#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <bit>
-#include <utility>
 #include <cmath>
 #include <limits>
-#include <antcd/error.hpp>
 #include <string>
+#include <utility>
 
+#include "util/parallel.hpp"
+#include "util/portable.hpp"
 #include "world/ray_check.hpp"
 #include "world/world_impl.hpp"
 
@@ -85,18 +82,15 @@ std::vector<SlotPair> self_pairs(const World::Impl& w, Scalar gap) {
     };
   };
   std::vector<SlotPair> out;
-  if (w.live < kParallelObjects || tbb::this_task_arena::max_concurrency() == 1) {
+  if (w.live < kParallelObjects || parallel::max_concurrency() == 1) {
     w.tree.pairs(w.tree.all_pairs(), gap, emit_into(out));
   } else {
     const std::vector<detail::AabbTree::PairTask> tasks = w.tree.pair_tasks(gap, kPairTasks);
-    tbb::enumerable_thread_specific<std::vector<SlotPair>> found;
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, tasks.size(), 1),
-                      [&](const tbb::blocked_range<std::size_t>& r) {
-                        std::vector<SlotPair>& mine = found.local();
-                        for (std::size_t t = r.begin(); t != r.end(); ++t) {
-                          w.tree.pairs(tasks[t], gap, emit_into(mine));
-                        }
-                      });
+    parallel::PerThread<std::vector<SlotPair>> found;
+    parallel::for_ranges(0, tasks.size(), 1, [&](std::size_t first, std::size_t last) {
+      std::vector<SlotPair>& mine = found.local();
+      for (std::size_t t = first; t != last; ++t) w.tree.pairs(tasks[t], gap, emit_into(mine));
+    });
     std::size_t total = 0;
     for (const auto& f : found) total += f.size();
     out.reserve(total);
@@ -118,11 +112,10 @@ void for_each_pair(std::size_t m, Test&& test, Warm&& warm) {
       test(k);
     }
   };
-  if (m < kParallelPairs || tbb::this_task_arena::max_concurrency() == 1) {
+  if (m < kParallelPairs || parallel::max_concurrency() == 1) {
     run(0, m);
   } else {
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, m),
-                      [&](const tbb::blocked_range<std::size_t>& r) { run(r.begin(), r.end()); });
+    parallel::for_ranges(0, m, 1, run);
   }
 }
 template <class Test>
@@ -217,9 +210,9 @@ std::vector<PairContacts> World::collide_all(const CollisionRequest& request) co
   }, [&](std::size_t k) {
     // The second objects of the sorted pairs are scattered through memory: load them ahead.
     const std::uint32_t j = candidates[k].second;
-    __builtin_prefetch(&w.bounds[j]);
-    __builtin_prefetch(&w.objects[j]);
-    __builtin_prefetch(&w.objects[j].pose.translation);
+    ANTCD_PREFETCH(&w.bounds[j]);
+    ANTCD_PREFETCH(&w.objects[j]);
+    ANTCD_PREFETCH(&w.objects[j].pose.translation);
   });
   std::vector<PairContacts> out;
   for (std::size_t k = 0; k < candidates.size(); ++k) {

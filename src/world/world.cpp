@@ -2,16 +2,13 @@
 // kept up to date (a leaf changes only when its object leaves its box; see set_poses).
 #include <antcd/world.hpp>
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-#include <tbb/parallel_reduce.h>
-
 #include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <antcd/error.hpp>
 #include <string>
 
+#include "util/parallel.hpp"
 #include "world/world_impl.hpp"
 
 namespace antcd {
@@ -179,10 +176,10 @@ void World::set_poses(std::span<const ObjectId> ids, std::span<const Transform> 
       if (bad(k)) first_bad = k;
     }
   } else {
-    first_bad = tbb::parallel_reduce(
-        tbb::blocked_range<std::size_t>(0, ids.size()), ids.size(),
-        [&](const tbb::blocked_range<std::size_t>& r, std::size_t found) {
-          for (std::size_t k = r.begin(); k != r.end() && k < found; ++k) {
+    first_bad = parallel::reduce(
+        std::size_t{0}, ids.size(), ids.size(),
+        [&](std::size_t first, std::size_t last, std::size_t found) {
+          for (std::size_t k = first; k != last && k < found; ++k) {
             if (bad(k)) return k;
           }
           return found;
@@ -228,8 +225,7 @@ void World::set_poses(std::span<const ObjectId> ids, std::span<const Transform> 
   if (ids.size() < kParallelBatch) {
     fit_range(0, ids.size());
   } else {
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, ids.size()),
-                      [&](const tbb::blocked_range<std::size_t>& r) { fit_range(r.begin(), r.end()); });
+    parallel::for_ranges(0, ids.size(), 1, fit_range);
   }
   std::size_t escaped = 0;
   for (const ObjectId id : ids) escaped += w.flags[id.slot] != 0;

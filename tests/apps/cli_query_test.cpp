@@ -4,6 +4,7 @@
 // the options the output keeps its former fields only.
 #include <antcd/collide.hpp>
 #include <antcd/distance.hpp>
+#include <antcd/load.hpp>
 #include <antcd/mesh.hpp>
 
 #include <gtest/gtest.h>

@@ -24,6 +24,7 @@
 #include <antcd/bvh.hpp>
 #include <antcd/collide.hpp>
 #include <antcd/io.hpp>
+#include <antcd/load.hpp>
 #include <antcd/mesh.hpp>
 #include <antcd/scene.hpp>
 

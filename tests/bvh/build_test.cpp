@@ -1,5 +1,6 @@
 // Hierarchy construction: structure, containment invariants, options, errors, OBB fit quality.
 #include <antcd/bvh.hpp>
+#include <antcd/load.hpp>
 
 #include <gtest/gtest.h>
 

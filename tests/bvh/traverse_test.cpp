@@ -1,5 +1,6 @@
 // Preliminary detection: the dual traversal reports exactly what it should.
 #include <antcd/bvh.hpp>
+#include <antcd/load.hpp>
 
 #include <gtest/gtest.h>
 

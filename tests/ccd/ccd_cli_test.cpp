@@ -1,4 +1,5 @@
 // `antcd ccd-queries` on rational CSV files written from the exact corpus, and its error lines.
+#include <antcd/load.hpp>
 #include <antcd/mesh.hpp>
 #include <antcd/sweep.hpp>
 

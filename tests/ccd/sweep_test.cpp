@@ -4,6 +4,7 @@
 #include <antcd/collide.hpp>
 #include <antcd/distance.hpp>
 #include <antcd/error.hpp>
+#include <antcd/load.hpp>
 #include <antcd/mesh.hpp>
 #include <antcd/sweep.hpp>
 

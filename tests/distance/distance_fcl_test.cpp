@@ -3,6 +3,7 @@
 // test-only dependency; this file is built only when CMake finds it.
 #include <antcd/collide.hpp>
 #include <antcd/distance.hpp>
+#include <antcd/load.hpp>
 
 #include <gtest/gtest.h>
 

@@ -3,6 +3,7 @@
 // tolerance, argument errors).
 #include <antcd/collide.hpp>
 #include <antcd/distance.hpp>
+#include <antcd/load.hpp>
 
 #include <gtest/gtest.h>
 

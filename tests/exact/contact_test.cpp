@@ -3,6 +3,7 @@
 // less it is not), no pair twice, and the manifold keeps 1..K contacts per region.
 #include <antcd/collide.hpp>
 #include <antcd/geometry.hpp>
+#include <antcd/load.hpp>
 
 #include <gtest/gtest.h>
 

@@ -1,5 +1,6 @@
 // Exact detection against brute force over all triangle pairs.
 #include <antcd/collide.hpp>
+#include <antcd/load.hpp>
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,7 @@
 // The learned baselines (antcd_learned): feature invariance, learning beyond a constant guess,
 // deterministic training, model files (round trip, refusal of bad ones) and the CLI's errors.
 #include <gtest/gtest.h>
+#include <antcd/load.hpp>
 #include <antcd/mesh.hpp>
 #include <antcd_learned/classifier.hpp>
 #include <antcd_learned/dataset.hpp>

@@ -10,6 +10,7 @@
 
 #include <antcd/bvh.hpp>
 #include <antcd/geometry.hpp>
+#include <antcd/load.hpp>
 #include <antcd/mesh.hpp>
 #include <antcd/points.hpp>
 

@@ -15,6 +15,7 @@
 #include "support/mesh_files.hpp"
 #include "support/test_support.hpp"
 
+#include <antcd/load.hpp>
 #include <antcd/mesh.hpp>
 
 #include <gtest/gtest.h>

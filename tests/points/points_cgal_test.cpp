@@ -1,6 +1,7 @@
 // Point queries against CGAL (tests only): inside/outside against Side_of_triangle_mesh (exact
 // predicates), distances against CGAL's AABB tree closest point, on closed third-party meshes
 // (Debian assimp-testmodels) at random poses.
+#include <antcd/load.hpp>
 #include <antcd/points.hpp>
 
 #include <gtest/gtest.h>

@@ -3,6 +3,7 @@
 // scan that finds no witness in a complete, unsampled space proves the pair separate. Checked
 // against collide() on real meshes (assimp test models) at near-miss and touching poses.
 #include <antcd/collide.hpp>
+#include <antcd/load.hpp>
 #include <antcd/random.hpp>
 
 #include "support/test_support.hpp"

@@ -3,6 +3,7 @@
 // of the library's feature code.
 #include <antcd/collide.hpp>
 #include <antcd/error.hpp>
+#include <antcd/load.hpp>
 #include <antcd/random.hpp>
 
 #include "support/test_support.hpp"

@@ -3,6 +3,7 @@
 // the search) and never a triangle pair within delta: with every candidate sampled, the masked and
 // unmasked spaces hold the same colliding pairs, and as many as collide() reports.
 #include <antcd/collide.hpp>
+#include <antcd/load.hpp>
 #include <antcd/random.hpp>
 
 #include "support/test_support.hpp"

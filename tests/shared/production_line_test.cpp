@@ -4,6 +4,7 @@
 #include "support/test_support.hpp"
 
 #include <antcd/io.hpp>
+#include <antcd/load.hpp>
 #include <antcd/mesh.hpp>
 #include <antcd/scene.hpp>
 

@@ -1,5 +1,6 @@
 // Ray casts against brute force over every triangle of every object, computed here another way
 // (plane intersection, then inside tests by signed areas), on generated and real meshes.
+#include <antcd/load.hpp>
 #include <antcd/world.hpp>
 
 #include <gtest/gtest.h>

@@ -2,6 +2,7 @@
 // on worlds of generated and real meshes; after every step each query must equal the answer of
 // collide() run on every admitted object pair (collide() itself is checked against all triangle
 // pairs in the exact tests), with the filters applied by a reference kept here.
+#include <antcd/load.hpp>
 #include <antcd/world.hpp>
 
 #include <gtest/gtest.h>
