@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <iostream>
 #include <sstream>
+#include <utility>
 #include <vector>
 
 namespace antcd::cli {
@@ -52,8 +53,16 @@ CovarianceMethod parse_covariance(const std::string& text) {
   throw UsageError("--covariance: expected 'area' or 'vertex', got '" + text + "'");
 }
 
+QuietStderr::QuietStderr() : saved_(std::cerr.rdbuf(nullptr)) {}
+QuietStderr::~QuietStderr() { std::cerr.rdbuf(saved_); }  // also clears the stream's bad state
+
 Model load_model(const std::filesystem::path& path, const BuildOptions& options) {
-  return Model(load_mesh(path), options, path.string());
+  Mesh mesh;
+  {
+    const QuietStderr quiet;
+    mesh = load_mesh(path);
+  }
+  return Model(std::move(mesh), options, path.string());
 }
 
 void warn_degenerate(const Model& model) {
@@ -88,6 +97,20 @@ CLI::Validator finite_at_least_zero(bool zero_allowed) {
 }  // namespace
 
 CLI::Validator non_negative_finite() { return finite_at_least_zero(true); }
+
+CLI::Validator unsigned_integer() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        const bool digits = !text.empty() && text.size() <= 20 &&
+                            text.find_first_not_of("0123456789") == std::string::npos;
+        // 20 digits may still exceed 2^64 - 1 = 18446744073709551615 (string order = value order).
+        if (!digits || (text.size() == 20 && text > "18446744073709551615")) {
+          return "expected an integer 0 .. 18446744073709551615, got '" + text + "'";
+        }
+        return {};
+      },
+      "INTEGER >= 0");
+}
 CLI::Validator positive_finite() { return finite_at_least_zero(false); }
 
 }  // namespace antcd::cli

@@ -8,6 +8,7 @@
 
 #include <filesystem>
 #include <functional>
+#include <streambuf>
 #include <stdexcept>
 #include <string>
 
@@ -33,7 +34,22 @@ Transform parse_pose(const std::string& text, const std::string& option);
 /// "area" (Eq. 3 into Eq. 2, default) or "vertex" (Eqs. 1–2).
 CovarianceMethod parse_covariance(const std::string& text);
 
-/// Loads a mesh and builds its hierarchy; errors name the file.
+/// While alive, std::cerr prints nothing: a reader inside assimp (the OpenDDL parser of OpenGEX
+/// files) writes there directly, past assimp's logger, before antcd reports the file as bad. The
+/// CLI's own messages are printed outside such a scope. Main thread only, while no other thread
+/// prints.
+class QuietStderr {
+ public:
+  QuietStderr();
+  ~QuietStderr();
+  QuietStderr(const QuietStderr&) = delete;
+  QuietStderr& operator=(const QuietStderr&) = delete;
+
+ private:
+  std::streambuf* saved_;
+};
+
+/// Loads a mesh (std::cerr quiet meanwhile) and builds its hierarchy; errors name the file.
 Model load_model(const std::filesystem::path& path, const BuildOptions& options);
 /// Prints "warning: SOURCE: N zero-area triangle(s) ignored" on stderr when the model left some out.
 void warn_degenerate(const Model& model);
@@ -43,6 +59,9 @@ void warn_degenerate(const Model& model);
 CLI::Validator non_negative_finite();
 /// The same, > 0.
 CLI::Validator positive_finite();
+/// Option check for seeds and counts: decimal digits only, at most 2^64 - 1. (CLI11 reads "-1" as
+/// 2^64 - 1 and an overflowing value as the largest one.)
+CLI::Validator unsigned_integer();
 
 /// Registers the subcommands; each returns its exit code through the callback's `code`.
 void add_collide_command(CLI::App& app, int& code);

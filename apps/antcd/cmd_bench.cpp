@@ -27,7 +27,8 @@ void add_bench_paper_command(CLI::App& bench, int& code) {
       ->required()
       ->type_name("DIR");
   cmd->add_option("--seed", opts->seed, "Seed of the scene, the sampling and the searches")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(unsigned_integer());
   cmd->add_option("--threads", opts->threads,
                   "Worker threads for independent runs (times to quote: 1, on an idle machine)")
       ->check(CLI::Range(1, 256))

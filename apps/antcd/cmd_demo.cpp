@@ -200,7 +200,8 @@ void add_demo_command(CLI::App& app, int& code) {
       "compare");
   cmd->add_option("--objects", opts->objects, "Objects in the scene")->check(CLI::Range(2, 100000));
   cmd->add_option("--frames", opts->frames, "Frames")->check(CLI::Range(1, 1000000));
-  cmd->add_option("--seed", opts->seed, "Seed of the scene and of maco");
+  cmd->add_option("--seed", opts->seed, "Seed of the scene and of maco")
+      ->check(unsigned_integer());
   cmd->add_option("--threads", opts->threads, "Worker threads (default: every core)")
       ->check(CLI::Range(1, 256))
       ->capture_default_str();

@@ -159,7 +159,8 @@ void add_learn_commands(CLI::App& app, int& code) {
       ->add_option("--seed", o->seed,
                    "Seed of the training scenes, the initial weights and the "
                    "shuffling")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(unsigned_integer());
   train->callback([o, &code] {
 #ifdef ANTCD_HAVE_LEARNED
     code = run_train(*o);

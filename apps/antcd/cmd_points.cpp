@@ -3,9 +3,11 @@
 
 #include <nlohmann/json.hpp>
 
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <memory>
@@ -29,15 +31,39 @@ struct PointsOptions {
   bool json = false;
 };
 
+/// The longest points-file line read: three doubles in full need far less. A longer line (a binary
+/// file, a file without line breaks) is refused before it is held in memory.
+constexpr std::size_t kMaxPointsLine = 1024;
+
 /// Reads "x,y,z" lines (commas and/or blanks between numbers); blank lines and lines starting with
-/// '#' are skipped, and so is a first line that holds no number (a header).
+/// '#' are skipped, and so is a first line that holds no number (a header). Only a regular file is
+/// read (a FIFO could block forever, a device read without end); memory is that of the points.
 std::vector<Vec3> read_points(const std::string& path) {
-  std::ifstream in(path);
+  std::error_code ec;
+  const auto status = std::filesystem::status(path, ec);
+  if (ec || !std::filesystem::exists(status)) {
+    throw UsageError(path + ": cannot open points file (no such file)");
+  }
+  if (!std::filesystem::is_regular_file(status)) {
+    throw UsageError(path + ": points file is not a regular file");
+  }
+  std::ifstream in(path, std::ios::binary);
   if (!in) throw UsageError(path + ": cannot open points file");
   std::vector<Vec3> points;
   std::string line;
   std::size_t number = 0;
-  while (std::getline(in, line)) {
+  std::array<char, kMaxPointsLine + 2> buffer{};
+  const auto too_long = [&] {
+    return UsageError(path + ":" + std::to_string(number + 1) + ": line longer than " +
+                      std::to_string(kMaxPointsLine) + " characters");
+  };
+  for (;;) {
+    in.getline(buffer.data(), static_cast<std::streamsize>(buffer.size()));
+    const auto got = static_cast<std::size_t>(in.gcount());
+    if (got == 0) break;                                   // end of file
+    if (in.fail() && !in.eof()) throw too_long();          // no line break within the buffer
+    line.assign(buffer.data(), in.eof() ? got : got - 1);  // NUL bytes kept: they are no number
+    if (line.size() > kMaxPointsLine) throw too_long();
     ++number;
     const std::string original = line;
     for (char& ch : line) {
@@ -157,7 +183,7 @@ void add_points_command(CLI::App& app, int& code) {
   cmd->add_option("--random", opts->random,
                   "Instead of a file: N random points in the mesh's box grown by 10%")
       ->check(CLI::Range(std::size_t{1}, std::size_t{100'000'000}));
-  cmd->add_option("--seed", opts->seed, "Seed of --random");
+  cmd->add_option("--seed", opts->seed, "Seed of --random")->check(unsigned_integer());
   cmd->add_option("--pose", opts->pose, "Pose of the mesh: tx,ty,tz[,qw,qx,qy,qz] (world frame)");
   cmd->add_flag("--json", opts->json, "Print the result as JSON (else CSV)");
   cmd->callback([opts, &code] { code = run_points(*opts); });

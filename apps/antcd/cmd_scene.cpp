@@ -86,7 +86,10 @@ int run_run(const RunOptions& o) {
   query.random.search.ant.scan_covered_spaces = !o.colony_only;
   query.frame_seconds = o.frame_seconds;
   query.volume = o.volume;
-  const Scene scene(load_scene(o.scene));
+  const Scene scene = [&] {
+    const QuietStderr quiet;  // the scene's mesh loads
+    return Scene(load_scene(o.scene));
+  }();
   shared::RunResult result =
       learned ? run_learned(scene, o.scene, o.method, o.model, o.delta, progress)
               : shared::run_scene(scene, query, o.scene, progress, 1, !o.no_memory);
@@ -211,7 +214,8 @@ void add_scene_commands(CLI::App& app, int& code) {
   cmd->add_option("--feature-delta", run->feature_delta,
                   "Random methods: centroid threshold, > 0 (default: from triangle sizes)")
       ->check(positive_finite());
-  cmd->add_option("--seed", run->seed, "Seed of the random methods");
+  cmd->add_option("--seed", run->seed, "Seed of the random methods")
+      ->check(unsigned_integer());
   cmd->add_option("--threads", run->threads, "Worker threads")->check(CLI::Range(1, 256));
   cmd->add_option("--samples", run->samples, "Random methods: features sampled per side")
       ->check(CLI::Range(1, 100000));
@@ -229,7 +233,8 @@ void add_scene_commands(CLI::App& app, int& code) {
                   "paper-centroid (the paper's centroid threshold, a proximity test)");
   cmd->add_option("--frame-evaluations", run->frame_evaluations,
                   "Random methods: fitness evaluations shared by a frame's candidate pairs (anytime "
-                  "query; pairs left without a witness are listed as undecided); 0 = off");
+                  "query; pairs left without a witness are listed as undecided); 0 = off")
+      ->check(unsigned_integer());
   cmd->add_option("--frame-seconds", run->frame_seconds,
                   "Random methods: wall-time budget of a frame's searches (not deterministic); 0 = off")
       ->check(CLI::NonNegativeNumber);
@@ -260,7 +265,8 @@ void add_scene_commands(CLI::App& app, int& code) {
   g->add_option("--vertices", gen->vertices, "Average vertices per mesh")
       ->check(CLI::Range(8, 1000000));
   g->add_option("--frames", gen->frames, "Frames of motion")->check(CLI::Range(1, 1000000));
-  g->add_option("--seed", gen->seed, "Seed of the layout and motions");
+  g->add_option("--seed", gen->seed, "Seed of the layout and motions")
+      ->check(unsigned_integer());
   g->add_option("--mesh", gen->meshes, "Place these mesh files instead of generated equipment")
       ->check(CLI::ExistingFile);
   g->callback([gen, &code] { code = run_generate(*gen); });

@@ -3,6 +3,7 @@
 #include "lab.hpp"
 
 #include <antcd/error.hpp>
+#include <antcd/io.hpp>
 #include <antcd/version.hpp>
 
 #include <cstdio>
@@ -12,16 +13,9 @@
 
 namespace {
 
-std::string one_line(std::string text) {
-  for (char& c : text) {
-    if (c == '\n' || c == '\r') c = ' ';
-  }
-  while (!text.empty() && text.back() == ' ') text.pop_back();
-  return text;
-}
-
 int fail(const std::string& message) {
-  std::cerr << "error: " << one_line(message) << '\n';
+  // Printable and bounded: the message may quote file content or names (antcd/io.hpp).
+  std::cerr << "error: " << antcd::printable_line(message) << '\n';
   return 2;
 }
 

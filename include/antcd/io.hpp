@@ -22,4 +22,13 @@ ANTCD_API std::string read_file(const std::filesystem::path& path);
 /// antcd::Error naming `path` if it cannot be created.
 ANTCD_API void create_folders(const std::filesystem::path& path);
 
+/// `text` (an error message) as one printable, bounded line, safe to print on a terminal: line
+/// breaks and tabs become blanks; other control bytes (C0, DEL, C1) and bytes that are not UTF-8
+/// are shown as \xNN; a quoted input ('...', opened after a blank, '(' or '=' or at the start) is
+/// cut after kPrintableQuoteLength characters with "..."; the whole line after kPrintableLineLength
+/// bytes. Thread-safe.
+inline constexpr std::size_t kPrintableQuoteLength = 80;
+inline constexpr std::size_t kPrintableLineLength = 1000;
+ANTCD_API std::string printable_line(std::string_view text);
+
 }  // namespace antcd

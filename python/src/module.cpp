@@ -1,5 +1,6 @@
 // python/src/module.cpp — the extension module antcd._antcd (re-exported by the antcd package).
 #include <antcd/error.hpp>
+#include <antcd/io.hpp>
 #include <antcd/version.hpp>
 
 #include <pybind11/pybind11.h>
@@ -25,7 +26,7 @@ PYBIND11_MODULE(_antcd, m) {
     try {
       if (p) std::rethrow_exception(p);
     } catch (const antcd::Error& e) {
-      PyErr_SetString(PyExc_ValueError, e.what());
+      PyErr_SetString(PyExc_ValueError, antcd::printable_line(e.what()).c_str());
     }
   });
 

@@ -4,6 +4,7 @@
 #include <cerrno>
 #include <fstream>
 #include <string>
+#include <utility>
 
 namespace antcd::python {
 
@@ -21,8 +22,10 @@ namespace {
 }  // namespace
 
 std::filesystem::path to_path(py::handle value) {
-  return std::filesystem::path(
-      py::module_::import("os").attr("fspath")(value).cast<std::string>());
+  auto text = py::module_::import("os").attr("fspath")(value).cast<std::string>();
+  // The operating system would read the path only up to a NUL byte, and so open another file.
+  if (text.find('\0') != std::string::npos) throw py::value_error("embedded null byte in path");
+  return std::filesystem::path(std::move(text));
 }
 
 void require_readable_file(const std::filesystem::path& path, std::string_view what) {

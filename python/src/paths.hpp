@@ -8,7 +8,8 @@
 
 namespace antcd::python {
 
-/// str or os.PathLike to a path (TypeError otherwise, as os.fspath raises).
+/// str or os.PathLike to a path (TypeError otherwise, as os.fspath raises; ValueError for a path
+/// holding a NUL byte, as Python's open raises).
 std::filesystem::path to_path(pybind11::handle value);
 
 /// Raises FileNotFoundError / IsADirectoryError / PermissionError (OSError subclasses, with errno

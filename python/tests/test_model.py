@@ -101,3 +101,14 @@ def test_load_mesh_file_errors(models_dir, tmp_path):
         antcd.load_mesh(models_dir / "PLY" / "points.ply")
     with pytest.raises(TypeError):
         antcd.load_mesh(42)
+
+
+@pytest.mark.parametrize("suffix", ["\0", "\0.ignored", "\0/../x"])
+def test_paths_with_a_nul_byte_are_refused_not_truncated(models_dir, suffix):
+    # Read up to the NUL, the path would name an existing file: Python's open raises ValueError.
+    existing = str(models_dir / "OBJ" / "box.obj")
+    for call in (antcd.load_mesh, antcd.Model.load, antcd.Scene):
+        with pytest.raises(ValueError, match="null byte"):
+            call(existing + suffix)
+        with pytest.raises(ValueError, match="null byte"):
+            call((existing + suffix).encode())

@@ -274,7 +274,7 @@ FeatureSpace build_feature_space(const Model& a, const Transform& pose_a, const 
   const auto sample_b = stratified_sample(cand_b, options.samples_per_side, rng);
   // The witness test runs in A's model frame with B mapped into it, as collide() does, so that a
   // confirmed pair is one collide() reports.
-  const Transform b_to_a = pose_a.inverse() * pose_b;
+  const Transform b_to_a = detail::relative_pose(pose_a, pose_b);
   space.a = make_side(a, pose_a, Transform::identity(), sample_a, leaves_a.size(), options.order);
   space.b = make_side(b, pose_b, b_to_a, sample_b, leaves_b.size(), options.order);
   return space;

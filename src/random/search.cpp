@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "bvh/traverse.hpp"
 #include "random/engines.hpp"
 
 namespace antcd {
@@ -232,7 +233,7 @@ WitnessCheck confirm_witnesses(const Model& a, const Transform& pose_a, const Mo
   const auto na = static_cast<std::uint32_t>(a.leaf_triangles().size());
   const auto nb = static_cast<std::uint32_t>(b.leaf_triangles().size());
   // In A's frame with B mapped into it, as collide() and the feature spaces test.
-  const Transform b_to_a = pose_a.inverse() * pose_b;
+  const Transform b_to_a = detail::relative_pose(pose_a, pose_b);
   const Transform identity = Transform::identity();
   std::size_t valid = 0;
   for (std::size_t k = 0; k < w.size(); ++k) {

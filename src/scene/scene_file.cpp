@@ -7,6 +7,7 @@
 #include <cmath>
 #include <fstream>
 #include <sstream>
+#include <stdexcept>
 #include <unordered_set>
 
 namespace antcd {
@@ -19,6 +20,8 @@ constexpr std::string_view kFormat = "antcd-scene/1";
 
 class Parser {
  public:
+  static constexpr int kMaxNesting = 32;
+
   explicit Parser(std::string source) : source_(std::move(source)) {}
 
   [[noreturn]] void fail(const std::string& where, const std::string& problem) const {
@@ -94,8 +97,24 @@ class Parser {
 
   SceneDescription scene(std::string_view text, const std::filesystem::path& base_dir) const {
     json root;
+    // A scene nests 5 levels deep (objects, object, poses, pose, translation). Deeper nesting is
+    // refused as it is read, before a level is allocated: a file of a few MB of brackets would
+    // otherwise take gigabytes.
+    bool too_deep = false;
+    const auto limit_depth = [&too_deep](int depth, json::parse_event_t event, json&) {
+      if ((event == json::parse_event_t::object_start ||
+           event == json::parse_event_t::array_start) &&
+          depth >= kMaxNesting) {
+        too_deep = true;
+        throw std::length_error("nesting");
+      }
+      return true;
+    };
     try {
-      root = json::parse(text.begin(), text.end());
+      root = json::parse(text.begin(), text.end(), limit_depth);
+    } catch (const std::length_error&) {
+      if (!too_deep) throw;
+      fail("", "nested deeper than " + std::to_string(kMaxNesting) + " levels");
     } catch (const json::exception& e) {  // parse errors, and out_of_range for 1e999
       std::string msg = e.what();
       for (char& c : msg) {

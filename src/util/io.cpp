@@ -1,6 +1,7 @@
 #include <antcd/error.hpp>
 #include <antcd/io.hpp>
 
+#include <algorithm>
 #include <atomic>
 #include <cerrno>
 #include <cstdio>
@@ -107,6 +108,87 @@ void create_folders(const std::filesystem::path& path) {
   std::error_code ec;
   std::filesystem::create_directories(path, ec);
   if (ec) throw Error(path.string() + ": cannot create the folder: " + ec.message());
+}
+
+namespace {
+
+// Length of the valid UTF-8 sequence (2..4 bytes, no overlong form, no surrogate, no C1 control)
+// starting at text[i], or 0.
+std::size_t utf8_length(std::string_view text, std::size_t i) {
+  const auto byte = [&](std::size_t k) { return static_cast<unsigned char>(text[k]); };
+  const unsigned char lead = byte(i);
+  std::size_t n = 0;
+  unsigned char lo = 0x80;
+  unsigned char hi = 0xBF;
+  if (lead >= 0xC2 && lead <= 0xDF) {
+    n = 2;
+    if (lead == 0xC2) lo = 0xA0;  // U+0080..U+009F are the C1 controls
+  } else if (lead >= 0xE0 && lead <= 0xEF) {
+    n = 3;
+    if (lead == 0xE0) lo = 0xA0;
+    if (lead == 0xED) hi = 0x9F;
+  } else if (lead >= 0xF0 && lead <= 0xF4) {
+    n = 4;
+    if (lead == 0xF0) lo = 0x90;
+    if (lead == 0xF4) hi = 0x8F;
+  } else {
+    return 0;
+  }
+  if (i + n > text.size()) return 0;
+  if (byte(i + 1) < lo || byte(i + 1) > hi) return 0;
+  for (std::size_t k = 2; k < n; ++k) {
+    if (byte(i + k) < 0x80 || byte(i + k) > 0xBF) return 0;
+  }
+  return n;
+}
+
+}  // namespace
+
+std::string printable_line(std::string_view text) {
+  std::string out;
+  out.reserve(std::min(text.size(), kPrintableLineLength) + 8);
+  bool quoted = false;    // inside a quoted input
+  std::size_t shown = 0;  // its characters printed so far
+  bool cut = false;       // its rest is being skipped
+  for (std::size_t i = 0; i < text.size() && out.size() < kPrintableLineLength;) {
+    const auto c = static_cast<unsigned char>(text[i]);
+    std::size_t n = 1;
+    if (c == '\'' && quoted) {
+      quoted = false;
+      if (cut) out += "...";
+      cut = false;
+      out += '\'';
+      ++i;
+      continue;
+    }
+    if (c == '\'' && (out.empty() || out.back() == ' ' || out.back() == '(' || out.back() == '=')) {
+      quoted = true;
+      shown = 0;
+      out += '\'';
+      ++i;
+      continue;
+    }
+    if (c >= 0x80) n = utf8_length(text, i);
+    if (quoted && !cut && shown == kPrintableQuoteLength) cut = true;
+    if (!cut) {
+      if (c == '\n' || c == '\r' || c == '\t') {
+        out += ' ';
+      } else if (c < 0x20 || c == 0x7F || n == 0) {
+        char hex[5];
+        std::snprintf(hex, sizeof hex, "\\x%02X", static_cast<unsigned>(c));
+        out += hex;
+        n = 1;
+      } else {
+        out.append(text.substr(i, n));
+      }
+      ++shown;
+    }
+    i += n == 0 ? 1 : n;
+  }
+  if (cut) out += "...";
+  if (out.size() >= kPrintableLineLength) out += "...";
+  while (!out.empty() && out.back() == ' ') out.pop_back();
+  return out;
 }
 
 }  // namespace antcd

@@ -234,8 +234,7 @@ TEST(FuzzRegression, PlyHeaderWithoutEndHeaderDoesNotHang) {
   // A timeout found by fuzz/fuzz_mesh_load: assimp's PLY reader never returns when the file ends
   // inside the header (it parses the last header line again and again, growing memory). load_mesh
   // now refuses a PLY file without an end_header line before assimp reads it.
-  const fs::path found =
-      fs::path(ANTCD_BAD_INPUT_DATA) / "fuzz-timeout-ply-header-without-end.ply";
+  const fs::path found = fs::path(ANTCD_BAD_INPUT_DATA) / "fuzz-timeout-ply-header-without-end.ply";
   ASSERT_TRUE(fs::exists(found)) << found;
   const auto start = std::chrono::steady_clock::now();
   expect_refused(found, "the PLY header has no end_header line");
@@ -291,8 +290,7 @@ TEST(FuzzRegression, OffWithMoreSkippedFaceLinesThanFacesDoesNotCrash) {
   // line whose corner count is 0 or above 9 by decrementing the face count without bound; with
   // more such lines than the header's faces the count wraps around and assimp reads far past its
   // face array. load_mesh now walks the file as that reader does and refuses it first.
-  const fs::path found =
-      fs::path(ANTCD_BAD_INPUT_DATA) / "fuzz-crash-off-face-count-underflow.off";
+  const fs::path found = fs::path(ANTCD_BAD_INPUT_DATA) / "fuzz-crash-off-face-count-underflow.off";
   ASSERT_TRUE(fs::exists(found)) << found;
   expect_refused(found, "more face lines with 0 or over 9 corners than faces in the OFF header");
   const auto dir = fresh_temp_dir("fuzz_off_faces");
@@ -488,6 +486,28 @@ TEST(BadMeshFile, NonFiniteInMemoryMeshIsRefusedByModel) {
 
 // ---- only degenerate triangles ----
 
+TEST(BadMeshFile, CoordinateMagnitudeLimits) {
+  // docs/guarantees.md promises 1e-75 .. 1e75; beyond the zero-area test's range a model of only
+  // such triangles is refused with a clear message (never accepted with wrong areas).
+  const struct {
+    double scale;
+    bool accepted;
+  } table[] = {{1e-75, true}, {1e75, true}, {1, true}, {1e-90, false}, {1e100, false}};
+  for (const auto& row : table) {
+    Mesh m;
+    m.vertices = {Vec3(0, 0, 0), Vec3(row.scale, 0, 0), Vec3(0, row.scale, 0),
+                  Vec3(0, 0, row.scale)};
+    m.triangles = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
+    try {
+      const Model model(std::move(m));
+      EXPECT_TRUE(row.accepted) << row.scale;
+    } catch (const MeshError& e) {
+      EXPECT_FALSE(row.accepted) << row.scale << ": " << e.what();
+      EXPECT_NE(std::string(e.what()).find("non-zero area"), std::string::npos) << e.what();
+    }
+  }
+}
+
 TEST(BadMeshFile, OnlyDegenerateTriangles) {
   const auto dir = fresh_temp_dir("degenerate");
   // Collinear corners, a repeated corner, a point, and a binary STL of zeroed facets (a common
@@ -650,21 +670,25 @@ TEST(BadSceneFile, PoseErrors) {
       "quaternion has length");
 }
 
-TEST(BadSceneFile, DeeplyNestedValueDoesNotOverflowTheStack) {
-  // Regression: the "unknown format" message printed the offending value with json::dump(), which
-  // recurses once per nesting level: a 2 MB file of nested brackets crashed the parser (stack
-  // overflow). Deep nesting anywhere else must not crash either.
-  constexpr std::size_t depth = 1'000'000;
-  const std::string nested = std::string(depth, '[') + std::string(depth, ']');
+TEST(BadSceneFile, DeepNestingIsRefusedAsItIsRead) {
+  // Regression: a file of nested brackets overflowed the stack (json::dump() in a message), then
+  // took gigabytes (a JSON value per level). Nesting deeper than 32 levels is refused while
+  // parsing, wherever it is; 31 levels in an unknown field are only an unknown field.
   const std::string head = R"({ "format": "antcd-scene/1", "frames": 1, "objects": [ )";
   const std::string object = R"({ "name": "a", "mesh": "m.obj", )";
-  expect_scene_error(R"({ "format": )" + nested + R"(, "frames": 1, "objects": [] })",
-                     "unknown format (a JSON array)");
-  expect_scene_error(head + object + R"("poses": [ {} ], "deep": )" + nested + " } ] }",
+  for (const std::size_t depth : {std::size_t{33}, std::size_t{1'000'000}}) {
+    const std::string nested = std::string(depth, '[') + std::string(depth, ']');
+    expect_scene_error(R"({ "format": )" + nested + R"(, "frames": 1, "objects": [] })",
+                       "nested deeper than 32 levels");
+    expect_scene_error(head + object + R"("poses": [ {} ], "deep": )" + nested + " } ] }",
+                       "nested deeper than 32 levels");
+    expect_scene_error(head + object + R"("poses": [ { "translation": )" + nested + " } ] } ] }",
+                       "nested deeper than 32 levels");
+    expect_scene_error(head + std::string(depth, '['), "nested deeper than 32 levels");
+  }
+  expect_scene_error(head + object + R"("poses": [ {} ], "deep": )" + std::string(28, '[') +
+                         std::string(28, ']') + " } ] }",
                      "object 'a': unknown field 'deep'");
-  expect_scene_error(head + object + R"("poses": [ { "translation": )" + nested + " } ] } ] }",
-                     "'translation' must be an array of 3 numbers");
-  expect_scene_error(head + std::string(depth, '{'), "not valid JSON");
 }
 
 TEST(BadSceneFile, LongFormatValueGivesAShortMessage) {
@@ -704,6 +728,45 @@ TEST(BadSceneFile, SceneWhoseMeshIsBad) {
       ADD_FAILURE() << "expected an error";
     } catch (const Error& e) {
       expect_names(e.what(), (dir / mesh).string(), false);
+    }
+  }
+}
+
+// ---- error lines: printable and bounded ----
+
+TEST(PrintableLine, EscapesControlBytesAndCutsLongQuotes) {
+  const std::string long_quote(5000, 'x');
+  const struct {
+    std::string in;
+    std::string out;
+  } table[] = {
+      {"plain: message", "plain: message"},
+      {"two\nlines\r\n", "two lines"},
+      {"tab\there", "tab here"},
+      {"ansi '\x1b[31mred\x1b[0m' bell\x07", "ansi '\\x1B[31mred\\x1B[0m' bell\\x07"},
+      {std::string("nul ") + '\0' + "byte", "nul \\x00byte"},
+      {"del \x7f", "del \\x7F"},
+      {"utf-8 \xc3\xa9t\xc3\xa9 \xe2\x86\x92 kept", "utf-8 \xc3\xa9t\xc3\xa9 \xe2\x86\x92 kept"},
+      {"binary \xff\xfe\xc3", "binary \\xFF\\xFE\\xC3"},
+      {"C1 CSI \xc2\x9b"
+       "2J",
+       "C1 CSI \\xC2\\x9B2J"},
+      {"overlong \xc0\xaf", "overlong \\xC0\\xAF"},
+      {"f.csv:2: got '" + long_quote + "'", "f.csv:2: got '" + std::string(80, 'x') + "...'"},
+      {"got '" + long_quote, "got '" + std::string(80, 'x') + "..."},
+      {"can't open 'a.obj'", "can't open 'a.obj'"},
+      {"(expected '" + long_quote + "') after",
+       "(expected '" + std::string(80, 'x') + "...') after"},
+  };
+  for (const auto& row : table) EXPECT_EQ(printable_line(row.in), row.out) << row.in.substr(0, 40);
+  // Unquoted text is bounded too, and so is any mix.
+  const std::string noise = random_bytes(1 << 20, 5);
+  for (const std::string& text : {std::string(1 << 20, 'y'), noise, "'" + noise}) {
+    const std::string line = printable_line(text);
+    EXPECT_LE(line.size(), kPrintableLineLength + 8);
+    for (const char c : line) {
+      const auto u = static_cast<unsigned char>(c);
+      EXPECT_TRUE(u >= 0x20 && u != 0x7F) << "byte " << static_cast<int>(u);
     }
   }
 }
@@ -758,6 +821,14 @@ class Cli : public ::testing::Test {
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << "stderr: " << r.err;
     EXPECT_TRUE(!r.err.empty() && r.err.back() == '\n') << "stderr: " << r.err;
     EXPECT_EQ(r.err.find('\r'), std::string::npos) << "stderr: " << r.err;
+    // Printable (no escape sequence, bell or binary reaches the terminal) and bounded.
+    EXPECT_TRUE(std::all_of(r.err.begin(), r.err.end() - (r.err.empty() ? 0 : 1),
+                            [](char c) {
+                              const auto u = static_cast<unsigned char>(c);
+                              return u >= 0x20 && u != 0x7F;
+                            }))
+        << "stderr: " << printable_line(r.err);
+    EXPECT_LE(r.err.size(), kPrintableLineLength + 64) << "stderr: " << r.err.substr(0, 200);
     EXPECT_NE(r.err.find(named), std::string::npos)
         << "stderr does not name " << named << ": " << r.err;
     EXPECT_EQ(r.out, "") << "stdout: " << r.out;
@@ -787,6 +858,52 @@ TEST_F(Cli, PointsBadInputs) {
   expect_usage_failure({"points", "tet.obj", "points.csv", "--random", "3"}, "--random");
   expect_usage_failure({"points", "tet.obj", "--random", "3", "--pose", "1,2"}, "--pose");
   expect_usage_failure({"points", "nan.obj", "--random", "3"}, "nan.obj");
+}
+
+TEST_F(Cli, HostilePointsFiles) {
+  write_file(work_ / "ansi.csv", "0,0,0\n\x1b[31mred\x07,1,2\n");
+  write_file(work_ / "huge_line.csv", std::string(2'000'000, 'a'));
+  write_file(work_ / "spaces.csv", "0,0,0\n1,2,3" + std::string(5000, ' ') + "\n");
+  write_file(work_ / "nul.csv", std::string("0,0,0\n1,2,3\0junk\n", 17));
+  write_file(work_ / "binary.csv", random_bytes(100'000, 11));
+  ASSERT_EQ(::mkfifo((work_ / "fifo.csv").c_str(), 0600), 0) << std::strerror(errno);
+  expect_usage_failure({"points", "tet.obj", "ansi.csv"}, "ansi.csv:2");
+  expect_usage_failure({"points", "tet.obj", "huge_line.csv"}, "huge_line.csv:1: line longer");
+  expect_usage_failure({"points", "tet.obj", "spaces.csv"}, "spaces.csv:2: line longer");
+  expect_usage_failure({"points", "tet.obj", "nul.csv"}, "nul.csv:2");
+  expect_usage_failure({"points", "tet.obj", "binary.csv"}, "binary.csv");
+  expect_usage_failure({"points", "tet.obj", "fifo.csv"}, "fifo.csv: points file is not a regular");
+  expect_usage_failure({"points", "tet.obj", "/dev/zero"}, "/dev/zero: points file is not a");
+}
+
+TEST_F(Cli, ThirdPartyMessagesStayOffStderr) {
+  // assimp's OpenDDL parser writes "nullptr returned by creating DDLNode." to std::cerr itself.
+  const fs::path ogex = test::assimp_model("OpenGEX/empty_camera.ogex");
+  fs::copy_file(ogex, work_ / "camera.ogex");
+  write_file(work_ / "camera.json", R"({ "format": "antcd-scene/1", "frames": 1, "objects": [
+      { "name": "a", "mesh": "camera.ogex", "poses": [ {} ] } ] })");
+  expect_usage_failure({"info", "camera.ogex"}, "camera.ogex");
+  expect_usage_failure({"collide", "tet.obj", "camera.ogex"}, "camera.ogex");
+  expect_usage_failure({"run", "camera.json", "--out", "result.json"}, "camera.ogex");
+}
+
+TEST_F(Cli, OutOfRangeIntegers) {
+  // CLI11 alone reads "-1" as 2^64 - 1 and saturates overflowing values: each must be refused.
+  const std::vector<std::pair<std::vector<std::string>, std::string>> table = {
+      {{"points", "tet.obj", "--random", "3", "--seed", "-1"}, "--seed"},
+      {{"points", "tet.obj", "--random", "3", "--seed", "18446744073709551616"}, "--seed"},
+      {{"points", "tet.obj", "--random", "3", "--seed", "1e3"}, "--seed"},
+      {{"run", "scene.json", "--seed", "99999999999999999999999", "--out", "result.json"},
+       "--seed"},
+      {{"run", "scene.json", "--method", "maco", "--frame-evaluations", "-1"},
+       "--frame-evaluations"},
+      {{"scene", "generate", "--out", "generated", "--seed", "0x10"}, "--seed"},
+      {{"demo", "--seed", "-7"}, "--seed"},
+  };
+  for (const auto& [args, named] : table) expect_usage_failure(args, named);
+  const CliRun largest =
+      run_cli({"points", "tet.obj", "--random", "3", "--seed", "18446744073709551615"}, work_);
+  EXPECT_EQ(largest.exit_code, 0) << largest.err;
 }
 
 TEST_F(Cli, ValidInputsSucceed) {
