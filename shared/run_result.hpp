@@ -1,4 +1,5 @@
-// shared/run_result.hpp — results of a scene run (the `antcd run` output format) and the metrics that compare two runs.
+// shared/run_result.hpp — results of a scene run (the `antcd run` output format) and the metrics
+// that compare two runs.
 //
 // Output format (JSON):
 //   { "method": "maco", "build_ms": 41.0, "total_ms": 36.2,

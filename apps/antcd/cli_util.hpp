@@ -8,8 +8,8 @@
 
 #include <filesystem>
 #include <functional>
-#include <streambuf>
 #include <stdexcept>
+#include <streambuf>
 #include <string>
 
 namespace antcd {

@@ -175,9 +175,9 @@ int run_demo(const DemoOptions& o) {
       "there proves the pair separate). The colonies' pheromone and last witnesses are carried\n"
       "from frame to frame (docs/random-detection.md); %llu fitness evaluations in all.\n",
       maco.random.search.ant.ants, maco.random.search.iterations,
-      static_cast<std::size_t>(maco.random.samples_per_side),
-      result.frames.size(), frames,
-      o.maco_step == 1 ? "" : " (every --maco-step-th)", static_cast<unsigned long long>(evaluations));
+      static_cast<std::size_t>(maco.random.samples_per_side), result.frames.size(), frames,
+      o.maco_step == 1 ? "" : " (every --maco-step-th)",
+      static_cast<unsigned long long>(evaluations));
   if (ab_frames > 0) {
     std::printf(
         "maco A/B (share of the sampled feature spaces' colliding feature pairs, each confirmed by\n"
@@ -200,8 +200,7 @@ void add_demo_command(CLI::App& app, int& code) {
       "compare");
   cmd->add_option("--objects", opts->objects, "Objects in the scene")->check(CLI::Range(2, 100000));
   cmd->add_option("--frames", opts->frames, "Frames")->check(CLI::Range(1, 1000000));
-  cmd->add_option("--seed", opts->seed, "Seed of the scene and of maco")
-      ->check(unsigned_integer());
+  cmd->add_option("--seed", opts->seed, "Seed of the scene and of maco")->check(unsigned_integer());
   cmd->add_option("--threads", opts->threads, "Worker threads (default: every core)")
       ->check(CLI::Range(1, 256))
       ->capture_default_str();

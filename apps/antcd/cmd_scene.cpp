@@ -214,8 +214,7 @@ void add_scene_commands(CLI::App& app, int& code) {
   cmd->add_option("--feature-delta", run->feature_delta,
                   "Random methods: centroid threshold, > 0 (default: from triangle sizes)")
       ->check(positive_finite());
-  cmd->add_option("--seed", run->seed, "Seed of the random methods")
-      ->check(unsigned_integer());
+  cmd->add_option("--seed", run->seed, "Seed of the random methods")->check(unsigned_integer());
   cmd->add_option("--threads", run->threads, "Worker threads")->check(CLI::Range(1, 256));
   cmd->add_option("--samples", run->samples, "Random methods: features sampled per side")
       ->check(CLI::Range(1, 100000));
@@ -231,9 +230,10 @@ void add_scene_commands(CLI::App& app, int& code) {
   cmd->add_option("--verdict", run->verdict,
                   "Random methods: witness (the exact triangle test confirms each reported pair) or "
                   "paper-centroid (the paper's centroid threshold, a proximity test)");
-  cmd->add_option("--frame-evaluations", run->frame_evaluations,
-                  "Random methods: fitness evaluations shared by a frame's candidate pairs (anytime "
-                  "query; pairs left without a witness are listed as undecided); 0 = off")
+  cmd->add_option(
+         "--frame-evaluations", run->frame_evaluations,
+         "Random methods: fitness evaluations shared by a frame's candidate pairs (anytime "
+         "query; pairs left without a witness are listed as undecided); 0 = off")
       ->check(unsigned_integer());
   cmd->add_option("--frame-seconds", run->frame_seconds,
                   "Random methods: wall-time budget of a frame's searches (not deterministic); 0 = off")
@@ -265,8 +265,7 @@ void add_scene_commands(CLI::App& app, int& code) {
   g->add_option("--vertices", gen->vertices, "Average vertices per mesh")
       ->check(CLI::Range(8, 1000000));
   g->add_option("--frames", gen->frames, "Frames of motion")->check(CLI::Range(1, 1000000));
-  g->add_option("--seed", gen->seed, "Seed of the layout and motions")
-      ->check(unsigned_integer());
+  g->add_option("--seed", gen->seed, "Seed of the layout and motions")->check(unsigned_integer());
   g->add_option("--mesh", gen->meshes, "Place these mesh files instead of generated equipment")
       ->check(CLI::ExistingFile);
   g->callback([gen, &code] { code = run_generate(*gen); });

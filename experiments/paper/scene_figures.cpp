@@ -11,8 +11,8 @@
 #include <atomic>
 #include <iterator>
 #include <limits>
-#include <optional>
 #include <mutex>
+#include <optional>
 #include <ostream>
 #include <string>
 
@@ -94,7 +94,8 @@ void measure_scene_figures(const Scene& scene, const std::vector<FrameTruth>& tr
     };
     for (std::size_t g = 0; g < std::size(kSceneSpecs); ++g) {
       for (const std::uint64_t budget : P.budgets) {
-        out.random.push_back(detect(kSceneSpecs[g].method, kSceneSpecs[g].verdict, budget, std::nullopt, g));
+        out.random.push_back(
+            detect(kSceneSpecs[g].method, kSceneSpecs[g].verdict, budget, std::nullopt, g));
       }
     }
     for (const double scale : P.delta_scales) {

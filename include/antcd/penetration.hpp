@@ -12,7 +12,8 @@
 //   one triangle pair (FCL's mesh semantics), not the solids' depth.
 //
 // What is returned and what is guaranteed
-// - Convex pairs (both models convex, see Convexity): exact = true, lower == upper == PD up to rounding (a few ulps of the coordinates),
+// - Convex pairs (both models convex, see Convexity): exact = true, lower == upper == PD up to
+// rounding (a few ulps of the coordinates),
 //   found by the separating-axis theorem over the facets of the Minkowski difference A - B (face
 //   normals of A and B, and the edge pairs whose Gauss-map arcs cross). point_a on A's surface and
 //   point_b on B's surface with point_a + upper * direction == point_b (A moved by the depth

@@ -19,24 +19,29 @@ void bind_distance(py::module_& m) {
       "The answer of distance(): the minimum distance between two models' surfaces, the triangles "
       "and world-frame points where it is reached.")
       .def_readonly("distance", &DistanceResult::distance,
-                    "Minimum surface distance (0 when the surfaces meet; negative only for signed=True: minus "
+                    "Minimum surface distance (0 when the surfaces meet; negative only for "
+                    "signed=True: minus "
                     "the solids' penetration depth). With "
                     "beyond_upper_bound, only the closest pair seen (possibly inf).")
-      .def_readonly("lower_bound", &DistanceResult::lower_bound, "A proven lower bound of the distance.")
+      .def_readonly("lower_bound", &DistanceResult::lower_bound,
+                    "A proven lower bound of the distance.")
       .def_property_readonly(
           "point_a", [](const DistanceResult& r) { return to_point(r.point_a); },
           "float64[3], world frame: the closest point on A's triangle_a.")
       .def_property_readonly(
           "point_b", [](const DistanceResult& r) { return to_point(r.point_b); },
           "float64[3], world frame: the closest point on B's triangle_b.")
-      .def_readonly("triangle_a", &DistanceResult::triangle_a, "Index of the closest triangle in A's faces.")
-      .def_readonly("triangle_b", &DistanceResult::triangle_b, "Index of the closest triangle in B's faces.")
+      .def_readonly("triangle_a", &DistanceResult::triangle_a,
+                    "Index of the closest triangle in A's faces.")
+      .def_readonly("triangle_b", &DistanceResult::triangle_b,
+                    "Index of the closest triangle in B's faces.")
       .def_readonly("intersecting", &DistanceResult::intersecting,
                     "The surfaces share a point (exact decision; distance is then 0).")
       .def_readonly("approximate", &DistanceResult::approximate,
                     "A tolerance let the search skip a pair that might have been closer.")
-      .def_readonly("beyond_upper_bound", &DistanceResult::beyond_upper_bound,
-                    "The distance is larger than the request's upper_bound (lower_bound > upper_bound).")
+      .def_readonly(
+          "beyond_upper_bound", &DistanceResult::beyond_upper_bound,
+          "The distance is larger than the request's upper_bound (lower_bound > upper_bound).")
       .def_readonly("node_pairs", &DistanceResult::node_pairs, "Node pairs examined.")
       .def_readonly("triangle_tests", &DistanceResult::triangle_tests,
                     "Triangle-triangle distances computed.")
@@ -70,8 +75,8 @@ void bind_distance(py::module_& m) {
         return distance(a, pa, b, pb, request);
       },
       py::arg("a"), py::arg("pose_a"), py::arg("b"), py::arg("pose_b"), py::kw_only(),
-      py::arg("upper_bound") = std::numeric_limits<double>::infinity(), py::arg("abs_tolerance") = 0.0,
-      py::arg("rel_tolerance") = 0.0, py::arg("signed") = false,
+      py::arg("upper_bound") = std::numeric_limits<double>::infinity(),
+      py::arg("abs_tolerance") = 0.0, py::arg("rel_tolerance") = 0.0, py::arg("signed") = false,
       "Minimum distance between the surfaces of two posed models (0 when they meet).\n\n"
       "pose_a, pose_b: as for collide(). Exact by default; abs_tolerance / rel_tolerance (>= 0, "
       "rel < 1) accept an answer within max(abs, rel * distance) above the true distance; "

@@ -48,15 +48,17 @@ py::array_t<std::uint32_t> pair_array(const std::vector<std::pair<std::uint32_t,
 }
 
 SceneRun run(const PyScene& s, const std::string& method, const py::object& frames_in, double delta,
-             std::optional<double> feature_delta, const py::handle samples_per_side, const py::handle seed,
-             const py::handle iterations, const py::handle agents, bool search_all, const py::handle threads) {
+             std::optional<double> feature_delta, const py::handle samples_per_side,
+             const py::handle seed, const py::handle iterations, const py::handle agents,
+             bool search_all, const py::handle threads) {
   SceneQuery query;
   query.method = parse_method(method);
   query.delta = to_non_negative(delta, "delta");
   if (feature_delta) {
     if (!(*feature_delta > 0) || !std::isfinite(*feature_delta)) {
-      throw py::value_error("feature_delta must be a finite number > 0 (or None: derived from "
-                            "triangle sizes)");
+      throw py::value_error(
+          "feature_delta must be a finite number > 0 (or None: derived from "
+          "triangle sizes)");
     }
     query.random.search.centroid_delta = *feature_delta;
   }
@@ -154,49 +156,58 @@ void bind_scene(py::module_& m) {
 
   py::class_<PyScene>(
       m, "Scene",
-      "A scene file (antcd-scene/1 JSON) loaded with one Model per distinct mesh file and scale.\n\n"
+      "A scene file (antcd-scene/1 JSON) loaded with one Model per distinct mesh file and "
+      "scale.\n\n"
       "Each frame: poses -> broad phase (sweep and prune, root spheres, root OBBs) -> the chosen "
       "narrow phase on each surviving pair.")
-      .def(py::init(&open_scene), py::arg("path"), py::kw_only(), py::arg("leaf_size") = 4,
-           py::arg("covariance") = "area",
-           "Loads the scene and builds its models. Raises FileNotFoundError (OSError) when the file "
-           "is missing, ValueError naming the object or field when the scene or a mesh is invalid.")
+      .def(
+          py::init(&open_scene), py::arg("path"), py::kw_only(), py::arg("leaf_size") = 4,
+          py::arg("covariance") = "area",
+          "Loads the scene and builds its models. Raises FileNotFoundError (OSError) when the file "
+          "is missing, ValueError naming the object or field when the scene or a mesh is invalid.")
       .def_readonly("path", &PyScene::path)
-      .def_property_readonly("frames", [](const PyScene& s) { return s.scene->description().frames; })
-      .def_property_readonly("object_count", [](const PyScene& s) { return s.scene->object_count(); })
+      .def_property_readonly("frames",
+                             [](const PyScene& s) { return s.scene->description().frames; })
+      .def_property_readonly("object_count",
+                             [](const PyScene& s) { return s.scene->object_count(); })
       .def_property_readonly("model_count", [](const PyScene& s) { return s.scene->model_count(); })
       .def_property_readonly("build_ms", [](const PyScene& s) { return s.scene->build_ms(); })
-      .def_property_readonly(
-          "object_names",
-          [](const PyScene& s) {
-            std::vector<std::string> names;
-            for (const SceneObject& o : s.scene->description().objects) names.push_back(o.name);
-            return names;
-          })
+      .def_property_readonly("object_names",
+                             [](const PyScene& s) {
+                               std::vector<std::string> names;
+                               for (const SceneObject& o : s.scene->description().objects)
+                                 names.push_back(o.name);
+                               return names;
+                             })
       .def(
           "model",
           [](const PyScene& s, std::size_t object) {
-            if (object >= s.scene->object_count()) throw py::index_error("object index out of range");
+            if (object >= s.scene->object_count())
+              throw py::index_error("object index out of range");
             // Shares ownership of the scene: the Model stays valid as long as it is referenced.
             return std::shared_ptr<Model>(s.scene, const_cast<Model*>(&s.scene->model_of(object)));
           },
-          py::arg("object"), "The Model of an object (shared by objects with the same mesh and scale).")
+          py::arg("object"),
+          "The Model of an object (shared by objects with the same mesh and scale).")
       .def(
           "pose",
           [](const PyScene& s, std::size_t object, std::size_t frame) {
-            if (object >= s.scene->object_count()) throw py::index_error("object index out of range");
+            if (object >= s.scene->object_count())
+              throw py::index_error("object index out of range");
             if (frame >= s.scene->description().frames) throw py::index_error("frame out of range");
             return to_matrix(s.scene->description().objects[object].pose(frame));
           },
-          py::arg("object"), py::arg("frame"), "4x4 pose of an object at a frame (scale not included).")
+          py::arg("object"), py::arg("frame"),
+          "4x4 pose of an object at a frame (scale not included).")
       .def("run", &run, py::kw_only(), py::arg("method") = "exact", py::arg("frames") = py::none(),
-           py::arg("delta") = 0.0, py::arg("feature_delta") = py::none(), py::arg("samples_per_side") = 1000,
-           py::arg("seed") = 1, py::arg("iterations") = 100, py::arg("agents") = 60,
-           py::arg("search_all") = false, py::arg("threads") = 1,
+           py::arg("delta") = 0.0, py::arg("feature_delta") = py::none(),
+           py::arg("samples_per_side") = 1000, py::arg("seed") = 1, py::arg("iterations") = 100,
+           py::arg("agents") = 60, py::arg("search_all") = false, py::arg("threads") = 1,
            "Runs frames (None: all; an int; or an iterable of ints) with a method: 'exact' "
            "(default, ground truth), 'sphere-obb', 'aco', 'maco', 'pso', 'ga' or 'exhaustive'.\n"
            "delta: exact/sphere-obb threshold; feature_delta: random methods' centroid threshold "
-           "(> 0; None: derived from triangle sizes); samples_per_side, seed, iterations, agents: random "
+           "(> 0; None: derived from triangle sizes); samples_per_side, seed, iterations, agents: "
+           "random "
            "methods; search_all: random methods search every pair for N iterations instead of "
            "stopping at the first hit; threads: narrow-phase workers (same answer at any count).\n"
            "The GIL is released while frames run.")
@@ -208,16 +219,17 @@ void bind_scene(py::module_& m) {
   m.def(
       "run_scene",
       [](const py::object& path, const std::string& method, const py::object& frames, double delta,
-         std::optional<double> feature_delta, const py::handle samples_per_side, const py::handle seed,
-         const py::handle iterations, const py::handle agents, bool search_all, const py::handle threads) {
+         std::optional<double> feature_delta, const py::handle samples_per_side,
+         const py::handle seed, const py::handle iterations, const py::handle agents,
+         bool search_all, const py::handle threads) {
         const PyScene s = open_scene(path, py::int_(4), "area");
         return run(s, method, frames, delta, feature_delta, samples_per_side, seed, iterations, agents,
                    search_all, threads);
       },
       py::arg("path"), py::kw_only(), py::arg("method") = "exact", py::arg("frames") = py::none(),
-      py::arg("delta") = 0.0, py::arg("feature_delta") = py::none(), py::arg("samples_per_side") = 1000,
-      py::arg("seed") = 1, py::arg("iterations") = 100, py::arg("agents") = 60,
-      py::arg("search_all") = false, py::arg("threads") = 1,
+      py::arg("delta") = 0.0, py::arg("feature_delta") = py::none(),
+      py::arg("samples_per_side") = 1000, py::arg("seed") = 1, py::arg("iterations") = 100,
+      py::arg("agents") = 60, py::arg("search_all") = false, py::arg("threads") = 1,
       "Scene(path).run(...): loads a scene file and runs its frames with a method. See Scene.run.");
 }
 

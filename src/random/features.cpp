@@ -211,14 +211,14 @@ FeatureSpace build_feature_space(const Model& a, const Transform& pose_a, const 
   if (!(options.delta >= 0) || !std::isfinite(options.delta)) {
     throw ArgumentError("build_feature_space: delta must be finite and >= 0");
   }
-  if (options.centroid_delta && !(*options.centroid_delta > 0 &&
-                                  std::isfinite(*options.centroid_delta))) {
+  if (options.centroid_delta &&
+      !(*options.centroid_delta > 0 && std::isfinite(*options.centroid_delta))) {
     throw ArgumentError("build_feature_space: centroid_delta must be finite and > 0 (or unset)");
   }
   FeatureSpace space;
   space.delta = options.delta;
-  space.centroid_delta = options.centroid_delta.value_or(0) > 0 ? *options.centroid_delta
-                                                                 : default_delta(a, b);
+  space.centroid_delta =
+      options.centroid_delta.value_or(0) > 0 ? *options.centroid_delta : default_delta(a, b);
 
   // Section 4 step 1: preliminary detection at the collision threshold itself.
   std::vector<LeafPair> pairs;
@@ -300,8 +300,7 @@ bool witness_test(const FeatureSpace& space, std::uint32_t i, std::uint32_t j) {
 Thresholds thresholds(const FeatureSpace& space, Verdict verdict,
                       std::optional<Scalar> centroid_delta, const char* caller) {
   if (centroid_delta && !(*centroid_delta > 0 && std::isfinite(*centroid_delta))) {
-    throw ArgumentError(std::string(caller) +
-                        ": centroid_delta must be finite and > 0 (or unset)");
+    throw ArgumentError(std::string(caller) + ": centroid_delta must be finite and > 0 (or unset)");
   }
   Thresholds t;
   t.verdict = verdict;

@@ -231,13 +231,13 @@ void World::set_poses(std::span<const ObjectId> ids, std::span<const Transform> 
   for (const ObjectId id : ids) escaped += w.flags[id.slot] != 0;
   // Few leaves to update: one removal and insertion each (O(log n)), with the fattened box so that
   // small motions after this one need no update. Many (more than a sixteenth of the objects: a
-  // frame of a moving world, where most objects move every frame): one O(n) refit of the new leaf boxes, which rebuilds when the tree
-  // got loose; fattening would then buy nothing (the refit costs O(n) anyway) and only let more
-  // pairs through the broad phase, so those leaves keep their unfattened boxes. Objects that jumped
-  // are taken out before the refit and reinserted after it: refitting would stretch every box on
-  // their old path across the jump. On a small world the refit is cheaper than even a few
-  // removals and insertions (90 objects, 45 moving: set_poses in half the instructions of the
-  // former floor of 64 escaped objects).
+  // frame of a moving world, where most objects move every frame): one O(n) refit of the new leaf
+  // boxes, which rebuilds when the tree got loose; fattening would then buy nothing (the refit
+  // costs O(n) anyway) and only let more pairs through the broad phase, so those leaves keep their
+  // unfattened boxes. Objects that jumped are taken out before the refit and reinserted after it:
+  // refitting would stretch every box on their old path across the jump. On a small world the refit
+  // is cheaper than even a few removals and insertions (90 objects, 45 moving: set_poses in half
+  // the instructions of the former floor of 64 escaped objects).
   const bool refit = escaped > w.live / 16;
   if (!refit) {
     for (const ObjectId id : ids) {

@@ -309,7 +309,8 @@ TEST(Scene, RandomRunIsRandomDetectPerPair) {
         const bool in_pairs = std::binary_search(r.pairs.begin(), r.pairs.end(), key);
         const bool in_undecided =
             std::find(r.undecided.begin(), r.undecided.end(), key) != r.undecided.end();
-        EXPECT_EQ(d.colliding, in_pairs) << method_name(m) << " frame " << f << " " << i << "-" << j;
+        EXPECT_EQ(d.colliding, in_pairs)
+            << method_name(m) << " frame " << f << " " << i << "-" << j;
         EXPECT_EQ(d.undecided, in_undecided) << method_name(m) << " frame " << f;
         const ColonyMemory* kept = memory.find(i, j);
         ASSERT_NE(kept, nullptr);
