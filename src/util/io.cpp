@@ -53,6 +53,15 @@ void write_file_atomic(const std::filesystem::path& path, std::string_view conte
     throw Error(path.string() + ": cannot write: " + why);
   };
   if (path.filename().empty()) fail("the path names no file");
+  // The rename below would replace a device, FIFO or socket with a regular file (as root,
+  // `--out /dev/null` would turn /dev/null into a file). A directory is left to the rename, which
+  // fails on it without harm.
+  std::error_code status_error;
+  const auto status = std::filesystem::status(path, status_error);
+  if (std::filesystem::exists(status) && !std::filesystem::is_regular_file(status) &&
+      !std::filesystem::is_directory(status)) {
+    fail("it exists and is not a regular file (a device, FIFO or socket is never replaced)");
+  }
   const std::filesystem::path tmp = temporary_beside(path);
   std::FILE* file = std::fopen(tmp.string().c_str(), "wbx");
   if (file == nullptr) fail(std::strerror(errno));

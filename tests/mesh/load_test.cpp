@@ -19,6 +19,7 @@
 #include <antcd/mesh.hpp>
 
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <algorithm>
 #include <array>
@@ -846,6 +847,22 @@ TEST(SaveObj, FailedRenameRemovesTemporary) {
   }
   EXPECT_EQ(count_entries(dir), 1u);  // only the directory that was in the way
   EXPECT_TRUE(std::filesystem::is_directory(dir / "taken.obj" / "inside"));
+}
+
+TEST(SaveObj, SpecialFileTargetIsRefusedAndKept) {
+  // The temporary-file-then-rename write would replace a FIFO (or a device such as /dev/null)
+  // with a regular file.
+  const auto dir = fresh_temp_dir("save_special_target");
+  const auto fifo = dir / "pipe.obj";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  try {
+    save_obj(make_box(Vec3(1, 1, 1)), fifo);
+    ADD_FAILURE() << "expected an Error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("is not a regular file"), std::string::npos) << e.what();
+  }
+  EXPECT_TRUE(std::filesystem::is_fifo(fifo));
+  EXPECT_EQ(count_entries(dir), 1u);
 }
 
 TEST(SaveObj, InvalidMeshIsRefused) {
