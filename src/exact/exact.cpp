@@ -129,9 +129,11 @@ bool collide(const Model& a, const Transform& pose_a, const Model& b, const Tran
     }
     return false;
   };
-  // A query that stops at its first contact visits the nearer children first.
-  result.traversal = limit == 1 ? detail::dual_traverse<true>(a, b, frame, on_leaf)
-                                : detail::dual_traverse<false>(a, b, frame, on_leaf);
+  // A query that stops at its first contact visits the nearer children first. The leaves' exact
+  // triangle tests decide, so the boxes need only their face axes (detail::BoxTest).
+  constexpr auto kFaces = detail::BoxTest::faces;
+  result.traversal = limit == 1 ? detail::dual_traverse<true, kFaces>(a, b, frame, on_leaf)
+                                : detail::dual_traverse<false, kFaces>(a, b, frame, on_leaf);
   if (request.manifold_points > 0) {
     result.regions = detail::reduce_to_manifold(result.contacts, request.manifold_points,
                                                 std::cos(request.manifold_angle));
