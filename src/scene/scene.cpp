@@ -15,6 +15,7 @@
 #include <mutex>
 #include <stdexcept>
 
+#include "exact/coherent.hpp"
 #include "random/detect.hpp"
 #include "scene/pair_query.hpp"
 #include "util/parallel.hpp"
@@ -30,6 +31,30 @@ struct Scene::Broad {
   std::vector<std::uint32_t> moving;
   std::vector<ObjectId> moving_ids;
   std::vector<Transform> moving_poses;
+
+  /// The exact method's per-pair hints from frame to frame (detail::PairWitness), one per
+  /// candidate pair of the last frame that used them, sorted by pair. A frame that finds them in
+  /// use by another run_frame call runs without (the hints change no verdict).
+  std::mutex witnesses_mutex;
+  std::vector<std::pair<std::uint64_t, detail::PairWitness>> witnesses;
+  std::vector<std::pair<std::uint64_t, detail::PairWitness>> spare_witnesses;
+
+  /// Lines `witnesses` up with `cand` (sorted pairs): entry k is pair cand[k]'s, kept from the
+  /// last frame when the pair was a candidate there, else new. Hold witnesses_mutex.
+  void align_witnesses(const std::vector<std::pair<std::uint32_t, std::uint32_t>>& cand) {
+    spare_witnesses.clear();
+    std::size_t old = 0;
+    for (const auto& [i, j] : cand) {
+      const std::uint64_t key = std::uint64_t{i} << 32 | j;
+      while (old < witnesses.size() && witnesses[old].first < key) ++old;
+      if (old < witnesses.size() && witnesses[old].first == key) {
+        spare_witnesses.emplace_back(key, witnesses[old].second);
+      } else {
+        spare_witnesses.emplace_back(key, detail::PairWitness{});
+      }
+    }
+    std::swap(witnesses, spare_witnesses);
+  }
 
   /// The frame's poses into the World (the moving objects' only), then its candidate pairs: one
   /// caller at a time (the World's mutations must not overlap its queries).
@@ -148,8 +173,15 @@ FrameResult Scene::run_frame(std::size_t frame, const SceneQuery& query,
     request.volume = query.volume;
     const auto& cand = result.candidates;
     const std::size_t m = cand.size();
+    // Each pair's query starts where the last frame's query of the pair found its contact.
+    std::unique_lock<std::mutex> hints(broad_->witnesses_mutex, std::try_to_lock);
+    if (hints.owns_lock()) broad_->align_witnesses(cand);
     const auto hit = [&](std::size_t k, CollisionResult& scratch) {
       const auto [i, j] = cand[k];
+      if (hints.owns_lock()) {
+        return detail::collide_coherent(model_of(i), pose(i), model_of(j), pose(j), request,
+                                        scratch, broad_->witnesses[k].second);
+      }
       return collide(model_of(i), pose(i), model_of(j), pose(j), request, scratch);
     };
     if (query.threads == 1 || m < 2) {
