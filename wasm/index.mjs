@@ -30,6 +30,7 @@ async function wasmBytes(options) {
 /** Contact records: triangleA, triangleB, point x y z, distance, normal x y z, depth. */
 export const CONTACT_STRIDE = 10;
 const EMPTY = new Float64Array(0);
+const NO_OPTIONS = Object.freeze({});
 
 function isPose(p) {
   return (Array.isArray(p) || ArrayBuffer.isView(p)) && p.length === 16;
@@ -70,16 +71,22 @@ export default async function createAntcd(options = {}) {
     return v;
   }
   function modelOf(fn, name, m) {
-    if (!(m instanceof Model) || m.core === null) {
+    if (!(m instanceof Model) || m.id === null) {
       throw new Error(`${fn}: ${name} must be a live antcd Model${m instanceof Model ? ' (it was deleted)' : ''}`);
     }
-    return m.core;
+    return m.id;
   }
-  function collisionArgs(fn, opts) {
+  function options(fn, opts) {
     if (opts !== undefined && (opts === null || typeof opts !== 'object')) throw new Error(`${fn}: options must be an object`);
-    const o = opts ?? {};
-    return [Boolean(o.allContacts), number(fn, 'delta', o.delta, 0), Boolean(o.contactNormals),
-      number(fn, 'maxContacts', o.maxContacts, 0)];
+    return opts ?? NO_OPTIONS;
+  }
+  // Bits of the collision flags argument: every contact, contact normals, volume (solids).
+  function collisionFlags(o) {
+    return (o.allContacts ? 1 : 0) | (o.contactNormals ? 2 : 0) | (o.volume ? 4 : 0);
+  }
+  function info(model) {
+    check('Model', core.modelInfo(modelOf('Model', 'this', model)));
+    return out(4);
   }
 
   /** A triangle mesh with its bounding-volume hierarchy (built once; immutable). */
@@ -90,9 +97,9 @@ export default async function createAntcd(options = {}) {
      * the model in error messages.
      */
     constructor(positions, indices, options = {}) {
-      this.core = null;
+      this.id = null;
       if (positions === SHAPE) {
-        this.core = indices;
+        this.id = indices;
         return;
       }
       const name = options.name ?? 'mesh';
@@ -124,21 +131,20 @@ export default async function createAntcd(options = {}) {
         if (f32) core.HEAPF32.set(positions, pPos / 4);
         else core.HEAPF64.set(positions, pPos / 8);
         core.HEAPU32.set(ix, pIdx / 4);
-        this.core = core.modelCreate(pPos, positions.length, f32, pIdx, indices.length, String(name));
+        this.id = check('Model', core.modelCreate(pPos, positions.length, f32, pIdx, indices.length, String(name)));
       } finally {
         core.freeBytes(pPos);
         core.freeBytes(pIdx);
       }
-      if (this.core === null) fail('Model');
     }
-    get triangleCount() { return modelOf('Model', 'this', this).triangleCount(); }
-    get vertexCount() { return modelOf('Model', 'this', this).vertexCount(); }
+    get triangleCount() { return info(this)[0]; }
+    get vertexCount() { return info(this)[1]; }
     /** Closed and consistently oriented (bounds a solid): volume queries and penetration apply. */
-    get isClosed() { return modelOf('Model', 'this', this).isClosed(); }
-    get name() { return modelOf('Model', 'this', this).name(); }
+    get isClosed() { return info(this)[2] === 1; }
+    get name() { return core.modelName(modelOf('Model', 'this', this)); }
     /** { positions: Float64Array, indices: Uint32Array } of the model's mesh. */
     mesh() {
-      core.modelMesh(modelOf('Model', 'this', this));
+      check('Model.mesh', core.modelMesh(modelOf('Model', 'this', this)));
       const head = out(2);
       const nv = head[0];
       const nt = head[1];
@@ -147,9 +153,9 @@ export default async function createAntcd(options = {}) {
     }
     /** Frees the WebAssembly memory (a World still holding the model keeps its own reference). */
     delete() {
-      if (this.core !== null) {
-        this.core.delete();
-        this.core = null;
+      if (this.id !== null) {
+        core.modelRelease(this.id);
+        this.id = null;
       }
     }
     static box(hx, hy, hz, subdivisions = 1) { return shape('box', hx, hy, hz, subdivisions, 0); }
@@ -166,9 +172,7 @@ export default async function createAntcd(options = {}) {
     for (const v of [n1, n2]) {
       if (!Number.isInteger(v) || v < 0 || v > 1e6) throw new Error(`${fn}: segment count ${describe(v)} is not an integer in [0, 1e6]`);
     }
-    const m = core.modelShape(kind, a, b, c, n1, n2);
-    if (m === null) fail(fn);
-    return new Model(SHAPE, m);
+    return new Model(SHAPE, check(fn, core.modelShape(kind, a, b, c, n1, n2)));
   }
 
   /** Exact collision of two posed models: { colliding, contacts } (contacts: CONTACT_STRIDE per contact, world frame). */
@@ -177,7 +181,9 @@ export default async function createAntcd(options = {}) {
     const cb = modelOf('collide', 'b', b);
     writePose(0, poseA, 'collide', 'poseA');
     writePose(1, poseB, 'collide', 'poseB');
-    const rc = check('collide', core.collide(ca, cb, ...collisionArgs('collide', opts), Boolean(opts?.volume)));
+    const o = options('collide', opts);
+    const rc = check('collide', core._antcd_collide(ca, cb, collisionFlags(o), number('collide', 'delta', o.delta, 0),
+      number('collide', 'maxContacts', o.maxContacts, 0)));
     return { colliding: rc > 0, contacts: rc > 1 ? outCopy(CONTACT_STRIDE * (rc - 1)) : EMPTY };
   }
 
@@ -187,9 +193,9 @@ export default async function createAntcd(options = {}) {
     const cb = modelOf('distance', 'b', b);
     writePose(0, poseA, 'distance', 'poseA');
     writePose(1, poseB, 'distance', 'poseB');
-    check('distance', core.distance(ca, cb, number('distance', 'upperBound', opts.upperBound, Infinity),
+    check('distance', core._antcd_distance(ca, cb, number('distance', 'upperBound', opts.upperBound, Infinity),
       number('distance', 'absTolerance', opts.absTolerance, 0), number('distance', 'relTolerance', opts.relTolerance, 0),
-      Boolean(opts.signed)));
+      opts.signed ? 1 : 0));
     const o = out(11);
     return {
       distance: o[0], lowerBound: o[1], pointA: o.slice(2, 5), pointB: o.slice(5, 8),
@@ -264,7 +270,9 @@ export default async function createAntcd(options = {}) {
     /** Every colliding pair: { pairs: Float64Array (a, b handles), contactCounts, contacts }. */
     collideAll(opts) {
       const w = this.#live('World.collideAll');
-      const n = check('World.collideAll', w.collideAll(...collisionArgs('World.collideAll', opts)));
+      const o = options('World.collideAll', opts);
+      const n = check('World.collideAll', w.collideAll(Boolean(o.allContacts), number('World.collideAll', 'delta', o.delta, 0),
+        Boolean(o.contactNormals), number('World.collideAll', 'maxContacts', o.maxContacts, 0)));
       const head = out(3 * n);
       const pairs = new Float64Array(2 * n);
       const contactCounts = new Uint32Array(n);

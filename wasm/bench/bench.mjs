@@ -1,6 +1,7 @@
 // antcd-wasm against two JavaScript peers on the same mesh pairs and poses, in one node process:
 // three-mesh-bvh's MeshBVH.intersectsGeometry (BVH against BVH) and Rapier's trimesh-trimesh
-// intersection (@dimforge/rapier3d-compat: two sensor colliders in a World, one step per query),
+// intersection (@dimforge/rapier3d-compat: two sensor colliders on kinematic bodies in a World,
+// one step per query),
 // with the native library (antcd_wasm_bench_native) for the reference verdicts and time.
 //
 // Usage: node bench/bench.mjs --native BUILD/wasm_bench_native_binary [--quick]
@@ -97,13 +98,16 @@ function runCase(name, meshA, meshB, seed) {
     for (const m of matrices) bvhA.intersectsGeometry(gB, m);
   });
 
-  // Rapier: two fixed sensor colliders (fixed-fixed pairs enabled); a query moves B, steps the
-  // world (broad and narrow phase) and reads the pair's intersection flag.
+  // Rapier: sensor trimesh colliders on two kinematic bodies (Rapier computes sensor
+  // intersections only for colliders attached to bodies); a query moves B's body, steps the world
+  // (broad and narrow phase) and reads the pair's intersection flag.
   const world = new RAPIER.World({ x: 0, y: 0, z: 0 });
   const desc = (mesh) => RAPIER.ColliderDesc.trimesh(Float32Array.from(mesh.positions), Uint32Array.from(mesh.indices))
     .setSensor(true).setActiveCollisionTypes(RAPIER.ActiveCollisionTypes.ALL);
-  const cA = world.createCollider(desc(meshA));
-  const cB = world.createCollider(desc(meshB));
+  const bodyA = world.createRigidBody(RAPIER.RigidBodyDesc.kinematicPositionBased());
+  const bodyB = world.createRigidBody(RAPIER.RigidBodyDesc.kinematicPositionBased());
+  const cA = world.createCollider(desc(meshA), bodyA);
+  const cB = world.createCollider(desc(meshB), bodyB);
   const rq = poses.map((p) => {
     const m = new THREE.Matrix4().fromArray(p);
     const t = new THREE.Vector3();
@@ -112,8 +116,8 @@ function runCase(name, meshA, meshB, seed) {
     return { t: { x: t.x, y: t.y, z: t.z }, q: { x: q.x, y: q.y, z: q.z, w: q.w } };
   });
   const rapierQuery = (p) => {
-    cB.setTranslation(p.t);
-    cB.setRotation(p.q);
+    bodyB.setTranslation(p.t, true);
+    bodyB.setRotation(p.q, true);
     world.step();
     return world.intersectionPair(cA, cB);
   };

@@ -1,5 +1,7 @@
 // Embind bindings of the core for the npm package `antcd` (wasm/index.mjs wraps them in the
-// documented JS API; index.d.ts states it).
+// documented JS API; index.d.ts states it). The two hot queries, antcd_collide and antcd_distance,
+// are raw exports (Module._antcd_collide: no Embind call wrapper, about a microsecond less per
+// call); models are passed by id (the table g_models), World objects by handle.
 //
 // Calling convention (one thread, as in every Emscripten build without pthreads):
 // - Poses: JS writes up to kPoseSlots column-major 4x4 matrices (16 doubles each, three.js
@@ -18,6 +20,7 @@
 #include <antcd/world.hpp>
 
 #include <emscripten/bind.h>
+#include <emscripten/emscripten.h>
 
 #include <cmath>
 #include <cstdint>
@@ -131,35 +134,36 @@ CollisionRequest collision_request(bool all_contacts, double delta, bool normals
 
 }  // namespace
 
-// A Model shared with the Worlds it was added to: JS may delete() it while they still use it.
-class WasmModel {
- public:
-  explicit WasmModel(std::shared_ptr<const Model> m) : model_(std::move(m)) {}
-  [[nodiscard]] const Model& get() const { return *model_; }
-  [[nodiscard]] const std::shared_ptr<const Model>& shared() const { return model_; }
-  [[nodiscard]] double triangle_count() const { return model_->mesh().triangles.size(); }
-  [[nodiscard]] double vertex_count() const { return model_->mesh().vertices.size(); }
-  [[nodiscard]] bool is_closed() const { return model_->is_closed(); }
-  [[nodiscard]] double degenerate_count() const { return model_->stats().degenerate_triangles; }
-  [[nodiscard]] std::string name() const { return model_->source(); }
-  /// Root bounding sphere, model frame: centre (3) and radius into the output block.
-  void bounds() const {
-    double* out = out_resize(4);
-    write_vec(out, model_->root().center);
-    out[3] = model_->root().radius;
-  }
-
- private:
-  std::shared_ptr<const Model> model_;
-};
-
 namespace {
+
+// Models by id (a JS Model holds its id), shared with the Worlds they were added to: JS may
+// release a model while a World still uses it.
+std::vector<std::shared_ptr<const Model>> g_models;
+std::vector<int> g_free_ids;
+
+int register_model(std::shared_ptr<const Model> m) {
+  if (!g_free_ids.empty()) {
+    const int id = g_free_ids.back();
+    g_free_ids.pop_back();
+    g_models[static_cast<std::size_t>(id)] = std::move(m);
+    return id;
+  }
+  g_models.push_back(std::move(m));
+  return static_cast<int>(g_models.size()) - 1;
+}
+
+const std::shared_ptr<const Model>& model_ref(int id, const char* what) {
+  if (id < 0 || static_cast<std::size_t>(id) >= g_models.size() ||
+      !g_models[static_cast<std::size_t>(id)]) {
+    throw ArgumentError(std::string(what) + " is not a live model");
+  }
+  return g_models[static_cast<std::size_t>(id)];
+}
 
 // positions: n_coords numbers (float32 when f32, else float64) at `positions`; indices: n_indices
 // uint32 at `indices` (the JS wrapper converted and range-checked the types).
-std::unique_ptr<WasmModel> model_create(std::uintptr_t positions, double n_coords, bool f32,
-                                        std::uintptr_t indices, double n_indices,
-                                        const std::string& name) {
+int model_create(std::uintptr_t positions, double n_coords, bool f32, std::uintptr_t indices,
+                 double n_indices, const std::string& name) {
   try {
     Mesh mesh;
     const auto nv = static_cast<std::size_t>(n_coords) / 3;
@@ -178,17 +182,14 @@ std::unique_ptr<WasmModel> model_create(std::uintptr_t positions, double n_coord
     mesh.triangles.resize(nt);
     for (std::size_t i = 0; i < nt; ++i)
       mesh.triangles[i] = {ix[3 * i], ix[3 * i + 1], ix[3 * i + 2]};
-    auto model = std::make_shared<const Model>(std::move(mesh), BuildOptions{}, name);
-    return std::make_unique<WasmModel>(std::move(model));
+    return register_model(std::make_shared<const Model>(std::move(mesh), BuildOptions{}, name));
   } catch (const std::exception& e) {
-    g_error = std::string("Model: ") + e.what();
-    return nullptr;
+    return fail(std::string("Model: ") + e.what());
   }
 }
 
 // Models built from the generated shapes of mesh.hpp (the same meshes as the native library's).
-std::unique_ptr<WasmModel> model_shape(const std::string& kind, double a, double b, double c,
-                                       int n1, int n2) {
+int model_shape(const std::string& kind, double a, double b, double c, int n1, int n2) {
   try {
     Mesh mesh;
     if (kind == "box") {
@@ -202,17 +203,13 @@ std::unique_ptr<WasmModel> model_shape(const std::string& kind, double a, double
     } else {
       throw ArgumentError("shape '" + kind + "' is not box, sphere, cylinder or torus");
     }
-    auto model = std::make_shared<const Model>(std::move(mesh), BuildOptions{}, kind);
-    return std::make_unique<WasmModel>(std::move(model));
+    return register_model(std::make_shared<const Model>(std::move(mesh), BuildOptions{}, kind));
   } catch (const std::exception& e) {
-    g_error = std::string("Model.") + kind + ": " + e.what();
-    return nullptr;
+    return fail(std::string("Model.") + kind + ": " + e.what());
   }
 }
 
-// The mesh of a model into the output block: vertex count, triangle count, coordinates, indices.
-int model_mesh(const WasmModel& m) {
-  const Mesh& mesh = m.get().mesh();
+int write_mesh(const Mesh& mesh) {
   double* out = out_resize(2 + 3 * mesh.vertices.size() + 3 * mesh.triangles.size());
   out[0] = static_cast<double>(mesh.vertices.size());
   out[1] = static_cast<double>(mesh.triangles.size());
@@ -227,16 +224,55 @@ int model_mesh(const WasmModel& m) {
   return 1;
 }
 
+void model_release(int id) {
+  if (id >= 0 && static_cast<std::size_t>(id) < g_models.size() &&
+      g_models[static_cast<std::size_t>(id)]) {
+    g_models[static_cast<std::size_t>(id)].reset();
+    g_free_ids.push_back(id);
+  }
+}
+
+// Out: triangle count, vertex count, closed (0/1), degenerate triangles.
+int model_info(int id) {
+  return guarded("Model", [&] {
+    const Model& m = *model_ref(id, "this");
+    double* out = out_resize(4);
+    out[0] = static_cast<double>(m.mesh().triangles.size());
+    out[1] = static_cast<double>(m.mesh().vertices.size());
+    out[2] = m.is_closed() ? 1 : 0;
+    out[3] = static_cast<double>(m.stats().degenerate_triangles);
+    return 1;
+  });
+}
+
+std::string model_name(int id) {
+  return id >= 0 && static_cast<std::size_t>(id) < g_models.size() &&
+                 g_models[static_cast<std::size_t>(id)]
+             ? g_models[static_cast<std::size_t>(id)]->source()
+             : std::string();
+}
+
+// The mesh of a model into the output block: vertex count, triangle count, coordinates, indices.
+int model_mesh(int id) {
+  return guarded("Model.mesh", [&] { return write_mesh(model_ref(id, "this")->mesh()); });
+}
+
+}  // namespace
+
 // Poses 0 (a) and 1 (b). Returns 0 when apart, 1 + the number of contact records written when
 // colliding (a boolean query writes at most one; a volume containment none), or -1.
-int wasm_collide(const WasmModel& a, const WasmModel& b, bool all_contacts, double delta,
-                 bool normals, double max_contacts, bool volume) {
+// flags: 1 all contacts, 2 contact normals, 4 volume. A raw export (no Embind wrapper): the hot
+// path from JS.
+extern "C" EMSCRIPTEN_KEEPALIVE int antcd_collide(int a, int b, int flags, double delta,
+                                                  double max_contacts) {
   return guarded("collide", [&] {
-    CollisionRequest r = collision_request(all_contacts, delta, normals, max_contacts);
-    r.volume = volume;
+    CollisionRequest r = collision_request((flags & 1) != 0, delta, (flags & 2) != 0, max_contacts);
+    r.volume = (flags & 4) != 0;
+    const Model& ma = *model_ref(a, "a");
+    const Model& mb = *model_ref(b, "b");
     const Transform pa = pose_at(0, "collide", "poseA");
     const Transform pb = pose_at(1, "collide", "poseB");
-    antcd::collide(a.get(), pa, b.get(), pb, r, g_collision);
+    antcd::collide(ma, pa, mb, pb, r, g_collision);
     if (!g_collision.colliding) return 0;
     double* out = out_resize(kContactStride * g_collision.contacts.size());
     for (const Contact& c : g_collision.contacts) {
@@ -249,17 +285,20 @@ int wasm_collide(const WasmModel& a, const WasmModel& b, bool all_contacts, doub
 
 // Out: distance, lower_bound, point_a (3), point_b (3), triangle_a, triangle_b, flags
 // (1 intersecting, 2 approximate, 4 beyond_upper_bound).
-int wasm_distance(const WasmModel& a, const WasmModel& b, double upper_bound, double abs_tolerance,
-                  double rel_tolerance, bool signed_distance) {
+extern "C" EMSCRIPTEN_KEEPALIVE int antcd_distance(int a, int b, double upper_bound,
+                                                   double abs_tolerance, double rel_tolerance,
+                                                   int signed_distance) {
   return guarded("distance", [&] {
     DistanceRequest r;
     r.upper_bound = upper_bound;
     r.abs_tolerance = abs_tolerance;
     r.rel_tolerance = rel_tolerance;
-    r.signed_distance = signed_distance;
+    r.signed_distance = signed_distance != 0;
+    const Model& ma = *model_ref(a, "a");
+    const Model& mb = *model_ref(b, "b");
     const Transform pa = pose_at(0, "distance", "poseA");
     const Transform pb = pose_at(1, "distance", "poseB");
-    const DistanceResult d = antcd::distance(a.get(), pa, b.get(), pb, r);
+    const DistanceResult d = antcd::distance(ma, pa, mb, pb, r);
     double* out = out_resize(11);
     out[0] = d.distance;
     out[1] = d.lower_bound;
@@ -272,18 +311,19 @@ int wasm_distance(const WasmModel& a, const WasmModel& b, double upper_bound, do
   });
 }
 
+namespace {
+
 // Poses 0, 1 (A at t = 0, 1) and 2, 3 (B). Out: toi, distance, motion_bound, iterations, flags
 // (1 hit, 2 tolerance_decided, 4 budget_exhausted), then the contact record.
-int wasm_sweep(const WasmModel& a, const WasmModel& b, double min_separation, double time_tolerance,
-               double max_iterations) {
+int wasm_sweep(int a, int b, double min_separation, double time_tolerance, double max_iterations) {
   return guarded("sweep", [&] {
     SweepRequest r;
     r.min_separation = min_separation;
     r.time_tolerance = time_tolerance;
     r.max_iterations = positive_count(max_iterations, "maxIterations");
-    const SweepResult s =
-        antcd::sweep(a.get(), pose_at(0, "sweep", "poseA0"), pose_at(1, "sweep", "poseA1"), b.get(),
-                     pose_at(2, "sweep", "poseB0"), pose_at(3, "sweep", "poseB1"), r);
+    const SweepResult s = antcd::sweep(
+        *model_ref(a, "a"), pose_at(0, "sweep", "poseA0"), pose_at(1, "sweep", "poseA1"),
+        *model_ref(b, "b"), pose_at(2, "sweep", "poseB0"), pose_at(3, "sweep", "poseB1"), r);
     double* out = out_resize(5 + kContactStride);
     out[0] = s.toi;
     out[1] = s.distance;
@@ -297,8 +337,8 @@ int wasm_sweep(const WasmModel& a, const WasmModel& b, double min_separation, do
 
 // Poses 0, 1. shape: 0 auto, 1 convex, 2 general. Out: lower, upper, direction (3), witness (3),
 // point_a (3), point_b (3), evaluations, flags (1 overlapping, 2 exact, 4 converged).
-int wasm_penetration(const WasmModel& a, const WasmModel& b, int shape, double abs_tolerance,
-                     double rel_tolerance, double max_evaluations) {
+int wasm_penetration(int a, int b, int shape, double abs_tolerance, double rel_tolerance,
+                     double max_evaluations) {
   return guarded("penetration", [&] {
     PenetrationRequest r;
     if (shape < 0 || shape > 2) throw ArgumentError("shape must be 'auto', 'convex' or 'general'");
@@ -306,8 +346,9 @@ int wasm_penetration(const WasmModel& a, const WasmModel& b, int shape, double a
     r.abs_tolerance = abs_tolerance;
     r.rel_tolerance = rel_tolerance;
     r.max_evaluations = positive_count(max_evaluations, "maxEvaluations");
-    const PenetrationResult p = antcd::penetration(a.get(), pose_at(0, "penetration", "poseA"),
-                                                   b.get(), pose_at(1, "penetration", "poseB"), r);
+    const PenetrationResult p =
+        antcd::penetration(*model_ref(a, "a"), pose_at(0, "penetration", "poseA"),
+                           *model_ref(b, "b"), pose_at(1, "penetration", "poseB"), r);
     double* out = out_resize(16);
     out[0] = p.lower;
     out[1] = p.upper;
@@ -328,14 +369,14 @@ double handle_of(ObjectId id) { return id.slot + id.generation * kGenerationScal
 class WasmWorld {
  public:
   /// Pose 0. Returns the handle, or -1.
-  double add(const WasmModel& model, const std::string& name, double group, double mask) {
+  double add(int model, const std::string& name, double group, double mask) {
     double handle = -1;
     guarded("World.add", [&] {
       ObjectOptions o;
       o.name = name;
       o.group = filter_bits(group, "group");
       o.mask = filter_bits(mask, "mask");
-      const ObjectId id = world_.add(model.shared(), pose_at(0, "World.add", "pose"), o);
+      const ObjectId id = world_.add(model_ref(model, "model"), pose_at(0, "World.add", "pose"), o);
       if (id.generation >= kMaxGeneration) {
         world_.remove(id);
         throw ArgumentError("too many objects have used this slot");
@@ -448,13 +489,6 @@ std::string version() { return kVersion; }
 
 EMSCRIPTEN_BINDINGS(antcd_core) {
   using namespace emscripten;
-  class_<WasmModel>("Model")
-      .function("triangleCount", &WasmModel::triangle_count)
-      .function("vertexCount", &WasmModel::vertex_count)
-      .function("isClosed", &WasmModel::is_closed)
-      .function("degenerateCount", &WasmModel::degenerate_count)
-      .function("name", &WasmModel::name)
-      .function("bounds", &WasmModel::bounds);
   class_<WasmWorld>("World")
       .constructor<>()
       .function("add", &WasmWorld::add)
@@ -467,8 +501,9 @@ EMSCRIPTEN_BINDINGS(antcd_core) {
   function("modelCreate", &model_create);
   function("modelShape", &model_shape);
   function("modelMesh", &model_mesh);
-  function("collide", &wasm_collide);
-  function("distance", &wasm_distance);
+  function("modelRelease", &model_release);
+  function("modelInfo", &model_info);
+  function("modelName", &model_name);
   function("sweep", &wasm_sweep);
   function("penetration", &wasm_penetration);
   function("allocBytes", &alloc_bytes);
