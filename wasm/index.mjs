@@ -76,7 +76,7 @@ export default async function createAntcd(options = {}) {
     }
     return m.id;
   }
-  function options(fn, opts) {
+  function optionsOf(fn, opts) {
     if (opts !== undefined && (opts === null || typeof opts !== 'object')) throw new Error(`${fn}: options must be an object`);
     return opts ?? NO_OPTIONS;
   }
@@ -181,7 +181,7 @@ export default async function createAntcd(options = {}) {
     const cb = modelOf('collide', 'b', b);
     writePose(0, poseA, 'collide', 'poseA');
     writePose(1, poseB, 'collide', 'poseB');
-    const o = options('collide', opts);
+    const o = optionsOf('collide', opts);
     const rc = check('collide', core._antcd_collide(ca, cb, collisionFlags(o), number('collide', 'delta', o.delta, 0),
       number('collide', 'maxContacts', o.maxContacts, 0)));
     return { colliding: rc > 0, contacts: rc > 1 ? outCopy(CONTACT_STRIDE * (rc - 1)) : EMPTY };
@@ -270,7 +270,7 @@ export default async function createAntcd(options = {}) {
     /** Every colliding pair: { pairs: Float64Array (a, b handles), contactCounts, contacts }. */
     collideAll(opts) {
       const w = this.#live('World.collideAll');
-      const o = options('World.collideAll', opts);
+      const o = optionsOf('World.collideAll', opts);
       const n = check('World.collideAll', w.collideAll(Boolean(o.allContacts), number('World.collideAll', 'delta', o.delta, 0),
         Boolean(o.contactNormals), number('World.collideAll', 'maxContacts', o.maxContacts, 0)));
       const head = out(3 * n);

@@ -45,7 +45,8 @@ try {
   page.on('pageerror', (e) => problems.push(`page error: ${e.message}`));
   page.on('request', (r) => { if (!/^(file|data|blob):/.test(r.url())) problems.push(`network request: ${r.url()}`); });
   await page.goto(pathToFileURL(join(work, 'live.html')).href);
-  await page.waitForSelector('#antcd-viewer[data-ready="true"], #antcd-viewer[data-error]', { timeout: 60000 });
+  await page.waitForSelector('#antcd-viewer[data-ready="true"], #antcd-viewer[data-error]', { timeout: 60000 })
+    .catch((e) => { throw new Error(`page not ready: ${e.message}; ${problems.join('; ')}`); });
   const attrs = () => page.locator('#antcd-viewer').evaluate((e) => ({ ...e.dataset }));
   let d = await attrs();
   assert.equal(d.error, undefined, `page error: ${d.error}`);

@@ -2,8 +2,10 @@
 // against the pairwise queries, sweeps and penetration depth against closed-form answers, and the
 // refusal of bad input with one-line errors naming the problem.
 import assert from 'node:assert/strict';
+import { readFileSync } from 'node:fs';
 import { test } from 'node:test';
 
+import createAntcd from '../index.mjs';
 import { antcd, pose, rng, ROTATIONS } from './helpers.mjs';
 
 const I = pose([0, 0, 0]).matrix;
@@ -155,4 +157,13 @@ test('bad input is refused with an Error naming the problem', () => {
   assert.equal(world.collideAll().pairs.length, 2);
   world.delete();
   box.delete();
+});
+
+test('createAntcd uses the bytes given as wasmBinary (as the live page does)', async () => {
+  const bytes = readFileSync(new URL('../dist/antcd_core.wasm', import.meta.url));
+  const given = await createAntcd({ wasmBinary: bytes });
+  const box = given.Model.box(0.5, 0.5, 0.5);
+  assert.ok(given.collide(box, I, box, at(0.9)).colliding);
+  box.delete();
+  await assert.rejects(createAntcd({ wasmBinary: new Uint8Array([0, 97, 115, 109]) }));
 });
