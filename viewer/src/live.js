@@ -20,7 +20,9 @@ import { loadView } from './data.js';
 import { Stage } from './stage.js';
 
 const FPS = 12;
-const CONTACTS_PER_PAIR = 16;
+// Contact points drawn per colliding pair: 4 keep the query near the boolean one (the traversal
+// stops there), 16 cost about 2.5x as much on the paper scene (wasm/bench/scene.mjs).
+const CONTACTS_PER_PAIR = 4;
 
 // Row-major rotation + translation (12 numbers) to a column-major 4x4 (three.js order).
 function columnMajor(p, out) {
