@@ -6,12 +6,6 @@
 # node that is not Debian's finds only through NODE_PATH=/usr/share/nodejs (set here).
 option(ANTCD_BUILD_WASM "Build the WebAssembly package in wasm/ when Emscripten (emcmake) is found" ON)
 
-# The native side of the node benchmark (wasm/bench/bench.mjs): reference verdicts and times.
-if(TARGET antcd_io)
-  add_executable(antcd_wasm_bench_native ${PROJECT_SOURCE_DIR}/wasm/bench/native_collide.cpp)
-  target_link_libraries(antcd_wasm_bench_native PRIVATE antcd antcd_io)
-  antcd_set_warnings(antcd_wasm_bench_native)
-endif()
 set(ANTCD_WASM_DIST "")
 if(NOT ANTCD_BUILD_WASM)
   message(STATUS "antcd: WebAssembly package disabled (ANTCD_BUILD_WASM=OFF)")
@@ -45,3 +39,10 @@ add_custom_target(antcd_wasm ALL
   BYPRODUCTS ${ANTCD_WASM_DIST}/antcd_core.cjs ${ANTCD_WASM_DIST}/antcd_core.wasm
   COMMENT "emscripten: building the npm package antcd (wasm/dist)"
   VERBATIM)
+
+# The native side of the node benchmark (wasm/bench/bench.mjs): reference verdicts and times.
+if(TARGET antcd_io)
+  add_executable(antcd_wasm_bench_native ${PROJECT_SOURCE_DIR}/wasm/bench/native_collide.cpp)
+  target_link_libraries(antcd_wasm_bench_native PRIVATE antcd antcd_io)
+  antcd_set_warnings(antcd_wasm_bench_native)
+endif()
