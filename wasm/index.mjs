@@ -60,10 +60,13 @@ export default async function createAntcd(options = {}) {
     for (let k = 0; k < 16; ++k) heap[base + k] = pose[k];
   }
   function out(n) {
-    return new Float64Array(core.HEAPF64.buffer, core.outBlock(), n);
+    return new Float64Array(core.HEAPF64.buffer, core._antcd_out_block(), n);
   }
+  // A copy of the first n numbers of the output block (one allocation: no view in between).
   function outCopy(n) {
-    return n === 0 ? EMPTY : out(n).slice();
+    if (n === 0) return EMPTY;
+    const base = core._antcd_out_block() / 8;
+    return core.HEAPF64.slice(base, base + n);
   }
   function number(fn, name, v, dflt) {
     if (v === undefined) return dflt;

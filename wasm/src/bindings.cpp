@@ -7,8 +7,9 @@
 // Calling convention (one thread, as in every Emscripten build without pthreads):
 // - Poses: JS writes up to kPoseSlots column-major 4x4 matrices (16 doubles each, three.js
 //   Matrix4.elements order) into the input block at poseBlock(); functions read pose k from slot k.
-// - Results: a function fills the output block (outBlock(), a reused vector: no allocation once it
-//   has grown) and returns a count, or -1 after an error whose one-line message lastError() gives.
+// - Results: a function fills the output block (at antcd_out_block(), a reused vector: no
+//   allocation once it has grown) and returns a count, or -1 after an error whose one-line
+//   message lastError() gives.
 //   Contacts are records of kContactStride doubles (see write_contact).
 // - Handles of World objects are doubles: slot + generation * 2^32 (exact below 2^53).
 #include <antcd/collide.hpp>
@@ -312,6 +313,11 @@ extern "C" EMSCRIPTEN_KEEPALIVE int antcd_distance(int a, int b, double upper_bo
   });
 }
 
+// The output block's address (it moves when the block grows): a raw export, read after every query.
+extern "C" EMSCRIPTEN_KEEPALIVE std::uintptr_t antcd_out_block() {
+  return reinterpret_cast<std::uintptr_t>(g_out.data());
+}
+
 namespace {
 
 // Poses 0, 1 (A at t = 0, 1) and 2, 3 (B). Out: toi, distance, motion_bound, iterations, flags
@@ -482,7 +488,7 @@ std::uintptr_t alloc_bytes(double n) {
 }
 void free_bytes(std::uintptr_t p) { std::free(reinterpret_cast<void*>(p)); }
 std::uintptr_t pose_block() { return reinterpret_cast<std::uintptr_t>(g_poses); }
-std::uintptr_t out_block() { return reinterpret_cast<std::uintptr_t>(g_out.data()); }
+
 std::string last_error() { return g_error; }
 std::string version() { return kVersion; }
 
@@ -510,7 +516,6 @@ EMSCRIPTEN_BINDINGS(antcd_core) {
   function("allocBytes", &alloc_bytes);
   function("freeBytes", &free_bytes);
   function("poseBlock", &pose_block);
-  function("outBlock", &out_block);
   function("lastError", &last_error);
   function("version", &version);
   constant("poseSlots", kPoseSlots);
