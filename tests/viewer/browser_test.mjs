@@ -10,7 +10,7 @@ import { readFileSync, writeFileSync } from 'node:fs';
 import { join, resolve } from 'node:path';
 import { pathToFileURL } from 'node:url';
 import assert from 'node:assert/strict';
-import { launchChromium, viewerTestSetup } from './chromium.mjs';
+import { launchChromium, viewerTestSetup, watchedPage } from './chromium.mjs';
 
 const { args, work, antcd } = viewerTestSetup(process.argv.slice(2));
 
@@ -43,10 +43,7 @@ function expected(k) {
 const browser = await launchChromium(args['node-modules'], args.chromium);
 const problems = [];
 try {
-  const page = await browser.newPage({ viewport: { width: 1000, height: 700 } });
-  page.on('console', (m) => { if (m.type() === 'error') problems.push(`console: ${m.text()}`); });
-  page.on('pageerror', (e) => problems.push(`page error: ${e.message}`));
-  page.on('request', (r) => { if (!/^(file|data|blob):/.test(r.url())) problems.push(`network request: ${r.url()}`); });
+  const page = await watchedPage(browser, problems);
   const url = pathToFileURL(join(work, 'view.html')).href;
   const root = page.locator('#antcd-viewer');
   const attrs = () => root.evaluate((e) => ({ ...e.dataset }));

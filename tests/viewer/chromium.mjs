@@ -42,3 +42,13 @@ export function viewerTestSetup(argv) {
   };
   return { args, work, antcd };
 }
+
+// A 1000x700 page whose console errors, page errors and network requests (anything but file:,
+// data: and blob:) are appended to `problems` as one line each.
+export async function watchedPage(browser, problems) {
+  const page = await browser.newPage({ viewport: { width: 1000, height: 700 } });
+  page.on('console', (m) => { if (m.type() === 'error') problems.push(`console: ${m.text()}`); });
+  page.on('pageerror', (e) => problems.push(`page error: ${e.message}`));
+  page.on('request', (r) => { if (!/^(file|data|blob):/.test(r.url())) problems.push(`network request: ${r.url()}`); });
+  return page;
+}

@@ -11,7 +11,7 @@ import { readFileSync, writeFileSync } from 'node:fs';
 import { join, resolve } from 'node:path';
 import { pathToFileURL } from 'node:url';
 import assert from 'node:assert/strict';
-import { launchChromium, viewerTestSetup } from './chromium.mjs';
+import { launchChromium, viewerTestSetup, watchedPage } from './chromium.mjs';
 
 const { args, work, antcd } = viewerTestSetup(process.argv.slice(2));
 
@@ -40,10 +40,7 @@ function nativePairs(frame, moved) {
 const browser = await launchChromium(args['node-modules'], args.chromium);
 const problems = [];
 try {
-  const page = await browser.newPage({ viewport: { width: 1000, height: 700 } });
-  page.on('console', (m) => { if (m.type() === 'error') problems.push(`console: ${m.text()}`); });
-  page.on('pageerror', (e) => problems.push(`page error: ${e.message}`));
-  page.on('request', (r) => { if (!/^(file|data|blob):/.test(r.url())) problems.push(`network request: ${r.url()}`); });
+  const page = await watchedPage(browser, problems);
   await page.goto(pathToFileURL(join(work, 'live.html')).href);
   await page.waitForSelector('#antcd-viewer[data-ready="true"], #antcd-viewer[data-error]', { timeout: 60000 })
     .catch((e) => { throw new Error(`page not ready: ${e.message}; ${problems.join('; ')}`); });
