@@ -135,6 +135,8 @@ export interface Antcd {
   Model: typeof Model;
   World: typeof World;
   collide(a: Model, poseA: Pose, b: Model, poseB: Pose, options?: CollideOptions): CollideResult;
+  /** collide()'s verdict alone: nothing copied out or allocated (for hot loops). */
+  collides(a: Model, poseA: Pose, b: Model, poseB: Pose, options?: CollideOptions): boolean;
   distance(a: Model, poseA: Pose, b: Model, poseB: Pose, options?: DistanceOptions): DistanceResult;
   sweep(a: Model, poseA0: Pose, poseA1: Pose, b: Model, poseB0: Pose, poseB1: Pose,
         options?: SweepOptions): SweepResult;

@@ -10,7 +10,8 @@
 // Poses are column-major 4x4 rigid matrices (three.js Matrix4.elements; 16 numbers). Bad input
 // throws a JS Error whose message names the argument and the problem. Queries copy their poses into
 // a fixed block of WebAssembly memory and read their answers from a reused one: no WebAssembly
-// allocation per query once the buffers have grown.
+// allocation per query once the buffers have grown; collides() (the verdict alone) allocates
+// nothing in JS either.
 import factory from './dist/antcd_core.cjs';
 
 const isNode = typeof process !== 'undefined' && process.versions != null && process.versions.node != null;
@@ -190,6 +191,19 @@ export default async function createAntcd(options = {}) {
     return { colliding: rc > 0, contacts: rc > 1 ? outCopy(CONTACT_STRIDE * (rc - 1)) : EMPTY };
   }
 
+  /**
+   * The verdict of collide() alone, for hot loops: no contact is copied out, nothing is allocated
+   * (options as collide's; allContacts makes no difference to the verdict).
+   */
+  function collides(a, poseA, b, poseB, opts) {
+    const ca = modelOf('collides', 'a', a);
+    const cb = modelOf('collides', 'b', b);
+    writePose(0, poseA, 'collides', 'poseA');
+    writePose(1, poseB, 'collides', 'poseB');
+    const o = optionsOf('collides', opts);
+    return check('collides', core._antcd_collide(ca, cb, collisionFlags(o) & ~1, number('collides', 'delta', o.delta, 0), 0)) > 0;
+  }
+
   /** Minimum distance between the surfaces (signed for two closed models with options.signed). */
   function distance(a, poseA, b, poseB, opts = {}) {
     const ca = modelOf('distance', 'a', a);
@@ -317,7 +331,7 @@ export default async function createAntcd(options = {}) {
     }
   }
 
-  return { Model, World, collide, distance, sweep, penetration, version: core.version(), CONTACT_STRIDE };
+  return { Model, World, collide, collides, distance, sweep, penetration, version: core.version(), CONTACT_STRIDE };
 }
 
 function describe(v) {

@@ -108,6 +108,9 @@ test('contacts: world-frame points on both surfaces, normals on request', () => 
     const n = Math.hypot(r.contacts[k + 6], r.contacts[k + 7], r.contacts[k + 8]);
     assert.ok(Math.abs(n - 1) < 1e-9);
   }
+  assert.equal(antcd.collides(box, at(0.95), box, I), true);
+  assert.equal(antcd.collides(box, at(1.05), box, I), false);
+  assert.equal(antcd.collides(box, at(1.05), box, I, { delta: 0.06 }), true);
   const apart = antcd.collide(box, at(1.05), box, I);
   assert.deepEqual(apart, { colliding: false, contacts: new Float64Array(0) });
   assert.ok(antcd.collide(box, at(1.05), box, I, { delta: 0.06 }).colliding);

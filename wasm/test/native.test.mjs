@@ -31,6 +31,7 @@ function compare(a, b, seed, poses) {
     const first = antcd.collide(a.model, pa.matrix, b.model, pb.matrix);
     assert.equal(first.colliding, ref.colliding, `pose ${k}: boolean verdict`);
     assert.equal(first.contacts.length, ref.colliding ? antcd.CONTACT_STRIDE : 0);
+    assert.equal(antcd.collides(a.model, pa.matrix, b.model, pb.matrix), ref.colliding, `pose ${k}: collides`);
     const d = antcd.distance(a.model, pa.matrix, b.model, pb.matrix);
     const dref = native('distance', a.file, pa, b.file, pb);
     assert.equal(d.intersecting, dref.intersecting, `pose ${k}: intersecting`);
