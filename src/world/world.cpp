@@ -27,6 +27,8 @@ std::string object_label(const World::Impl::Object& o, ObjectId id) {
          " " + describe(id);
 }
 
+}  // namespace
+
 // A rigid pose: finite, rotation orthonormal with determinant +1 within 1e-6. Returns the problem,
 // or nullptr. No allocation: set_poses checks every pose of every frame.
 const char* pose_problem(const Transform& pose, Scalar& err) {
@@ -40,6 +42,8 @@ const char* pose_problem(const Transform& pose, Scalar& err) {
   }
   return nullptr;
 }
+
+namespace {
 
 void check_pose(const Transform& pose, const std::string& function, const std::string& what) {
   Scalar err = 0;
