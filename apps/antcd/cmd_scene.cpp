@@ -145,9 +145,10 @@ int run_run(const RunOptions& o) {
     for (const auto& f : result.frames) {
       for (const double t : *f.toi) earliest = std::min(earliest, t);
     }
-    std::printf("continuous: pairs touching between frames, earliest time of impact %.6g of a step "
-                "(--out writes each pair's toi and contact point)\n",
-                colliding == 0 ? 1.0 : earliest);
+    std::printf(
+        "continuous: pairs touching between frames, earliest time of impact %.6g of a step "
+        "(--out writes each pair's toi and contact point)\n",
+        colliding == 0 ? 1.0 : earliest);
   }
   if (o.report_distance) {
     double largest = 0;

@@ -136,9 +136,14 @@ json pack_result(const shared::RunResult& r, const std::filesystem::path& path,
       touches.push_back(*f.contact_points);
     }
   }
-  json out{{"label", path.filename().string()}, {"method", r.method},     {"frames", frames},
-           {"pairs", pairs},                    {"time_ms", times},       {"candidates", candidates},
-           {"delta", r.delta},                  {"seed", r.seed}};
+  json out{{"label", path.filename().string()},
+           {"method", r.method},
+           {"frames", frames},
+           {"pairs", pairs},
+           {"time_ms", times},
+           {"candidates", candidates},
+           {"delta", r.delta},
+           {"seed", r.seed}};
   if (r.continuous) {
     out["toi"] = std::move(tois);
     out["touch_points"] = std::move(touches);

@@ -207,9 +207,9 @@ class ANTCD_API World {
 
   /// Broad phase of a continuous motion: the admitted pairs whose swept boxes come within
   /// `min_separation` >= 0, sorted. ids[k] moves to new_poses[k]; each id at most once.
-  [[nodiscard]] std::vector<ObjectPair> swept_candidate_pairs(
-      std::span<const ObjectId> ids, std::span<const Transform> new_poses,
-      Scalar min_separation = 0) const;
+  [[nodiscard]] std::vector<ObjectPair> swept_candidate_pairs(std::span<const ObjectId> ids,
+                                                              std::span<const Transform> new_poses,
+                                                              Scalar min_separation = 0) const;
   /// Every admitted pair whose surfaces come within request.min_separation while ids[k] moves
   /// from its pose to new_poses[k] (the others stay), with its first time of impact, sorted by
   /// (a, b). The World is not changed.
