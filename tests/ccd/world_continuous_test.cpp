@@ -152,6 +152,7 @@ TEST(WorldContinuous, SpinningBarOutsideBothEndBoxesIsCaught) {
   // The World now holds the end pose.
   EXPECT_TRUE(world.pose(b).rotation.isApprox(end.rotation));
   // Static pairs that touch count with toi 0; filtered pairs never.
+  // (A pose of the World itself as add()'s argument: add() must copy it before growing.)
   const ObjectId q = world.add(probe, world.pose(p));
   const std::vector<PairToi> resting = world.sweep_poses({}, {});
   ASSERT_EQ(resting.size(), 1U);
