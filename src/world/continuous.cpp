@@ -13,6 +13,7 @@
 
 #include "ccd/motion.hpp"
 #include "util/parallel.hpp"
+#include "util/pose_check.hpp"
 #include "world/world_impl.hpp"
 
 namespace antcd {
@@ -44,7 +45,7 @@ std::vector<std::size_t> motion_index(const World::Impl& w, std::span<const Obje
     }
     index[ids[k].slot] = k + 1;
     Scalar err = 0;
-    if (const char* problem = pose_problem(poses[k], err)) {
+    if (const char* problem = detail::pose_problem(poses[k], err)) {
       throw ArgumentError(std::string(function) + ": new_poses[" + std::to_string(k) + "] " +
                           problem);
     }

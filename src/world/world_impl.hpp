@@ -88,10 +88,6 @@ struct World::Impl {
 /// widened by a rounding allowance; `tolerance` receives that allowance.
 Aabb posed_box(const Model& model, const Transform& pose, Scalar& tolerance);
 
-/// Why `pose` is not rigid (finite, rotation orthonormal with determinant +1 within 1e-6), or
-/// nullptr; `err` receives the orthonormality error.
-const char* pose_problem(const Transform& pose, Scalar& err);
-
 /// `box` grown by `by` on every side.
 inline Aabb grown(Aabb box, Scalar by) {
   box.min.array() -= by;
