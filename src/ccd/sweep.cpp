@@ -5,18 +5,18 @@
 #include <antcd/error.hpp>
 #include <antcd/geometry.hpp>
 #include <antcd/sweep.hpp>
+#include <antcd/tolerances.hpp>
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <string>
 
+#include "util/check.hpp"
+
 namespace antcd {
 namespace {
 
-/// Relative slack of the rounding allowance (see sweep.hpp): the poses, the distance and the
-/// time steps are each within a few 1e-16 of the scene's size; 1e-12 leaves ample room.
-constexpr Scalar kAllowance = 1e-12;
 /// The loop's distance queries may stop within this fraction of the distance (the lower bound is
 /// still proven); only the stopping decision needs the exact distance.
 constexpr Scalar kStepRelTolerance = 0.5;
@@ -25,8 +25,7 @@ void check_pose(const Transform& p, const char* name) {
   if (!p.rotation.allFinite() || !p.translation.allFinite()) {
     throw ArgumentError(std::string("sweep: ") + name + " has a non-finite entry");
   }
-  if ((p.rotation.transpose() * p.rotation - Mat3::Identity()).cwiseAbs().maxCoeff() > 1e-6 ||
-      !(p.rotation.determinant() > 0)) {
+  if (!tolerance::is_rotation(p.rotation)) {
     throw ArgumentError(std::string("sweep: ") + name + " rotation is not a proper rotation");
   }
 }
@@ -34,7 +33,7 @@ void check_pose(const Transform& p, const char* name) {
 /// Angle of the rotation from r0 to r1 along the shorter arc (the slerp's total angle), rounded up.
 Scalar rotation_angle(const Mat3& r0, const Mat3& r1) {
   const Scalar angle = Quat(r0).angularDistance(Quat(r1));
-  return angle * (1 + 1e-12) + 1e-15;
+  return tolerance::widened(angle) + 1e-15;
 }
 
 /// Radius about the model origin holding every vertex of the model's tree (root sphere).
@@ -76,25 +75,22 @@ SweepResult sweep(const Model& a, const Transform& pose_a0, const Transform& pos
   check_pose(pose_b1, "pose_b1");
   const Scalar ms = request.min_separation;
   const Scalar tol = request.time_tolerance;
-  if (!(ms >= 0) || !std::isfinite(ms)) {
-    throw ArgumentError("sweep: min_separation must be finite and >= 0");
-  }
-  if (!(tol > 0) || !std::isfinite(tol)) {
-    throw ArgumentError("sweep: time_tolerance must be finite and > 0");
-  }
-  if (request.max_iterations == 0) throw ArgumentError("sweep: max_iterations must be >= 1");
+  detail::require_non_negative("sweep", "min_separation", ms);
+  detail::require_positive("sweep", "time_tolerance", tol);
+  detail::require_at_least("sweep", "max_iterations", request.max_iterations, 1);
 
   const Scalar ra = origin_radius(a);
   const Scalar rb = origin_radius(b);
   const Vec3 relative_move =
       (pose_a1.translation - pose_a0.translation) - (pose_b1.translation - pose_b0.translation);
-  const Scalar mu =
-      (relative_move.norm() + rotation_angle(pose_a0.rotation, pose_a1.rotation) * ra +
-       rotation_angle(pose_b0.rotation, pose_b1.rotation) * rb) *
-      (1 + 1e-12);
+  const Scalar mu = tolerance::widened(relative_move.norm() +
+                                       rotation_angle(pose_a0.rotation, pose_a1.rotation) * ra +
+                                       rotation_angle(pose_b0.rotation, pose_b1.rotation) * rb);
   const Scalar scale = ra + rb + ms + pose_a0.translation.norm() + pose_a1.translation.norm() +
                        pose_b0.translation.norm() + pose_b1.translation.norm();
-  const Scalar allowance = kAllowance * scale;
+  // The poses, the distance and the time steps are each within a few 1e-16 of the scene's size
+  // (see sweep.hpp).
+  const Scalar allowance = tolerance::kArithmetic * scale;
 
   SweepResult result;
   result.motion_bound = mu;

@@ -3,11 +3,13 @@
 #include <antcd/world.hpp>
 
 #include <algorithm>
+#include <antcd/error.hpp>
+#include <antcd/tolerances.hpp>
 #include <cmath>
 #include <sstream>
-#include <antcd/error.hpp>
 #include <string>
 
+#include "util/check.hpp"
 #include "util/parallel.hpp"
 #include "world/world_impl.hpp"
 
@@ -27,15 +29,15 @@ std::string object_label(const World::Impl::Object& o, ObjectId id) {
          " " + describe(id);
 }
 
-// A rigid pose: finite, rotation orthonormal with determinant +1 within 1e-6. Returns the problem,
-// or nullptr. No allocation: set_poses checks every pose of every frame.
+// A rigid pose: finite, rotation orthonormal with determinant +1 within tolerance::kRigid.
+// Returns the problem, or nullptr. No allocation: set_poses checks every pose of every frame.
 const char* pose_problem(const Transform& pose, Scalar& err) {
   err = 0;
   if (!pose.rotation.allFinite() || !pose.translation.allFinite()) {
     return "is not finite (NaN or infinity)";
   }
-  err = (pose.rotation.transpose() * pose.rotation - Mat3::Identity()).cwiseAbs().maxCoeff();
-  if (err > 1e-6 || pose.rotation.determinant() <= 0) {
+  err = tolerance::orthonormality_error(pose.rotation);
+  if (err > tolerance::kRigid || pose.rotation.determinant() <= 0) {
     return "is not a rigid motion (rotation not orthonormal with determinant +1)";
   }
   return nullptr;
@@ -62,9 +64,9 @@ Aabb posed_box(const Model& model, const Transform& pose, Scalar& tolerance) {
   // Magnitudes by their 1-norms (bounds on the 2-norms, no square roots: this runs for every object
   // of every frame).
   const Scalar sphere_reach = root.radius + pose.apply(root.center).lpNorm<1>();
-  // Relative allowance for the box fit and for rounding in the pose applied here; at least the
-  // scale of the hierarchy traversal's (bvh/traverse.hpp).
-  tolerance = 1e-9 * (sphere_reach + c.lpNorm<1>() + ext.lpNorm<1>()) + 1e-300;
+  // Relative allowance for the box fit and for rounding in the pose applied here, on a scale at
+  // least the hierarchy traversal's (bvh/traverse.hpp).
+  tolerance = tolerance::volume_allowance(sphere_reach + c.lpNorm<1>() + ext.lpNorm<1>());
   Aabb box;
   box.min = c - ext;
   box.max = c + ext;
@@ -87,9 +89,7 @@ Aabb World::Impl::fattened(std::uint32_t slot) const {
 }
 
 World::World(const WorldOptions& options) : impl_(std::make_unique<Impl>()) {
-  if (!(options.fat_fraction >= 0) || !std::isfinite(options.fat_fraction)) {
-    throw ArgumentError("World: options.fat_fraction must be finite and >= 0");
-  }
+  detail::require_non_negative("World", "options.fat_fraction", options.fat_fraction);
   impl_->settings = options;
 }
 World::World(World&&) noexcept = default;
