@@ -125,9 +125,11 @@ class DistanceData:
     """The closest pair of a minimum-distance query: two named objects.
 
     ``names`` is the set of the two names; ``index(name)`` the face index of that object's closest
-    triangle; ``point(name)`` the world-frame closest point on it; ``distance`` the distance
-    between the two points (0 when the surfaces meet, never negative); ``intersecting`` whether
-    the surfaces share a point.
+    triangle; ``point(name)`` the world-frame closest point on it; ``distance`` the query's
+    distance: for two closed meshes the signed distance (minus the penetration depth when the
+    solids overlap, nested ones included; the points are then antcd.penetration's witness points),
+    otherwise the distance between the two surface points (0 when the surfaces meet);
+    ``intersecting`` whether the surfaces share a point.
     """
 
     __slots__ = ("names", "_inds", "_points", "_distance", "_intersecting")
@@ -141,7 +143,8 @@ class DistanceData:
 
     @property
     def distance(self) -> float:
-        """Euclidean distance between the two objects' surfaces."""
+        """The minimum distance: signed for two closed meshes (< 0: they overlap), else the
+        Euclidean distance between the two surfaces."""
         return self._distance
 
     @property
