@@ -189,9 +189,7 @@ std::optional<NearestPair> World::nearest_object(ObjectId id, const NearestReque
 std::optional<NearestPair> World::nearest_to(const Model& model, const Transform& pose,
                                              const NearestRequest& request,
                                              const QueryFilter& filter) const {
-  if (!pose.rotation.allFinite() || !pose.translation.allFinite()) {
-    throw ArgumentError("World::nearest_to: pose is not finite (NaN or infinity)");
-  }
+  require_finite_pose(pose, "World::nearest_to");
   const Impl& w = *impl_;
   Scalar tolerance = 0;
   const Side objects{&w, {}};

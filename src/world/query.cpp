@@ -280,9 +280,7 @@ std::vector<ObjectContacts> World::collide_model(const Model& model, const Trans
                                                  const CollisionRequest& request,
                                                  const QueryFilter& filter) const {
   detail::require_non_negative("World::collide_model", "request.delta", request.delta);
-  if (!pose.rotation.allFinite() || !pose.translation.allFinite()) {
-    throw ArgumentError("World::collide_model: pose is not finite (NaN or infinity)");
-  }
+  require_finite_pose(pose, "World::collide_model");
   Bounds probe;
   probe.box = posed_box(model, pose, probe.tolerance);
   const Aabb query = grown(probe.box, exact_growth(probe, request.delta));

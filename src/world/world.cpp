@@ -73,6 +73,12 @@ Aabb posed_box(const Model& model, const Transform& pose, Scalar& tolerance) {
   return grown(box, tolerance);
 }
 
+void require_finite_pose(const Transform& pose, const char* function) {
+  if (!pose.rotation.allFinite() || !pose.translation.allFinite()) {
+    throw ArgumentError(std::string(function) + ": pose is not finite (NaN or infinity)");
+  }
+}
+
 const World::Impl::Object& World::Impl::get(ObjectId id, const char* function,
                                             const char* argument) const {
   if (!contains(id)) {
