@@ -204,7 +204,7 @@ class ANTCD_API World {
   [[nodiscard]] std::optional<NearestPair> nearest_object(ObjectId id,
                                                           const NearestRequest& request = {}) const;
   /// The object closest to `model` at `pose` among those `filter` admits (a = that object; the
-  /// result's A is the object's model, B the query model).
+  /// result's A is the object's model, B the query model). A non-finite pose is an ArgumentError.
   [[nodiscard]] std::optional<NearestPair> nearest_to(const Model& model, const Transform& pose,
                                                       const NearestRequest& request = {},
                                                       const QueryFilter& filter = {}) const;
