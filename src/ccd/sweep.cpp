@@ -13,6 +13,7 @@
 #include <string>
 
 #include "util/check.hpp"
+#include "util/pose_check.hpp"
 
 namespace antcd {
 namespace {
@@ -22,11 +23,9 @@ namespace {
 constexpr Scalar kStepRelTolerance = 0.5;
 
 void check_pose(const Transform& p, const char* name) {
-  if (!p.rotation.allFinite() || !p.translation.allFinite()) {
-    throw ArgumentError(std::string("sweep: ") + name + " has a non-finite entry");
-  }
-  if (!tolerance::is_rotation(p.rotation)) {
-    throw ArgumentError(std::string("sweep: ") + name + " rotation is not a proper rotation");
+  Scalar err = 0;
+  if (const char* problem = detail::pose_problem(p, err)) {
+    throw ArgumentError(std::string("sweep: ") + name + " " + problem);
   }
 }
 

@@ -6,7 +6,6 @@
 #include <antcd/mesh.hpp>
 
 #include <array>
-#include <charconv>
 #include <cmath>
 #include <cstdint>
 #include <limits>

@@ -9,21 +9,21 @@
 #include <antcd/error.hpp>
 #include <antcd/math.hpp>
 
-#include <array>
-#include <charconv>
 #include <cmath>
 #include <cstdint>
 #include <string>
 #include <string_view>
 #include <utility>
 
+#include "util/number_text.hpp"
+
 namespace antcd::detail {
 
-/// The shortest text that reads back as `x` ("1.5", "-1", "inf", "nan").
+/// Text that reads back as `x` ("1.5", "-1", "inf", "nan"; util/number_text.hpp).
 inline std::string format_number(double x) {
-  std::array<char, 32> buf{};
-  const auto [end, ec] = std::to_chars(buf.data(), buf.data() + buf.size(), x);
-  return ec == std::errc{} ? std::string(buf.data(), end) : std::string("?");
+  std::string text;
+  append_double(text, x);
+  return text.empty() ? std::string("?") : text;
 }
 
 [[noreturn]] inline void argument_error(std::string_view function, std::string_view argument,

@@ -2,15 +2,16 @@
 // kept up to date (a leaf changes only when its object leaves its box; see set_poses).
 #include <antcd/world.hpp>
 
-#include <algorithm>
 #include <antcd/error.hpp>
-#include <antcd/tolerances.hpp>
+
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <string>
 
 #include "util/check.hpp"
 #include "util/parallel.hpp"
+#include "util/pose_check.hpp"
 #include "world/world_impl.hpp"
 
 namespace antcd {
@@ -29,23 +30,9 @@ std::string object_label(const World::Impl::Object& o, ObjectId id) {
          " " + describe(id);
 }
 
-// A rigid pose: finite, rotation orthonormal with determinant +1 within tolerance::kRigid.
-// Returns the problem, or nullptr. No allocation: set_poses checks every pose of every frame.
-const char* pose_problem(const Transform& pose, Scalar& err) {
-  err = 0;
-  if (!pose.rotation.allFinite() || !pose.translation.allFinite()) {
-    return "is not finite (NaN or infinity)";
-  }
-  err = tolerance::orthonormality_error(pose.rotation);
-  if (err > tolerance::kRigid || pose.rotation.determinant() <= 0) {
-    return "is not a rigid motion (rotation not orthonormal with determinant +1)";
-  }
-  return nullptr;
-}
-
 void check_pose(const Transform& pose, const std::string& function, const std::string& what) {
   Scalar err = 0;
-  if (const char* problem = pose_problem(pose, err)) {
+  if (const char* problem = detail::pose_problem(pose, err)) {
     std::ostringstream msg;
     msg << function << ": " << what << " " << problem;
     if (err > 0) msg << "; orthonormality error " << err;
@@ -158,7 +145,7 @@ void World::remove(ObjectId id) {
 void World::set_pose(ObjectId id, const Transform& pose) {
   const Impl::Object& o = impl_->get(id, "World::set_pose", "id");
   Scalar err = 0;
-  if (pose_problem(pose, err) != nullptr) {
+  if (detail::pose_problem(pose, err) != nullptr) {
     check_pose(pose, "World::set_pose", "pose of " + object_label(o, id));
   }
   set_poses(std::span<const ObjectId>(&id, 1), std::span<const Transform>(&pose, 1));
@@ -174,7 +161,7 @@ void World::set_poses(std::span<const ObjectId> ids, std::span<const Transform> 
   // bad one (if any) again, on this thread, for its message.
   const auto bad = [&](std::size_t k) {
     Scalar err = 0;
-    return !w.contains(ids[k]) || pose_problem(poses[k], err) != nullptr;
+    return !w.contains(ids[k]) || detail::pose_problem(poses[k], err) != nullptr;
   };
   std::size_t first_bad = ids.size();
   if (ids.size() < kParallelBatch) {
