@@ -1,6 +1,9 @@
 #!/usr/bin/python3
 """Checks that docs and code comments name only things that exist (ctest: docs_references).
 
+Docs: README.md, wasm/README.md and docs/*.md (a path resolves from the repository root or from
+the document's own folder).
+
 Docs drift when code is renamed or removed: a design note naming a function that is gone, a path
 that moved. This finds these references and fails (exit 1, one line per stale reference) when one
 no longer resolves:
@@ -22,9 +25,9 @@ import sys
 
 ROOT = pathlib.Path(sys.argv[1] if len(sys.argv) > 1 else pathlib.Path(__file__).parent.parent)
 TOP = ("src", "include", "tests", "bench", "docs", "scripts", "python", "apps", "examples",
-       "viewer", "fuzz", "learned", "shared", "experiments", "cmake")
+       "viewer", "fuzz", "learned", "shared", "experiments", "cmake", "wasm")
 SOURCES = ("src", "include", "apps", "python", "bench", "tests", "scripts", "viewer/src", "learned",
-           "shared", "experiments", "examples", "fuzz", "cmake")
+           "shared", "experiments", "examples", "fuzz", "cmake", "wasm/src", "wasm/test")
 CXX = {".cpp", ".hpp", ".h"}
 SUFFIXES = {".cpp", ".hpp", ".h", ".py", ".pyi", ".sh", ".js", ".mjs", ".ts", ".cmake", ".txt", ".in"}
 
@@ -54,8 +57,10 @@ def expand_braces(path):
         expand_braces(path[:m.start()] + alt + path[m.end():]) for alt in m.group(1).split(",")))
 
 
-def exists(path):
-    return all(any(ROOT.glob(p)) if "*" in p else (ROOT / p).exists() for p in expand_braces(path))
+def exists(path, *bases):
+    """Whether `path` exists under one of `bases` (every {a,b} alternative; a glob matches)."""
+    return any(all(any(base.glob(p)) if "*" in p else (base / p).exists()
+                   for p in expand_braces(path)) for base in bases)
 
 
 def strip_comments(text):
@@ -63,7 +68,9 @@ def strip_comments(text):
 
 
 def main():
-    docs = [ROOT / "README.md"] + sorted((ROOT / "docs").glob("*.md"))
+    docs = [ROOT / "README.md", ROOT / "wasm" / "README.md"]
+    docs += sorted((ROOT / "docs").glob("*.md"))
+    docs = [d for d in docs if d.exists()]
     files = [p for d in SOURCES if (ROOT / d).is_dir() for p in (ROOT / d).rglob("*")
              if p.is_file() and (p.suffix in SUFFIXES or p.name == "CMakeLists.txt")
              and p.resolve() != pathlib.Path(__file__).resolve()]
@@ -86,7 +93,7 @@ def main():
                 if (doc.name, name) not in ALLOWED:
                     check_name(where, name)
         for path in sorted(set(PATH_RE.findall(text))):
-            if (doc.name, path) not in ALLOWED and not exists(path):
+            if (doc.name, path) not in ALLOWED and not exists(path, ROOT, doc.parent):
                 stale.append(f"{doc.relative_to(ROOT)}: {path} does not exist")
     for p, text in texts.items():
         if p.suffix not in CXX:
