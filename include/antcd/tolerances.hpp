@@ -37,6 +37,13 @@ inline constexpr Scalar kFloor = 1e-300;
 /// and its allowance on the scene's size (sweep.hpp).
 inline constexpr Scalar kArithmetic = 1e-12;
 
+/// Relative rounding allowance of point queries: a point against a triangle (on an edge, on the
+/// surface), a node box, or a solid's surface (points.hpp, penetration.hpp's depth probes), on the
+/// scale of the coordinates and sizes involved. A point query's arithmetic (a projection, a
+/// barycentric split) rounds to about 1e-15 of that scale; 1e-10 is far above it and below any
+/// offset a caller would mean.
+inline constexpr Scalar kPoint = 1e-10;
+
 /// A rotation is rigid when every entry of R^T R - I is at most this in magnitude (and det R > 0).
 /// Loose on purpose: poses from single-precision sources, quaternion products or a 4x4 matrix
 /// printed with 7 digits are accepted; a scale or shear of a millionth is not.
