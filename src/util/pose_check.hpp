@@ -8,6 +8,10 @@
 
 namespace antcd::detail {
 
+/// Largest |R^T R - I| entry a pose's rotation may have: tolerance::kRigid, under the name the
+/// WebAssembly bindings use (not a second definition).
+inline constexpr Scalar kPoseTolerance = tolerance::kRigid;
+
 /// The problem with `pose` as a short phrase ("is not finite ...", "is not a rigid motion ..."),
 /// or nullptr for a rigid pose. `err` receives the orthonormality error (0 when not finite).
 /// No allocation: it runs for every pose of every frame.
