@@ -12,8 +12,8 @@
 #include <limits>
 #include <string>
 
-#include "util/check.hpp"
 #include "ccd/motion.hpp"
+#include "util/check.hpp"
 #include "util/pose_check.hpp"
 
 namespace antcd {
@@ -72,9 +72,9 @@ SweepResult sweep(const Model& a, const Transform& pose_a0, const Transform& pos
   const Scalar rb = ccd::origin_radius(b);
   const Vec3 relative_move =
       (pose_a1.translation - pose_a0.translation) - (pose_b1.translation - pose_b0.translation);
-  const Scalar mu = tolerance::widened(relative_move.norm() +
-                                       ccd::rotation_angle(pose_a0.rotation, pose_a1.rotation) * ra +
-                                       ccd::rotation_angle(pose_b0.rotation, pose_b1.rotation) * rb);
+  const Scalar mu = tolerance::widened(
+      relative_move.norm() + ccd::rotation_angle(pose_a0.rotation, pose_a1.rotation) * ra +
+      ccd::rotation_angle(pose_b0.rotation, pose_b1.rotation) * rb);
   const Scalar scale = ra + rb + ms + pose_a0.translation.norm() + pose_a1.translation.norm() +
                        pose_b0.translation.norm() + pose_b1.translation.norm();
   // The poses, the distance and the time steps are each within a few 1e-16 of the scene's size
