@@ -69,7 +69,8 @@ void add_view_command(CLI::App& app, int& code) {
                   "Exact contact points drawn per reported pair and frame, at most (0: none)")
       ->check(CLI::Range(0, 100000))
       ->capture_default_str();
-  cmd->add_option("--out", opts->out, "Write the HTML page here (atomically)");
+  cmd->add_option("--out", opts->out, "Write the HTML page here (atomically)")
+      ->check(writable_file());
   cmd->add_flag("--serve", opts->serve,
                 "Serve the page on 127.0.0.1 instead (for large scenes); Ctrl-C stops");
   cmd->add_option("--port", opts->port, "Port for --serve (0: any free port)")
