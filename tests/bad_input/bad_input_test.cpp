@@ -627,6 +627,9 @@ TEST(BadSceneFile, ObjectErrors) {
                      "object 'a': missing or empty 'mesh'");
   expect_scene_error(SCENE_WITH(R"({ "name": "a", "mesh": ["m.obj"], "poses": [ {} ] })"),
                      "object 'a': missing or empty 'mesh'");
+  // A NUL in the path would open another file ("m.obj").
+  expect_scene_error(SCENE_WITH(R"({ "name": "a", "mesh": "m.obj\u0000x", "poses": [ {} ] })"),
+                     "object 'a': 'mesh' holds a NUL byte");
   // The second object is checked as carefully as the first.
   expect_scene_error(SCENE_WITH(OBJECT(R"("poses": [ {} ])") R"(, { "name": "b" })"),
                      "object 'b': missing or empty 'mesh'");
