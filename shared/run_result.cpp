@@ -61,7 +61,8 @@ double number(const json& j, const std::string& key, const std::string& source,
 /// Limits checked on the text before it is parsed: the format nests 5 levels (the top object,
 /// "frames", a frame, "pairs", a pair), and a run of 1000 frames with a few hundred pairs each
 /// holds about a million values. The JSON tree costs some 40 bytes a value, so these bound the
-/// memory a hostile file can take (a megabyte of '[' would otherwise build a million nested arrays).
+/// memory a hostile file can take (a megabyte of '[' would otherwise build a million nested
+/// arrays).
 constexpr std::size_t kMaxResultNesting = 16;
 constexpr std::size_t kMaxResultValues = std::size_t{1} << 24;
 

@@ -92,11 +92,11 @@ CLI::Validator number_at_least_zero(bool zero_allowed, bool infinity_allowed) {
         // std::stod also reads hexadecimal ("0x10" is 16): decimal only.
         const bool hex = text.find_first_of("xX") != std::string::npos;
         const bool infinite = std::isinf(value) && !(infinity_allowed && value > 0);
-        if (used == 0 || used != text.size() || hex || std::isnan(value) || infinite ||
-            value < 0 || (!zero_allowed && value == 0)) {
+        if (used == 0 || used != text.size() || hex || std::isnan(value) || infinite || value < 0 ||
+            (!zero_allowed && value == 0)) {
           return std::string("expected a ") + (infinity_allowed ? "" : "finite ") + "number " +
-                 (zero_allowed ? ">= 0" : "> 0") + (infinity_allowed ? " or inf" : "") +
-                 ", got '" + text + "'";
+                 (zero_allowed ? ">= 0" : "> 0") + (infinity_allowed ? " or inf" : "") + ", got '" +
+                 text + "'";
         }
         return {};
       },
@@ -129,7 +129,8 @@ namespace {
 /// "" when `folder` (a path that exists) is a writable folder, else why not.
 std::string writable_folder_problem(const std::filesystem::path& folder) {
   std::error_code ec;
-  if (!std::filesystem::is_directory(folder, ec)) return "'" + folder.string() + "' is not a folder";
+  if (!std::filesystem::is_directory(folder, ec))
+    return "'" + folder.string() + "' is not a folder";
   if (::access(folder.c_str(), W_OK | X_OK) != 0) {
     return "cannot write in '" + folder.string() + "': " + std::strerror(errno);
   }

@@ -54,8 +54,8 @@ Model load_model(const std::filesystem::path& path, const BuildOptions& options)
 /// Prints "warning: SOURCE: N zero-area triangle(s) ignored" on stderr when the model left some out.
 void warn_degenerate(const Model& model);
 
-/// Option check for --delta and friends: a finite decimal number >= 0 (no hex). (CLI::NonNegativeNumber
-/// lets NaN through, and its message prints the largest double in full.)
+/// Option check for --delta and friends: a finite decimal number >= 0 (no hex).
+/// (CLI::NonNegativeNumber lets NaN through, and its message prints the largest double in full.)
 CLI::Validator non_negative_finite();
 /// The same, > 0.
 CLI::Validator positive_finite();

@@ -235,8 +235,9 @@ void add_scene_commands(CLI::App& app, int& code) {
          "Random methods: fitness evaluations shared by a frame's candidate pairs (anytime "
          "query; pairs left without a witness are listed as undecided); 0 = off")
       ->check(unsigned_integer());
-  cmd->add_option("--frame-seconds", run->frame_seconds,
-                  "Random methods: wall-time budget of a frame's searches (not deterministic); 0 = off")
+  cmd->add_option(
+         "--frame-seconds", run->frame_seconds,
+         "Random methods: wall-time budget of a frame's searches (not deterministic); 0 = off")
       ->check(non_negative_finite());
   cmd->add_flag("--no-memory", run->no_memory,
                 "Random methods: search each frame afresh instead of carrying the colonies' "
