@@ -15,6 +15,8 @@ packages=(
   python3-dev python3-pybind11 pybind11-dev python3-numpy python3-pytest python3-matplotlib
   python3-pip python3-setuptools python3-wheel python3-venv python3-build
   chromium
+  # The WebAssembly package (wasm/) and the live viewer page: Emscripten 3.1 (with node-acorn).
+  emscripten
   "$@"
 )
 # The browser viewer is bundled with npm (viewer/package-lock.json) and needs node >= 18. Debian's
