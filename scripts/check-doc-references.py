@@ -43,6 +43,9 @@ ALLOWED = {
 
 CALL_RE = re.compile(r"\b([a-z]\w*)\(")
 SNAKE_CALL_RE = re.compile(r"\b([a-z][a-z0-9]*_\w+)\(")
+# Namespaces of other libraries: their names are not ours to check.
+EXTERNAL = {"std", "torch", "at", "c10", "CLI", "Eigen", "fcl", "tbb", "oneapi", "py", "pybind11",
+            "nlohmann", "CGAL", "Assimp", "tinyobj", "emscripten", "benchmark", "testing", "boost"}
 # Mathematical notation, not code: fl(x) is a rounded value, h_A(d) a support function.
 NOT_CODE = re.compile(r"^(fl|[a-z]_[A-Za-z0-9])$")
 PATH_RE = re.compile(r"(?<![\w/.\-])((?:%s)/[\w./*\-]*(?:\{[\w,]+\}[\w./*\-]*)?[\w*])" % "|".join(TOP))
@@ -81,6 +84,8 @@ def main():
     stale = []
 
     def check_name(where, name):
+        if name.split("::")[0] in EXTERNAL:
+            return
         last = name.split("::")[-1]
         if last not in words and not NOT_CODE.match(last):
             stale.append(f"{where[1]}: `{name}` is named nowhere in the code")
