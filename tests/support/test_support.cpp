@@ -3,6 +3,7 @@
 #include <antcd/geometry.hpp>
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <fstream>
 #include <sstream>
@@ -19,7 +20,10 @@ std::filesystem::path assimp_model(const std::string& relative) {
 }
 
 std::filesystem::path fresh_temp_dir(const std::string& name) {
-  const std::filesystem::path dir = std::filesystem::path(ANTCD_TEST_TMP) / name;
+  // The process id keeps test processes apart: ctest -j runs the tests of one suite (and of one
+  // SetUpTestSuite folder) in separate processes side by side.
+  const std::filesystem::path dir =
+      std::filesystem::path(ANTCD_TEST_TMP) / (name + "." + std::to_string(::getpid()));
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   return dir;

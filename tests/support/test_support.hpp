@@ -15,7 +15,8 @@ namespace antcd::test {
 /// test (fatal) if the file is absent: the README's test command installs the package.
 std::filesystem::path assimp_model(const std::string& relative);
 
-/// A fresh, empty folder under the build tree for the calling test.
+/// A fresh, empty folder under the build tree for the calling test process (its name carries the
+/// process id, so tests running side by side under ctest -j never share one).
 std::filesystem::path fresh_temp_dir(const std::string& name);
 
 /// The whole content of the file at `path` (binary-safe; empty when it cannot be read).
