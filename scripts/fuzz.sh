@@ -37,6 +37,8 @@ cmake -S "$repo" -B "$build_dir" \
   -DANTCD_BUILD_FUZZERS=ON \
   -DANTCD_BUILD_TESTS=OFF -DANTCD_BUILD_APPS=OFF -DANTCD_BUILD_BENCHMARKS=OFF
 fuzzers=(fuzz_mesh_load fuzz_scene_parse)
+# The model-file reader (issue 27), corpus fuzz/corpus/model.
+fuzzers+=(fuzz_model_file)
 cmake --build "$build_dir" -j "$jobs" --target "${fuzzers[@]}"
 
 # ---- run ----
