@@ -13,6 +13,7 @@
 
 #include "bvh/model_cache.hpp"
 #include "bvh/model_file.hpp"
+#include "util/huge_pages.hpp"
 #include "util/parallel.hpp"
 
 #include <algorithm>
@@ -41,12 +42,32 @@ constexpr std::uint64_t kMaxCount = 0xFFFFFFFFULL;
 // Models at least this large check their closedness and their tree in parallel.
 constexpr std::size_t kParallelCheck = 16384;
 
-float f32_at(const std::uint8_t* p) {
-  return std::bit_cast<float>(static_cast<std::uint32_t>(read_le(p, 4)));
-}
-double f64_at(const std::uint8_t* p) { return std::bit_cast<double>(read_le(p, 8)); }
-std::uint32_t u32_at(const std::uint8_t* p) { return static_cast<std::uint32_t>(read_le(p, 4)); }
+float f32_at(const std::uint8_t* p) { return std::bit_cast<float>(read_le32(p)); }
+double f64_at(const std::uint8_t* p) { return std::bit_cast<double>(read_le64(p)); }
+std::uint32_t u32_at(const std::uint8_t* p) { return read_le32(p); }
 Vec3 vec3_at(const std::uint8_t* p) { return {f64_at(p), f64_at(p + 8), f64_at(p + 16)}; }
+
+/// body(i) for i in [0, n): in parallel blocks for a large model.
+template <class Body>
+void blocks(std::size_t n, const Body& body) {
+  const auto range = [&](std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i) body(i);
+  };
+  if (n < kParallelCheck) {
+    range(0, n);
+  } else {
+    parallel::for_ranges(0, n, 8192, range);
+  }
+}
+
+/// `v` resized to n elements, on huge pages when large (their first writes are most of a large
+/// model's load otherwise, as of its build: util/huge_pages.hpp).
+template <class T>
+void sized(std::vector<T>& v, std::size_t n) {
+  v.reserve(n);
+  advise_huge_pages(v.data(), v.capacity());
+  v.resize(n);
+}
 
 class Writer {
  public:
@@ -67,7 +88,11 @@ class Writer {
 
  private:
   void put(std::uint64_t v, int n) {
-    write_le(p_, v, n);
+    if constexpr (std::endian::native == std::endian::little) {
+      std::memcpy(p_, &v, static_cast<std::size_t>(n));  // the low n bytes come first
+    } else {
+      write_le(p_, v, n);
+    }
     p_ += n;
   }
   std::uint8_t* p_;
@@ -115,7 +140,7 @@ class Reader {
     return p;
   }
   std::uint32_t u32(const char* what) { return u32_at(take(4, what)); }
-  std::uint64_t u64(const char* what) { return read_le(take(8, what), 8); }
+  std::uint64_t u64(const char* what) { return read_le64(take(8, what)); }
 
   /// A count of records of `record_bytes` each, checked against the bytes that remain before
   /// anything is allocated for them. Returns the count and sets `records` to their bytes.
@@ -293,51 +318,57 @@ struct ModelFile {
     const std::uint8_t* p = nullptr;
     const std::size_t source_size = in.records(1, "source name bytes", p);
     m.source_.assign(reinterpret_cast<const char*>(p), source_size);
-
-    const std::size_t nv = in.records(kVertexBytes, "vertices", p);
-    m.mesh_.vertices.resize(nv);
-    for (std::size_t i = 0; i < nv; ++i) m.mesh_.vertices[i] = vec3_at(p + i * kVertexBytes);
-    const std::size_t nt = in.records(kTriangleBytes, "triangles", p);
-    m.mesh_.triangles.resize(nt);
-    for (std::size_t i = 0; i < nt; ++i) {
-      for (std::size_t c = 0; c < 3; ++c) {
-        m.mesh_.triangles[i][c] = u32_at(p + i * kTriangleBytes + 4 * c);
-      }
-    }
-    validate_mesh(m.mesh_, name);
-
-    const std::size_t nn = in.records(kNodeBytes, "nodes", p);
+    // Every section's size is checked against the payload before anything is allocated.
+    const std::uint8_t* pv = nullptr;
+    const std::uint8_t* pt = nullptr;
+    const std::uint8_t* pn = nullptr;
+    const std::uint8_t* pl = nullptr;
+    const std::size_t nv = in.records(kVertexBytes, "vertices", pv);
+    const std::size_t nt = in.records(kTriangleBytes, "triangles", pt);
+    const std::size_t nn = in.records(kNodeBytes, "nodes", pn);
+    const std::size_t nl = in.records(4, "leaf triangles", pl);
     if (nn == 0) in.fail("the tree has no node");
-    m.nodes_.resize(nn);
-    for (std::size_t i = 0; i < nn; ++i) m.nodes_[i] = read_node(p + i * kNodeBytes);
-    const std::size_t nl = in.records(4, "leaf triangles", p);
     if (nl == 0 || nl > nt) {
       in.fail(std::to_string(nl) + " leaf triangles for " + std::to_string(nt) + " triangles");
-    }
-    m.leaf_triangles_.resize(nl);
-    std::vector<bool> seen(nt, false);
-    for (std::size_t i = 0; i < nl; ++i) {
-      const std::uint32_t t = u32_at(p + 4 * i);
-      if (t >= nt || seen[t]) {
-        in.fail("leaf triangle " + std::to_string(i) + " is mesh triangle " + std::to_string(t) +
-                (t >= nt ? ", out of range" : ", which occurs twice"));
-      }
-      seen[t] = true;
-      m.leaf_triangles_[i] = t;
     }
     if (in.remaining() != 0) {
       in.fail(std::to_string(in.remaining()) + " bytes after the last section");
     }
 
-    // The tree's shape, and the closedness recomputed (volume queries rely on it), at once.
+    sized(m.mesh_.vertices, nv);
+    sized(m.mesh_.triangles, nt);
+    blocks(nv, [&](std::size_t i) { m.mesh_.vertices[i] = vec3_at(pv + i * kVertexBytes); });
+    blocks(nt, [&](std::size_t i) {
+      for (std::size_t c = 0; c < 3; ++c) {
+        m.mesh_.triangles[i][c] = u32_at(pt + i * kTriangleBytes + 4 * c);
+      }
+    });
+    validate_mesh(m.mesh_, name);
+
+    // The closedness recomputed (volume queries rely on it) while the tree is read and checked.
     bool is_closed_now = false;
     const auto closedness = [&] { is_closed_now = antcd::is_closed(m.mesh_); };
-    const auto shape = [&] { m.stats_.depth = check_tree(m.nodes_, nl, m.options_.leaf_size, in); };
+    const auto tree = [&] {
+      sized(m.nodes_, nn);
+      blocks(nn, [&](std::size_t i) { m.nodes_[i] = read_node(pn + i * kNodeBytes); });
+      sized(m.leaf_triangles_, nl);
+      std::vector<bool> seen(nt, false);
+      for (std::size_t i = 0; i < nl; ++i) {
+        const std::uint32_t t = u32_at(pl + 4 * i);
+        if (t >= nt || seen[t]) {
+          in.fail("leaf triangle " + std::to_string(i) + " is mesh triangle " + std::to_string(t) +
+                  (t >= nt ? ", out of range" : ", which occurs twice"));
+        }
+        seen[t] = true;
+        m.leaf_triangles_[i] = t;
+      }
+      m.stats_.depth = check_tree(m.nodes_, nl, m.options_.leaf_size, in);
+    };
     if (nt >= kParallelCheck) {
-      parallel::invoke(closedness, shape);
+      parallel::invoke(closedness, tree);
     } else {
       closedness();
-      shape();
+      tree();
     }
     if (is_closed_now != (closed == 1)) {
       in.fail("the closed flag disagrees with the mesh's topology");

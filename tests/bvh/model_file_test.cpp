@@ -12,6 +12,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <limits>
@@ -317,6 +318,61 @@ TEST(ModelFile, HostileContentsWithAValidChecksumAreClearErrors) {
   expect_error(edit(at.leaves + 8, 5000, 4), "out of range");
   expect_error(edit(at.leaves + 8, m.leaf_triangles()[1], 4), "occurs twice");
   expect_error(edit(at.leaves, 0, 8), "0 leaf triangles");
+}
+
+/// The definition of antcd::is_closed, checked the slow way: all directed edges of triangles
+/// with three distinct indices, none twice, each one's reverse present.
+bool closed_reference(const Mesh& mesh) {
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> edges;
+  for (const TriangleIndices& t : mesh.triangles) {
+    if (t[0] == t[1] || t[1] == t[2] || t[2] == t[0]) continue;
+    for (std::size_t k = 0; k < 3; ++k) edges.emplace_back(t[k], t[(k + 1) % 3]);
+  }
+  std::sort(edges.begin(), edges.end());
+  if (edges.empty() || std::adjacent_find(edges.begin(), edges.end()) != edges.end()) return false;
+  return std::all_of(edges.begin(), edges.end(), [&](const auto& e) {
+    return std::binary_search(edges.begin(), edges.end(), std::make_pair(e.second, e.first));
+  });
+}
+
+// Loading recomputes closedness (is_closed, made linear-time for it): the same verdict as the
+// definition on closed meshes and on every small damage to them.
+TEST(ModelFile, ClosednessMatchesItsDefinition) {
+  std::mt19937_64 rng(3);
+  int closed = 0;
+  int open = 0;
+  for (const Mesh& base : {make_box(Vec3(1, 1, 1), 2), make_torus(1, 0.3, 9, 5),
+                           make_sphere(1, 7, 4), make_cylinder(0.5, 1, 6, 2)}) {
+    for (int trial = 0; trial < 60; ++trial) {
+      Mesh m = base;
+      std::uniform_int_distribution<std::size_t> pick(0, m.triangles.size() - 1);
+      switch (trial % 6) {
+        case 0:
+          break;  // as generated
+        case 1:
+          std::swap(m.triangles[pick(rng)][0], m.triangles[pick(rng)][1]);
+          break;
+        case 2:
+          m.triangles.erase(m.triangles.begin() + static_cast<long>(pick(rng)));
+          break;
+        case 3:
+          m.triangles.push_back(m.triangles[pick(rng)]);
+          break;
+        case 4:
+          m.triangles[pick(rng)][1] = m.triangles[pick(rng)][0];
+          break;  // repeated index
+        default: {
+          const std::size_t i = pick(rng);
+          std::swap(m.triangles[i][1], m.triangles[i][2]);  // one triangle turned over
+        }
+      }
+      const bool expected = closed_reference(m);
+      ASSERT_EQ(is_closed(m), expected) << "trial " << trial;
+      (expected ? closed : open) += 1;
+    }
+  }
+  EXPECT_GT(closed, 20);
+  EXPECT_GT(open, 100);
 }
 
 }  // namespace
