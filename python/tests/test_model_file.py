@@ -95,6 +95,10 @@ def test_bad_data_is_a_clear_error(models, tmp_path):
         antcd.Model.load(bad)
     with pytest.raises(ValueError, match="bad.antcd"):
         antcd.load_mesh(bad)
+    with pytest.raises(ValueError, match="cannot write"):
+        a.save(tmp_path / "missing" / "a.antcd")
+    with pytest.raises(TypeError):
+        a.save(3)
 
 
 def test_collision_manager_pickles_with_each_model_once(models):
