@@ -16,6 +16,8 @@ packages=(
   python3-pip python3-setuptools python3-wheel python3-venv python3-build
   python3-distributed
   chromium
+  # The WebAssembly package (wasm/) and the live viewer page: Emscripten 3.1 (with node-acorn).
+  emscripten
   "$@"
 )
 # The browser viewer is bundled with npm (viewer/package-lock.json) and needs node >= 18. Debian's

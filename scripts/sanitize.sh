@@ -45,9 +45,10 @@ run_asan() {
   local san="-fsanitize=address,undefined -fno-sanitize-recover=undefined"
   local start=$SECONDS
   # The browser viewer's page test runs in test.sh; here `antcd view`'s input checks run under
-  # ASan without the npm bundle (ANTCD_BUILD_VIEWER=OFF: no second npm ci, no Chromium).
+  # ASan without the npm bundle (ANTCD_BUILD_VIEWER=OFF: no second npm ci, no Chromium), and
+  # without the WebAssembly build (ANTCD_BUILD_WASM=OFF: its tests run in test.sh).
   cmake -S . -B "$dir" -DCMAKE_BUILD_TYPE=Debug -DANTCD_BUILD_BENCHMARKS=OFF -DANTCD_BUILD_VIEWER=OFF \
-    -DANTCD_BUILD_LEARNED=OFF \
+    -DANTCD_BUILD_LEARNED=OFF -DANTCD_BUILD_WASM=OFF \
     -DCMAKE_CXX_FLAGS="-O1 -g -fno-omit-frame-pointer $san" \
     -DCMAKE_EXE_LINKER_FLAGS="$san" -DCMAKE_SHARED_LINKER_FLAGS="$san"
   cmake --build "$dir" -j "$jobs"

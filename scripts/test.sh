@@ -9,6 +9,13 @@ cd "$(dirname "$0")/.."
 build_dir="${ANTCD_BUILD_DIR:-build}"
 cmake -S . -B "$build_dir" -DCMAKE_BUILD_TYPE=Release -DANTCD_WARNINGS_AS_ERRORS=ON
 cmake --build "$build_dir" -j "$(nproc)"
+# The WebAssembly package (wasm/, with the Emscripten install-deps.sh installs) is part of the
+# build; ctest runs its node tests, its npm pack and the live viewer page (wasm_node, wasm_pack,
+# viewer_live). Installed Emscripten but no package means the build skipped it: fail here.
+if command -v emcmake >/dev/null 2>&1 && [ ! -f wasm/dist/antcd_core.wasm ]; then
+  echo "error: Emscripten is installed but the build made no wasm/dist/antcd_core.wasm" >&2
+  exit 1
+fi
 ctest --test-dir "$build_dir" --output-on-failure -j "$(nproc)"
 
 if [ "${ANTCD_SKIP_INSTALL:-0}" != 1 ]; then

@@ -85,6 +85,21 @@ void write_demo_view(const DemoOptions& o, const std::filesystem::path& scene_pa
   } catch (const std::exception& e) {  // viewer not built, or the page could not be written
     std::printf("\nview: no %s: %s\n", o.view.c_str(), e.what());
   }
+  // The live page beside it (antcd view --live): needs the WebAssembly build (Emscripten).
+  std::filesystem::path live = o.view;
+  live.replace_filename(live.stem().string() + "-live.html");
+  ViewInputs live_inputs;
+  live_inputs.scene = scene_path;
+  live_inputs.live = true;
+  try {
+    write_view_file(live_inputs, live);
+    std::printf(
+        "live: wrote %s (drag objects with the mouse or a VR controller; antcd compiled "
+        "to WebAssembly answers every frame)\n",
+        live.string().c_str());
+  } catch (const std::exception& e) {
+    std::printf("live: no %s: %s\n", live.string().c_str(), e.what());
+  }
 }
 
 int run_demo(const DemoOptions& o) {

@@ -21,6 +21,7 @@ struct ViewOptions {
   std::string out;
   std::size_t contacts = 16;
   bool serve = false;
+  bool live = false;
   std::uint16_t port = 8765;
 };
 
@@ -32,6 +33,7 @@ int run_view(const ViewOptions& o) {
   ViewInputs inputs;
   inputs.scene = o.scene;
   inputs.contacts_per_pair = o.contacts;
+  inputs.live = o.live;
   if (o.results.size() > 2) {
     throw UsageError("--result given " + std::to_string(o.results.size()) +
                      " times: the viewer shows one result or compares two");
@@ -45,7 +47,7 @@ int run_view(const ViewOptions& o) {
     return 0;
   }
   const ViewPayload payload = build_view_payload(inputs);
-  const std::string bundle = read_file(locate_viewer_bundle());
+  const std::string bundle = read_file(locate_viewer_bundle(o.live));
   const std::string page = render_page(payload, bundle, PageMode::Served);
   const ServedFile files[] = {{"/", "text/html; charset=utf-8", &page},
                               {"/antcd-view.bin", "application/octet-stream", &payload.blob}};
@@ -70,6 +72,9 @@ void add_view_command(CLI::App& app, int& code) {
       ->check(CLI::Range(0, 100000))
       ->capture_default_str();
   cmd->add_option("--out", opts->out, "Write the HTML page here (atomically)");
+  cmd->add_flag("--live", opts->live,
+                "Live page: drag objects with the mouse (or a WebXR controller's squeeze); "
+                "antcd compiled to WebAssembly answers every animation frame");
   cmd->add_flag("--serve", opts->serve,
                 "Serve the page on 127.0.0.1 instead (for large scenes); Ctrl-C stops");
   cmd->add_option("--port", opts->port, "Port for --serve (0: any free port)")

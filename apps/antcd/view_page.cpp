@@ -15,6 +15,7 @@
 #include <map>
 #include <memory>
 #include <set>
+#include <type_traits>
 #include <unordered_map>
 
 #include "cli_util.hpp"
@@ -34,19 +35,21 @@ class BlobWriter {
   json uints(const std::vector<std::uint32_t>& values) {
     return append(values.data(), values.size());
   }
+  /// float64 arrays start on a 4-byte boundary only: the page copies them out (data.js).
+  json doubles(const std::vector<double>& values) { return append(values.data(), values.size()); }
 
  private:
   template <typename T>
   json append(const T* data, std::size_t count) {
-    static_assert(sizeof(T) == 4);
+    static_assert(sizeof(T) == 4 || sizeof(T) == 8);
+    using Bits = std::conditional_t<sizeof(T) == 4, std::uint32_t, std::uint64_t>;
     const std::size_t offset = blob_.size();  // always a multiple of 4
-    blob_.resize(offset + count * 4);
+    blob_.resize(offset + count * sizeof(T));
     for (std::size_t i = 0; i < count; ++i) {
-      std::uint32_t bits = 0;
-      std::memcpy(&bits, data + i, 4);
-      for (int b = 0; b < 4; ++b) {
-        blob_[offset + i * 4 + static_cast<std::size_t>(b)] =
-            static_cast<char>((bits >> (8 * b)) & 0xFFU);
+      Bits bits = 0;
+      std::memcpy(&bits, data + i, sizeof(T));
+      for (std::size_t b = 0; b < sizeof(T); ++b) {
+        blob_[offset + i * sizeof(T) + b] = static_cast<char>((bits >> (8 * b)) & 0xFFU);
       }
     }
     return json::array({offset, count});
@@ -227,12 +230,30 @@ ViewPayload build_view_payload(const ViewInputs& inputs) {
                             {"triangles", mesh.triangles.size()},
                             {"positions", blob.floats(positions)},
                             {"indices", blob.uints(indices)}});
+      if (inputs.live) {
+        std::vector<double> exact;
+        exact.reserve(mesh.vertices.size() * 3);
+        for (const Vec3& v : mesh.vertices) exact.insert(exact.end(), v.data(), v.data() + 3);
+        meshes.back()["positions64"] = blob.doubles(exact);
+      }
       it = mesh_index.emplace(&model, meshes.size() - 1).first;
     }
     std::vector<float> poses;
     poses.reserve(o.poses.size() * 12);
     for (const Transform& t : o.poses) append_pose(poses, t);
     objects.push_back(json{{"name", o.name}, {"mesh", it->second}, {"poses", blob.floats(poses)}});
+    if (inputs.live) {
+      // The same layout as "poses" (rotation row by row, then translation), unrounded.
+      std::vector<double> exact;
+      exact.reserve(o.poses.size() * 12);
+      for (const Transform& t : o.poses) {
+        for (int r = 0; r < 3; ++r) {
+          for (int c = 0; c < 3; ++c) exact.push_back(t.rotation(r, c));
+        }
+        exact.insert(exact.end(), t.translation.data(), t.translation.data() + 3);
+      }
+      objects.back()["poses64"] = blob.doubles(exact);
+    }
   }
 
   json results = json::array();
@@ -247,6 +268,8 @@ ViewPayload build_view_payload(const ViewInputs& inputs) {
             {"meshes", meshes},
             {"objects", objects},
             {"results", results}};
+  if (inputs.live) root["live"] = true;
+  out.live = inputs.live;
   if (inputs.contacts_per_pair > 0 && !inputs.results.empty()) {
     root["contacts"] = pack_contacts(*engine, results, inputs.results.front().run.delta,
                                      inputs.contacts_per_pair, blob);
@@ -256,30 +279,33 @@ ViewPayload build_view_payload(const ViewInputs& inputs) {
   return out;
 }
 
-std::filesystem::path locate_viewer_bundle() {
+std::filesystem::path locate_viewer_bundle(bool live) {
   std::vector<std::filesystem::path> tried;
   std::error_code ec;
-  if (const char* env = std::getenv("ANTCD_VIEWER_JS"); env != nullptr && *env != '\0') {
+  const char* variable = live ? "ANTCD_LIVE_JS" : "ANTCD_VIEWER_JS";
+  const char* file = live ? "antcd-live.js" : "antcd-viewer.js";
+  if (const char* env = std::getenv(variable); env != nullptr && *env != '\0') {
     if (!std::filesystem::is_regular_file(env, ec)) {
-      throw UsageError(std::string("ANTCD_VIEWER_JS=") + env + ": no such file (the viewer bundle)");
+      throw UsageError(std::string(variable) + "=" + env + ": no such file (the viewer bundle)");
     }
     return env;
   }
   const auto exe = std::filesystem::read_symlink("/proc/self/exe", ec);
   if (!ec) {
     const auto dir = exe.parent_path();
-    tried.push_back(dir.parent_path() / "share" / "antcd" / "antcd-viewer.js");  // installed
-    tried.push_back(dir.parent_path().parent_path() / "viewer" / "antcd-viewer.js");  // build tree
+    tried.push_back(dir.parent_path() / "share" / "antcd" / file);       // installed
+    tried.push_back(dir.parent_path().parent_path() / "viewer" / file);  // build tree
   }
   for (const auto& p : tried) {
     if (std::filesystem::is_regular_file(p, ec)) return p;
   }
   std::string where;
   for (const auto& p : tried) where += (where.empty() ? "" : ", ") + p.string();
-  throw UsageError(
-      "the browser viewer is not built (looked for " + where +
-      "): it is bundled at build time from viewer/ with npm; install node and npm "
-      "(scripts/install-deps.sh does) and re-run cmake and the build");
+  throw UsageError(std::string(live ? "the live viewer page" : "the browser viewer") +
+                   " is not built (looked for " + where +
+                   "): it is bundled at build time from viewer/ with npm; install node and npm" +
+                   (live ? " and Emscripten" : "") +
+                   " (scripts/install-deps.sh does) and re-run cmake and the build");
 }
 
 ViewPayload write_view_file(const ViewInputs& inputs, const std::filesystem::path& out) {
@@ -289,7 +315,7 @@ ViewPayload write_view_file(const ViewInputs& inputs, const std::filesystem::pat
   }
   // Inputs first, so that every input error is reported even where the viewer is not built.
   ViewPayload payload = build_view_payload(inputs);
-  const std::string bundle = read_file(locate_viewer_bundle());
+  const std::string bundle = read_file(locate_viewer_bundle(inputs.live));
   write_file_atomic(out, render_page(payload, bundle, PageMode::SelfContained));
   payload.blob.clear();
   payload.json.clear();
@@ -368,7 +394,9 @@ std::string render_page(const ViewPayload& payload, const std::string& bundle_js
       "<!doctype html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
       "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n"
       "<meta http-equiv=\"Content-Security-Policy\" content=\"default-src 'none'; "
-      "script-src 'unsafe-inline'; style-src 'unsafe-inline'; img-src data: blob:; connect-src ";
+      "script-src 'unsafe-inline'";
+  if (payload.live) page += " 'wasm-unsafe-eval'";
+  page += "; style-src 'unsafe-inline'; img-src data: blob:; connect-src ";
   page += served ? "'self'" : "'none'";
   page += "\">\n<title>antcd view: " + html_escape(payload.title) + "</title>\n</head>\n<body>\n";
   page += "<div id=\"antcd-viewer\"></div>\n";

@@ -30,6 +30,9 @@ struct ViewInputs {
   std::vector<ViewResult> results;  ///< at most two: the first is the reference
   /// Exact contact points drawn per reported pair and frame, at most this many (0: none).
   std::size_t contacts_per_pair = 16;
+  /// The live page (`antcd view --live`): the payload also carries the meshes and poses in
+  /// float64 ("positions64", "poses64"), which the page's WebAssembly World queries.
+  bool live = false;
 };
 
 struct ViewPayload {
@@ -38,6 +41,7 @@ struct ViewPayload {
   std::string title;
   std::size_t objects = 0;
   std::size_t frames = 0;
+  bool live = false;
 };
 
 /// Loads and checks everything. Throws antcd::Error or UsageError naming the file (and the
@@ -50,13 +54,16 @@ ViewPayload build_view_payload(const ViewInputs& inputs);
 /// else the first of the install location
 /// <prefix>/share/antcd/antcd-viewer.js and the build tree's viewer/antcd-viewer.js, both relative
 /// to the running executable. Throws UsageError saying how to build it when none exists.
-std::filesystem::path locate_viewer_bundle();
+/// live: the live page's bundle instead (antcd-live.js, $ANTCD_LIVE_JS; the viewer with the
+/// WebAssembly build of antcd inside, built when Emscripten is installed).
+std::filesystem::path locate_viewer_bundle(bool live = false);
 
 enum class PageMode { SelfContained, Served };
 
 /// The HTML page: the bundle inline, the description inline, the blob inline as base64
 /// (SelfContained) or fetched from ./antcd-view.bin (Served). A Content-Security-Policy forbids
-/// every network access (Served: same origin only).
+/// every network access (Served: same origin only); a live payload's page may also compile
+/// WebAssembly ('wasm-unsafe-eval'), nothing else.
 std::string render_page(const ViewPayload& payload, const std::string& bundle_js, PageMode mode);
 
 /// build_view_payload, locate_viewer_bundle and render_page (SelfContained), then writes the page

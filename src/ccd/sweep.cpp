@@ -11,6 +11,8 @@
 #include <limits>
 #include <string>
 
+#include "util/pose_check.hpp"
+
 namespace antcd {
 namespace {
 
@@ -22,12 +24,9 @@ constexpr Scalar kAllowance = 1e-12;
 constexpr Scalar kStepRelTolerance = 0.5;
 
 void check_pose(const Transform& p, const char* name) {
-  if (!p.rotation.allFinite() || !p.translation.allFinite()) {
-    throw ArgumentError(std::string("sweep: ") + name + " has a non-finite entry");
-  }
-  if ((p.rotation.transpose() * p.rotation - Mat3::Identity()).cwiseAbs().maxCoeff() > 1e-6 ||
-      !(p.rotation.determinant() > 0)) {
-    throw ArgumentError(std::string("sweep: ") + name + " rotation is not a proper rotation");
+  Scalar err = 0;
+  if (const char* problem = detail::pose_problem(p, err)) {
+    throw ArgumentError(std::string("sweep: ") + name + " " + problem);
   }
 }
 

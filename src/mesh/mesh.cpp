@@ -10,6 +10,8 @@
 #include <string>
 #include <system_error>
 
+#include "util/number_text.hpp"
+
 namespace antcd {
 
 Aabb Mesh::bounds() const {
@@ -62,14 +64,6 @@ void validate_mesh(const Mesh& mesh, std::string_view source) {
 
 namespace {
 
-/// Shortest decimal form that reads back as exactly the same double (std::to_chars guarantees the
-/// round trip, like "%.17g", and is independent of the C locale).
-void append_number(std::string& out, double x) {
-  std::array<char, 32> buf{};
-  const auto [end, ec] = std::to_chars(buf.data(), buf.data() + buf.size(), x);
-  out.append(buf.data(), ec == std::errc{} ? end : buf.data());
-}
-
 void append_index(std::string& out, std::uint64_t i) {
   std::array<char, 24> buf{};
   const auto [end, ec] = std::to_chars(buf.data(), buf.data() + buf.size(), i);
@@ -90,11 +84,11 @@ void save_obj(const Mesh& mesh, const std::filesystem::path& path) {
   text += " triangles\n";
   for (const Vec3& v : mesh.vertices) {
     text += "v ";
-    append_number(text, v.x());
+    detail::append_double(text, v.x());
     text += ' ';
-    append_number(text, v.y());
+    detail::append_double(text, v.y());
     text += ' ';
-    append_number(text, v.z());
+    detail::append_double(text, v.z());
     text += '\n';
   }
   for (const TriangleIndices& t : mesh.triangles) {

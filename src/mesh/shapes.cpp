@@ -6,7 +6,6 @@
 #include <antcd/mesh.hpp>
 
 #include <array>
-#include <charconv>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -16,13 +15,15 @@
 #include <unordered_map>
 #include <utility>
 
+#include "util/number_text.hpp"
+
 namespace antcd {
 namespace {
 
 std::string number(double x) {
-  std::array<char, 32> buf{};
-  const auto [end, ec] = std::to_chars(buf.data(), buf.data() + buf.size(), x);
-  return ec == std::errc{} ? std::string(buf.data(), end) : std::string("?");
+  std::string text;
+  detail::append_double(text, x);
+  return text.empty() ? std::string("?") : text;
 }
 
 void require_length(const char* function, const char* name, Scalar value) {

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "util/parallel.hpp"
+#include "util/pose_check.hpp"
 #include "world/world_impl.hpp"
 
 namespace antcd {
@@ -27,23 +28,9 @@ std::string object_label(const World::Impl::Object& o, ObjectId id) {
          " " + describe(id);
 }
 
-// A rigid pose: finite, rotation orthonormal with determinant +1 within 1e-6. Returns the problem,
-// or nullptr. No allocation: set_poses checks every pose of every frame.
-const char* pose_problem(const Transform& pose, Scalar& err) {
-  err = 0;
-  if (!pose.rotation.allFinite() || !pose.translation.allFinite()) {
-    return "is not finite (NaN or infinity)";
-  }
-  err = (pose.rotation.transpose() * pose.rotation - Mat3::Identity()).cwiseAbs().maxCoeff();
-  if (err > 1e-6 || pose.rotation.determinant() <= 0) {
-    return "is not a rigid motion (rotation not orthonormal with determinant +1)";
-  }
-  return nullptr;
-}
-
 void check_pose(const Transform& pose, const std::string& function, const std::string& what) {
   Scalar err = 0;
-  if (const char* problem = pose_problem(pose, err)) {
+  if (const char* problem = detail::pose_problem(pose, err)) {
     std::ostringstream msg;
     msg << function << ": " << what << " " << problem;
     if (err > 0) msg << "; orthonormality error " << err;
@@ -152,7 +139,7 @@ void World::remove(ObjectId id) {
 void World::set_pose(ObjectId id, const Transform& pose) {
   const Impl::Object& o = impl_->get(id, "World::set_pose", "id");
   Scalar err = 0;
-  if (pose_problem(pose, err) != nullptr) {
+  if (detail::pose_problem(pose, err) != nullptr) {
     check_pose(pose, "World::set_pose", "pose of " + object_label(o, id));
   }
   set_poses(std::span<const ObjectId>(&id, 1), std::span<const Transform>(&pose, 1));
@@ -168,7 +155,7 @@ void World::set_poses(std::span<const ObjectId> ids, std::span<const Transform> 
   // bad one (if any) again, on this thread, for its message.
   const auto bad = [&](std::size_t k) {
     Scalar err = 0;
-    return !w.contains(ids[k]) || pose_problem(poses[k], err) != nullptr;
+    return !w.contains(ids[k]) || detail::pose_problem(poses[k], err) != nullptr;
   };
   std::size_t first_bad = ids.size();
   if (ids.size() < kParallelBatch) {

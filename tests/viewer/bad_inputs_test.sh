@@ -82,6 +82,7 @@ expect_refusal 'choose one' scene/scene.json --out view.html --serve
 expect_refusal 'required' scene/scene.json --result good.json
 expect_refusal 'out_dir.*folder' scene/scene.json --out out_dir
 ANTCD_VIEWER_JS="$work/none.js" expect_refusal 'ANTCD_VIEWER_JS=.*none.js' scene/scene.json --result good.json --out view.html
+ANTCD_LIVE_JS="$work/none.js" expect_refusal 'ANTCD_LIVE_JS=.*none.js' scene/scene.json --live --out live.html
 # The result of the same scene given by another path (relative to the result's folder) is fine.
 mkdir -p sub
 result sub/rel.json ../scene/scene.json "$good_frames"

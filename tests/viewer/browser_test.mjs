@@ -5,25 +5,14 @@
 // and shows the highlight colours; then the same page through `antcd view --serve`.
 //
 // Usage: node browser_test.mjs --antcd BIN --node-modules DIR --chromium EXE --workdir DIR
-import { spawn, spawnSync } from 'node:child_process';
-import { mkdirSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
+import { spawn } from 'node:child_process';
+import { readFileSync, writeFileSync } from 'node:fs';
 import { join, resolve } from 'node:path';
 import { pathToFileURL } from 'node:url';
 import assert from 'node:assert/strict';
-import { launchChromium, parseArgs } from './chromium.mjs';
+import { launchChromium, viewerTestSetup, watchedPage } from './chromium.mjs';
 
-const args = parseArgs(process.argv.slice(2), ['antcd', 'node-modules', 'chromium', 'workdir']);
-for (const key of ['antcd', 'node-modules', 'workdir']) args[key] = resolve(args[key]);
-
-const work = args.workdir;
-rmSync(work, { recursive: true, force: true });
-mkdirSync(work, { recursive: true });
-
-function antcd(...argv) {
-  const r = spawnSync(args.antcd, argv, { cwd: work, encoding: 'utf8' });
-  if (r.status !== 0) throw new Error(`antcd ${argv.join(' ')} exited ${r.status}: ${r.stderr}`);
-  return r.stdout;
-}
+const { args, work, antcd } = viewerTestSetup(process.argv.slice(2));
 
 antcd('scene', 'generate', '--out', 'scene', '--objects', '10', '--frames', '24', '--seed', '7');
 antcd('run', 'scene/scene.json', '--method', 'exact', '--out', 'exact.json');
@@ -54,10 +43,7 @@ function expected(k) {
 const browser = await launchChromium(args['node-modules'], args.chromium);
 const problems = [];
 try {
-  const page = await browser.newPage({ viewport: { width: 1000, height: 700 } });
-  page.on('console', (m) => { if (m.type() === 'error') problems.push(`console: ${m.text()}`); });
-  page.on('pageerror', (e) => problems.push(`page error: ${e.message}`));
-  page.on('request', (r) => { if (!/^(file|data|blob):/.test(r.url())) problems.push(`network request: ${r.url()}`); });
+  const page = await watchedPage(browser, problems);
   const url = pathToFileURL(join(work, 'view.html')).href;
   const root = page.locator('#antcd-viewer');
   const attrs = () => root.evaluate((e) => ({ ...e.dataset }));

@@ -29,8 +29,10 @@ export async function loadView(doc) {
   }
   const f32 = ([offset, count]) => new Float32Array(buffer, offset, count);
   const u32 = ([offset, count]) => new Uint32Array(buffer, offset, count);
-  const meshes = data.meshes.map((m) => ({ ...m, positions: f32(m.positions), indices: u32(m.indices) }));
-  const objects = data.objects.map((o, index) => ({ ...o, index, poses: f32(o.poses) }));
+  // float64 arrays (live pages) may start on a 4-byte boundary only: copied out.
+  const f64 = (ref) => (ref ? new Float64Array(buffer.slice(ref[0], ref[0] + 8 * ref[1])) : null);
+  const meshes = data.meshes.map((m) => ({ ...m, positions: f32(m.positions), indices: u32(m.indices), positions64: f64(m.positions64) }));
+  const objects = data.objects.map((o, index) => ({ ...o, index, poses: f32(o.poses), poses64: f64(o.poses64) }));
   const results = data.results.map((r) => new Result(r));
   const contacts = new Map((data.contacts?.frames ?? []).map((frame, k) => [frame, f32(data.contacts.points[k])]));
   return new ViewModel(data, meshes, objects, results, contacts);
@@ -56,6 +58,7 @@ class Result {
 export class ViewModel {
   constructor(data, meshes, objects, results, contacts) {
     this.frames = data.frames;
+    this.live = data.live === true;
     this.contacts = contacts; // frame -> flat xyz of exact contact points (world frame)
     this.scene = data.scene;
     this.colours = data.colours;

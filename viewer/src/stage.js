@@ -71,6 +71,7 @@ export class Stage {
     this.controls.enableDamping = true;
     this.raycaster = new THREE.Raycaster();
     this.selected = -1;
+    this.overrides = new Map(); // object index -> THREE.Matrix4 replacing the scene's pose (live page)
   }
 
   // Frames the camera on the objects as posed in `frame`.
@@ -103,7 +104,9 @@ export class Stage {
   setPoses(frame) {
     for (const m of this.objects) {
       const p = this.model.pose(this.model.objects[m.userData.index], frame);
-      m.matrix.set(p[0], p[1], p[2], p[9], p[3], p[4], p[5], p[10], p[6], p[7], p[8], p[11], 0, 0, 0, 1);
+      const own = this.overrides.get(m.userData.index);
+      if (own) m.matrix.copy(own);
+      else m.matrix.set(p[0], p[1], p[2], p[9], p[3], p[4], p[5], p[10], p[6], p[7], p[8], p[11], 0, 0, 0, 1);
       m.matrixWorldNeedsUpdate = true;
     }
     this.world.updateMatrixWorld(true);

@@ -1,0 +1,39 @@
+# The core library's sources (antcd::antcd), relative to src/: one list for the native build
+# (src/CMakeLists.txt) and the WebAssembly build (wasm/CMakeLists.txt). The broad-phase tree,
+# world/aabb_tree.cpp, is listed apart (ANTCD_CORE_TREE_SOURCE): the native build compiles it once
+# as an object library shared with world_tests.
+set(ANTCD_CORE_SOURCES
+  geometry/predicates.cpp
+  geometry/intersection.cpp
+  geometry/distance.cpp
+  geometry/winding.cpp
+  geometry/penetration.cpp
+  geometry/obb.cpp
+  geometry/obb_fit.cpp
+  mesh/mesh.cpp
+  mesh/closed.cpp
+  mesh/shapes.cpp
+  bvh/split.cpp
+  bvh/build.cpp
+  bvh/traverse.cpp
+  bvh/refit.cpp
+  bvh/model_file.cpp
+  exact/exact.cpp
+  exact/volume.cpp
+  exact/manifold.cpp
+  distance/distance.cpp
+  penetration/convex.cpp
+  penetration/inside_point.cpp
+  penetration/penetration.cpp
+  points/point_index.cpp
+  points/point_tree.cpp
+  points/solid_grid.cpp
+  points/points.cpp
+  util/io.cpp
+  world/world.cpp
+  world/query.cpp
+  world/raycast.cpp
+  ccd/primitive.cpp
+  ccd/sweep.cpp
+)
+set(ANTCD_CORE_TREE_SOURCE world/aabb_tree.cpp)

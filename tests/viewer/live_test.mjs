@@ -1,0 +1,100 @@
+// The live page (`antcd view SCENE --live`) in Debian's headless Chromium: the paper's scene (90
+// objects) with the WebAssembly World answering every animation frame. Pauses the motion, drags an
+// object onto another with the mouse, and checks the highlighted pairs against the native
+// library at the same poses (a one-frame copy of the scene with the dragged object's new
+// translation, run with `antcd run --method exact`); no console errors, no network request, a
+// query time per frame reported (printed, with the mean over the frames seen).
+//
+// Usage: node live_test.mjs --antcd BIN --node-modules DIR --chromium EXE --workdir DIR
+//        [--screenshot PNG]   (also saves the page after the drag, for the README)
+import { readFileSync, writeFileSync } from 'node:fs';
+import { join, resolve } from 'node:path';
+import { pathToFileURL } from 'node:url';
+import assert from 'node:assert/strict';
+import { launchChromium, viewerTestSetup, watchedPage } from './chromium.mjs';
+
+const { args, work, antcd } = viewerTestSetup(process.argv.slice(2));
+
+antcd('scene', 'generate', '--out', 'scene', '--objects', '90', '--frames', '40', '--seed', '11');
+antcd('view', 'scene/scene.json', '--live', '--out', 'live.html');
+const scene = JSON.parse(readFileSync(join(work, 'scene', 'scene.json'), 'utf8'));
+const order = new Map(scene.objects.map((o, i) => [o.name, i]));
+const sortPairs = (pairs) =>
+  pairs.map(([a, b]) => (order.get(a) < order.get(b) ? [a, b] : [b, a]))
+    .sort((p, q) => order.get(p[0]) - order.get(q[0]) || order.get(p[1]) - order.get(q[1]));
+
+// The native answer at the page's poses: the scene at `frame`, the moved objects at their poses
+// (translation only: the rotation is the scene's, which the test checks).
+function nativePairs(frame, moved) {
+  const objects = scene.objects.map((o) => {
+    const p = structuredClone(o.poses.length === 1 ? o.poses[0] : o.poses[frame]);
+    const m = moved.find((x) => x.name === o.name);
+    if (m) p.translation = [m.pose[12], m.pose[13], m.pose[14]];
+    return { ...o, poses: [p] };
+  });
+  writeFileSync(join(work, 'scene', 'moved.json'), JSON.stringify({ ...scene, frames: 1, objects }));
+  antcd('run', 'scene/moved.json', '--method', 'exact', '--out', 'native.json');
+  return sortPairs(JSON.parse(readFileSync(join(work, 'native.json'), 'utf8')).frames[0].pairs);
+}
+
+const browser = await launchChromium(args['node-modules'], args.chromium);
+const problems = [];
+try {
+  const page = await watchedPage(browser, problems);
+  await page.goto(pathToFileURL(join(work, 'live.html')).href);
+  await page.waitForSelector('#antcd-viewer[data-ready="true"], #antcd-viewer[data-error]', { timeout: 60000 })
+    .catch((e) => { throw new Error(`page not ready: ${e.message}; ${problems.join('; ')}`); });
+  const attrs = () => page.locator('#antcd-viewer').evaluate((e) => ({ ...e.dataset }));
+  let d = await attrs();
+  assert.equal(d.error, undefined, `page error: ${d.error}`);
+  assert.equal(d.live, 'true');
+  assert.equal(Number(d.objects), 90);
+
+  // The scene plays: the frame advances and every frame is answered.
+  await page.waitForFunction(() => Number(document.getElementById('antcd-viewer').dataset.frame) >= 2, null, { timeout: 30000 });
+  await page.evaluate(() => window.antcdLive.pause());
+  await page.waitForTimeout(300);
+  const before = await page.evaluate(() => window.antcdLive.state());
+  assert.deepEqual(sortPairs(before.pairs), nativePairs(before.frame, []), `frame ${before.frame}: pairs before the drag`);
+
+  // Drag an object whose pick point is on screen onto the centre of another one.
+  const names = scene.objects.map((o) => o.name);
+  let dragged = null;
+  for (const [k, name] of names.entries()) {
+    if (k % 7 !== 3) continue;
+    const from = await page.evaluate((n) => window.antcdLive.pickPoint(n), name);
+    if (!from) continue;
+    const target = names[(k + 1) % names.length];
+    const to = await page.evaluate((n) => window.antcdLive.screenOf(n), target);
+    if (Math.hypot(to.x - from.x, to.y - from.y) < 20 || to.x < 0 || to.y < 0 || to.x > 1000 || to.y > 700) continue;
+    dragged = { name, target, from, to };
+    break;
+  }
+  assert.ok(dragged, 'an object to drag is on screen');
+  await page.mouse.move(dragged.from.x, dragged.from.y);
+  await page.mouse.down();
+  for (let s = 1; s <= 10; ++s) {
+    await page.mouse.move(dragged.from.x + ((dragged.to.x - dragged.from.x) * s) / 10, dragged.from.y + ((dragged.to.y - dragged.from.y) * s) / 10);
+  }
+  await page.mouse.up();
+  await page.waitForTimeout(400);
+  const after = await page.evaluate(() => window.antcdLive.state());
+  d = await attrs();
+  assert.equal(d.dragged, dragged.name, 'the pressed object is the dragged one');
+  assert.equal(after.frame, before.frame, 'paused');
+  assert.equal(after.moved.length, 1);
+  const m = after.moved[0];
+  const original = scene.objects[order.get(m.name)];
+  const p0 = original.poses.length === 1 ? original.poses[0] : original.poses[after.frame];
+  assert.notDeepEqual([m.pose[12], m.pose[13], m.pose[14]], p0.translation, 'the object moved');
+  const expected = nativePairs(after.frame, after.moved);
+  assert.deepEqual(sortPairs(after.pairs), expected, 'highlighted pairs after the drag equal the native answer');
+  assert.ok(expected.some(([a, b]) => a === m.name || b === m.name), `${m.name} dragged onto ${dragged.target} collides`);
+  assert.ok(Number(d.queryMs) >= 0 && Number.isFinite(Number(d.queryMeanMs)), `query time reported: ${d.queryMs}`);
+  console.log(`live page: 90 objects, ${expected.length} colliding pairs after dragging ${m.name}; ` +
+              `WebAssembly query ${d.queryMs} ms last frame, ${d.queryMeanMs} ms mean (headless Chromium)`);
+  if (args.screenshot) await page.screenshot({ path: resolve(args.screenshot) });
+  assert.deepEqual(problems, []);
+} finally {
+  await browser.close();
+}

@@ -1,0 +1,276 @@
+// antcd live page (`antcd view SCENE --live`): the scene plays; the user picks an object with the
+// mouse (or squeezes a WebXR controller pointing at it) and moves it; every animation frame the
+// WebAssembly build of antcd (wasm/, inlined in this bundle) poses its World and answers which
+// pairs collide, and the page lights them up with their contact points.
+//
+// Page contract, on #antcd-viewer (besides data-objects, data-frames, data-ready, data-error):
+//   data-live "true"; data-frame the scene frame shown; data-colliding JSON [[nameA, nameB], ...]
+//   of the colliding pairs, names in scene order, sorted; data-query-ms the WebAssembly time of
+//   the last frame (poses + collideAll), data-query-mean-ms its mean over the last 60 frames;
+//   data-dragged the moved object's name. window.antcdLive: state() (frame, pairs, the moved
+//   objects' poses as 16 doubles), pause(), play(), pickPoint(name) (a canvas point on the
+//   object, client pixels).
+// Poses and meshes are the scene's float64 values (poses64, positions64 of the payload), so the
+// answers are those of the native library at the same poses.
+import * as THREE from 'three';
+
+import createAntcd from '../../wasm/index.mjs';
+import wasmBinary from '../../wasm/dist/antcd_core.wasm';
+import { loadView } from './data.js';
+import { Stage } from './stage.js';
+
+const FPS = 12;
+// Contact points drawn per colliding pair: 4 keep the query near the boolean one (the traversal
+// stops there), 16 cost about 2.5x as much on the paper scene (wasm/bench/scene.mjs).
+const CONTACTS_PER_PAIR = 4;
+
+// Row-major rotation + translation (12 numbers) to a column-major 4x4 (three.js order).
+function columnMajor(p, out) {
+  out[0] = p[0]; out[1] = p[3]; out[2] = p[6]; out[3] = 0;
+  out[4] = p[1]; out[5] = p[4]; out[6] = p[7]; out[7] = 0;
+  out[8] = p[2]; out[9] = p[5]; out[10] = p[8]; out[11] = 0;
+  out[12] = p[9]; out[13] = p[10]; out[14] = p[11]; out[15] = 1;
+  return out;
+}
+
+function posesAt(object, frame) {
+  const n = object.poses64.length / 12;
+  const k = n === 1 ? 0 : frame;
+  return object.poses64.subarray(12 * k, 12 * k + 12);
+}
+
+function panelElement(root) {
+  const el = document.createElement('div');
+  el.className = 'antcd-live-panel';
+  el.style.cssText = 'position:absolute;left:8px;top:8px;padding:6px 10px;background:rgba(255,255,255,.88);'
+    + 'font:13px system-ui,sans-serif;border-radius:4px;pointer-events:none;white-space:pre';
+  root.append(el);
+  return el;
+}
+
+async function main() {
+  const root = document.getElementById('antcd-viewer');
+  root.style.cssText = 'position:fixed;inset:0;overflow:hidden';
+  let model;
+  try {
+    model = await loadView(document);
+    if (!model.live) throw new Error('this page has no live data (antcd view --live writes it)');
+  } catch (error) {
+    root.dataset.error = String(error.message ?? error);
+    root.textContent = `antcd view --live: ${root.dataset.error}`;
+    throw error;
+  }
+  root.dataset.live = 'true';
+  root.dataset.objects = String(model.objects.length);
+  root.dataset.frames = String(model.frames);
+
+  const antcd = await createAntcd({ wasmBinary });
+  const models = model.meshes.map((m, k) => new antcd.Model(m.positions64, m.indices, { name: m.file ?? `mesh ${k}` }));
+  const world = new antcd.World();
+  const scratch = new Float64Array(16);
+  const handles = model.objects.map((o) => world.add(models[o.mesh], columnMajor(posesAt(o, 0), scratch), { name: o.name }));
+  const indexOf = new Map(handles.map((h, i) => [h, i]));
+  const moving = model.objects.map((o) => o.poses64.length > 12);
+
+  const stage = new Stage(root, model);
+  stage.renderer.domElement.style.cssText = 'display:block;width:100%;height:100%';
+  root.append(stage.vrButton());
+  const panel = panelElement(root);
+
+  let frame = 0;
+  let playing = true;
+  let lastStep = 0;
+  const moved = new Map(); // object index -> Float64Array(16): the user's pose, world frame
+  const times = [];
+  let pairs = [];
+
+  const resize = () => stage.resize(root.clientWidth, root.clientHeight);
+  window.addEventListener('resize', resize);
+  resize();
+  stage.fit(0);
+
+  // The World's answer for the current frame and moves: poses of the objects that move (the
+  // scene's, or the user's), then every colliding pair.
+  let posedFrame = 0;
+  const query = () => {
+    const t0 = performance.now();
+    for (let i = 0; i < handles.length; ++i) {
+      const own = moved.get(i);
+      if (own) world.setPose(handles[i], own);
+      else if (moving[i] && posedFrame !== frame) world.setPose(handles[i], columnMajor(posesAt(model.objects[i], frame), scratch));
+    }
+    posedFrame = frame;
+    const r = world.collideAll({ allContacts: true, maxContacts: CONTACTS_PER_PAIR });
+    const ms = performance.now() - t0;
+    times.push(ms);
+    if (times.length > 60) times.shift();
+    pairs = [];
+    for (let k = 0; k < r.pairs.length; k += 2) {
+      const i = indexOf.get(r.pairs[k]);
+      const j = indexOf.get(r.pairs[k + 1]);
+      pairs.push(i < j ? { i, j, kind: 'collide' } : { i: j, j: i, kind: 'collide' });
+    }
+    pairs.sort((a, b) => a.i - b.i || a.j - b.j);
+    const points = new Float32Array((r.contacts.length / antcd.CONTACT_STRIDE) * 3);
+    for (let k = 0, n = 0; k < r.contacts.length; k += antcd.CONTACT_STRIDE, n += 3) {
+      points[n] = r.contacts[k + 2];
+      points[n + 1] = r.contacts[k + 3];
+      points[n + 2] = r.contacts[k + 4];
+    }
+    const mean = times.reduce((s, t) => s + t, 0) / times.length;
+    root.dataset.frame = String(frame);
+    root.dataset.colliding = JSON.stringify(pairs.map((p) => [model.objects[p.i].name, model.objects[p.j].name]));
+    root.dataset.queryMs = ms.toFixed(3);
+    root.dataset.queryMeanMs = mean.toFixed(3);
+    panel.textContent = `frame ${frame + 1}/${model.frames}${playing ? '' : ' (paused: space plays)'}\n`
+      + `${model.objects.length} objects, ${pairs.length} colliding pair${pairs.length === 1 ? '' : 's'}\n`
+      + `antcd (WebAssembly) query: ${ms.toFixed(2)} ms this frame, ${mean.toFixed(2)} ms mean\n`
+      + 'drag an object to move it (VR: squeeze)';
+    for (const [i, m] of moved) stage.overrides.set(i, new THREE.Matrix4().fromArray(m));
+    stage.show(frame, pairs, points);
+  };
+
+  // Picking with the World's own ray cast, in the scene's frame (stage.world is scaled in VR).
+  const toScene = new THREE.Matrix4();
+  const pickRay = (origin, direction) => {
+    toScene.copy(stage.world.matrixWorld).invert();
+    const o = origin.clone().applyMatrix4(toScene);
+    const d = direction.clone().transformDirection(toScene);
+    const hit = world.raycast([o.x, o.y, o.z], [d.x, d.y, d.z]);
+    return hit ? { index: indexOf.get(hit.object), point: new THREE.Vector3(...hit.point) } : null;
+  };
+  const poseOf = (i) => moved.get(i) ?? columnMajor(posesAt(model.objects[i], frame), new Float64Array(16));
+
+  // Mouse: drag in the plane through the picked point facing the camera; only the translation
+  // changes (the rotation keeps the scene's exact values).
+  let drag = null;
+  const canvas = stage.renderer.domElement;
+  const ndc = (e) => {
+    const rect = canvas.getBoundingClientRect();
+    return new THREE.Vector2(((e.clientX - rect.left) / rect.width) * 2 - 1, -((e.clientY - rect.top) / rect.height) * 2 + 1);
+  };
+  // Capture: before OrbitControls' own listener, which then sees itself disabled.
+  canvas.addEventListener('pointerdown', (e) => {
+    stage.raycaster.setFromCamera(ndc(e), stage.camera);
+    const hit = pickRay(stage.raycaster.ray.origin, stage.raycaster.ray.direction);
+    if (!hit) return;
+    const normal = stage.camera.getWorldDirection(new THREE.Vector3());
+    const pose = Float64Array.from(poseOf(hit.index));
+    drag = { index: hit.index, plane: new THREE.Plane().setFromNormalAndCoplanarPoint(normal, hit.point), start: hit.point, t0: [pose[12], pose[13], pose[14]], pose };
+    moved.set(hit.index, pose);
+    stage.controls.enabled = false;
+    stage.selected = hit.index;
+    root.dataset.dragged = model.objects[hit.index].name;
+    canvas.setPointerCapture(e.pointerId);
+  }, { capture: true });
+  canvas.addEventListener('pointermove', (e) => {
+    if (!drag) return;
+    stage.raycaster.setFromCamera(ndc(e), stage.camera);
+    const p = stage.raycaster.ray.intersectPlane(drag.plane, new THREE.Vector3());
+    if (!p) return;
+    drag.pose[12] = drag.t0[0] + (p.x - drag.start.x);
+    drag.pose[13] = drag.t0[1] + (p.y - drag.start.y);
+    drag.pose[14] = drag.t0[2] + (p.z - drag.start.z);
+  });
+  const endDrag = () => {
+    drag = null;
+    stage.controls.enabled = true;
+  };
+  canvas.addEventListener('pointerup', endDrag);
+  canvas.addEventListener('pointercancel', endDrag);
+
+  // WebXR: squeeze grabs the object the controller points at; it then follows the controller
+  // rigidly (rotation too) until the squeeze ends.
+  const grabs = new Map();
+  for (let c = 0; c < 2; ++c) {
+    const controller = stage.renderer.xr.getController(c);
+    stage.scene.add(controller);
+    controller.addEventListener('squeezestart', () => {
+      const origin = new THREE.Vector3().setFromMatrixPosition(controller.matrixWorld);
+      const direction = new THREE.Vector3(0, 0, -1).transformDirection(controller.matrixWorld);
+      const hit = pickRay(origin, direction);
+      if (!hit) return;
+      toScene.copy(stage.world.matrixWorld).invert();
+      const hand = new THREE.Matrix4().multiplyMatrices(toScene, controller.matrixWorld);
+      const offset = hand.invert().multiply(new THREE.Matrix4().fromArray(poseOf(hit.index)));
+      grabs.set(controller, { index: hit.index, offset });
+      root.dataset.dragged = model.objects[hit.index].name;
+    });
+    controller.addEventListener('squeezeend', () => grabs.delete(controller));
+  }
+  const position = new THREE.Vector3();
+  const rotation = new THREE.Quaternion();
+  const scale = new THREE.Vector3();
+  const followControllers = () => {
+    for (const [controller, g] of grabs) {
+      toScene.copy(stage.world.matrixWorld).invert();
+      const m = new THREE.Matrix4().multiplyMatrices(toScene, controller.matrixWorld).multiply(g.offset);
+      // Rigid again (the scaled frames leave rounding): rotation from the normalised quaternion.
+      m.decompose(position, rotation, scale);
+      m.compose(position, rotation.normalize(), scale.set(1, 1, 1));
+      moved.set(g.index, Float64Array.from(m.elements));
+    }
+  };
+
+  const setPlaying = (on) => {
+    playing = on;
+  };
+  window.addEventListener('keydown', (e) => {
+    if (e.key === ' ') {
+      e.preventDefault();
+      setPlaying(!playing);
+    }
+  });
+  window.antcdLive = {
+    pause: () => setPlaying(false),
+    play: () => setPlaying(true),
+    state: () => ({
+      frame,
+      pairs: JSON.parse(root.dataset.colliding ?? '[]'),
+      moved: [...moved].map(([i, m]) => ({ name: model.objects[i].name, pose: Array.from(m) })),
+      queryMs: Number(root.dataset.queryMs),
+    }),
+    // A canvas point (client pixels) whose pick ray hits object `name` first, or null.
+    pickPoint: (name) => {
+      const i = model.objects.findIndex((o) => o.name === name);
+      if (i < 0) return null;
+      const rect = canvas.getBoundingClientRect();
+      const mesh = model.meshes[model.objects[i].mesh];
+      const m = new THREE.Matrix4().fromArray(poseOf(i));
+      const v = new THREE.Vector3();
+      const n = mesh.positions64.length / 3;
+      for (let k = 0; k < 200; ++k) {
+        // Points between a vertex and the object's centre, spread over the mesh.
+        const a = Math.floor((k * 7919) % n);
+        v.set(mesh.positions64[3 * a], mesh.positions64[3 * a + 1], mesh.positions64[3 * a + 2]).multiplyScalar(0.6).applyMatrix4(m);
+        const p = v.clone().project(stage.camera);
+        if (Math.abs(p.x) > 0.95 || Math.abs(p.y) > 0.95) continue;
+        const x = rect.left + ((p.x + 1) / 2) * rect.width;
+        const y = rect.top + ((1 - p.y) / 2) * rect.height;
+        stage.raycaster.setFromCamera(new THREE.Vector2(p.x, p.y), stage.camera);
+        const hit = pickRay(stage.raycaster.ray.origin, stage.raycaster.ray.direction);
+        if (hit && hit.index === i) return { x, y };
+      }
+      return null;
+    },
+    screenOf: (name) => {
+      const i = model.objects.findIndex((o) => o.name === name);
+      const rect = canvas.getBoundingClientRect();
+      const m = poseOf(i);
+      const p = new THREE.Vector3(m[12], m[13], m[14]).project(stage.camera);
+      return { x: rect.left + ((p.x + 1) / 2) * rect.width, y: rect.top + ((1 - p.y) / 2) * rect.height };
+    },
+  };
+
+  stage.start((time) => {
+    if (playing && time - lastStep >= 1000 / FPS) {
+      lastStep = time;
+      frame = (frame + 1) % model.frames;
+    }
+    followControllers();
+    query();
+    if (root.dataset.ready !== 'true') requestAnimationFrame(() => { root.dataset.ready = 'true'; });
+  });
+}
+
+main().catch((error) => console.error('antcd view --live:', error));

@@ -1,0 +1,150 @@
+// Types of the npm package `antcd` (index.mjs). Frames, units and guarantees are those of the C++
+// library (include/antcd/collide.hpp, distance.hpp, sweep.hpp, penetration.hpp, world.hpp):
+// contact points, normals and closest points are in the WORLD frame; distances in mesh units.
+
+/** A column-major 4x4 rigid matrix (three.js Matrix4.elements): rotation (orthonormal within
+ * 1e-6, determinant +1), translation in elements 12..14, last row 0 0 0 1. */
+export type Pose = ArrayLike<number>;
+export type Vec3Like = ArrayLike<number>;
+
+/** Contact records, CONTACT_STRIDE numbers each: triangleA, triangleB, point x y z, distance,
+ * normal x y z (from B towards A; zero unless contactNormals), depth. */
+export const CONTACT_STRIDE: 10;
+
+export interface CollideOptions {
+  /** false (default): stop at the first contact. true: every colliding triangle pair. */
+  allContacts?: boolean;
+  /** Collision threshold in mesh units (>= 0): surfaces within delta collide. */
+  delta?: number;
+  /** Fill each contact's normal and depth. */
+  contactNormals?: boolean;
+  /** With allContacts: stop after this many (0: no limit). */
+  maxContacts?: number;
+  /** Two closed models also collide when one lies wholly inside the other. */
+  volume?: boolean;
+}
+
+export interface CollideResult {
+  colliding: boolean;
+  contacts: Float64Array;
+}
+
+export interface DistanceOptions {
+  upperBound?: number;
+  absTolerance?: number;
+  relTolerance?: number;
+  /** Signed distance of two closed models (negative: minus the penetration depth). */
+  signed?: boolean;
+}
+
+export interface DistanceResult {
+  distance: number;
+  /** A proven lower bound of the true distance. */
+  lowerBound: number;
+  pointA: Float64Array;
+  pointB: Float64Array;
+  triangleA: number;
+  triangleB: number;
+  intersecting: boolean;
+  approximate: boolean;
+  beyondUpperBound: boolean;
+}
+
+export interface SweepOptions {
+  minSeparation?: number;
+  timeTolerance?: number;
+  maxIterations?: number;
+}
+
+export interface SweepResult {
+  hit: boolean;
+  /** Time of impact in [0, 1] (conservative: never after the true first contact). */
+  toi: number;
+  distance: number;
+  motionBound: number;
+  iterations: number;
+  toleranceDecided: boolean;
+  budgetExhausted: boolean;
+  /** One contact record (CONTACT_STRIDE numbers) at toi. */
+  contact: Float64Array;
+}
+
+export interface PenetrationOptions {
+  shape?: 'auto' | 'convex' | 'general';
+  absTolerance?: number;
+  relTolerance?: number;
+  maxEvaluations?: number;
+}
+
+export interface PenetrationResult {
+  overlapping: boolean;
+  exact: boolean;
+  converged: boolean;
+  /** Certified bounds: lower <= depth <= upper. */
+  lower: number;
+  upper: number;
+  direction: Float64Array;
+  witness: Float64Array;
+  pointA: Float64Array;
+  pointB: Float64Array;
+  evaluations: number;
+}
+
+export interface RayHit {
+  object: number;
+  triangle: number;
+  distance: number;
+  point: Float64Array;
+  normal: Float64Array;
+}
+
+export declare class Model {
+  /** Throws an Error naming the problem (bad array, index out of range, non-finite coordinate,
+   * no triangle of non-zero area). */
+  constructor(positions: Float32Array | Float64Array | number[],
+              indices: Uint32Array | Uint16Array | Int32Array | number[], options?: { name?: string });
+  readonly triangleCount: number;
+  readonly vertexCount: number;
+  readonly isClosed: boolean;
+  readonly name: string;
+  mesh(): { positions: Float64Array; indices: Uint32Array };
+  /** Frees the model (Worlds holding it keep their own reference). */
+  delete(): void;
+  static box(hx: number, hy: number, hz: number, subdivisions?: number): Model;
+  static sphere(radius: number, slices?: number, stacks?: number): Model;
+  static cylinder(radius: number, height: number, slices?: number, stacks?: number): Model;
+  static torus(major: number, minor: number, majorSegments?: number, minorSegments?: number): Model;
+}
+
+export declare class World {
+  constructor();
+  /** Returns the object's handle (a number). */
+  add(model: Model, pose: Pose, options?: { name?: string; group?: number; mask?: number }): number;
+  remove(handle: number): void;
+  setPose(handle: number, pose: Pose): void;
+  readonly size: number;
+  /** Colliding pairs sorted by handle; contacts[...] holds contactCounts[k] records per pair. */
+  collideAll(options?: CollideOptions): { pairs: Float64Array; contactCounts: Uint32Array; contacts: Float64Array };
+  /** Pairs whose meshes are within d: (a, b) handles, sorted. */
+  pairsWithin(d: number): Float64Array;
+  raycast(origin: Vec3Like, direction: Vec3Like, maxDistance?: number): RayHit | null;
+  delete(): void;
+}
+
+export interface Antcd {
+  Model: typeof Model;
+  World: typeof World;
+  collide(a: Model, poseA: Pose, b: Model, poseB: Pose, options?: CollideOptions): CollideResult;
+  /** collide()'s verdict alone: nothing copied out or allocated (for hot loops). */
+  collides(a: Model, poseA: Pose, b: Model, poseB: Pose, options?: CollideOptions): boolean;
+  distance(a: Model, poseA: Pose, b: Model, poseB: Pose, options?: DistanceOptions): DistanceResult;
+  sweep(a: Model, poseA0: Pose, poseA1: Pose, b: Model, poseB0: Pose, poseB1: Pose,
+        options?: SweepOptions): SweepResult;
+  penetration(a: Model, poseA: Pose, b: Model, poseB: Pose, options?: PenetrationOptions): PenetrationResult;
+  version: string;
+  CONTACT_STRIDE: 10;
+}
+
+/** Loads the WebAssembly module (options.wasmBinary: the .wasm bytes, else read beside the
+ * package's index.mjs). */
+export default function createAntcd(options?: { wasmBinary?: ArrayBuffer | Uint8Array }): Promise<Antcd>;

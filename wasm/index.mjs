@@ -1,0 +1,343 @@
+// The npm package `antcd`: the exact collision library compiled to WebAssembly, as an ES module.
+// index.d.ts states the API; README.md (repository root, "WebAssembly") shows one example.
+//
+//   import createAntcd from 'antcd';
+//   const antcd = await createAntcd();
+//   const a = new antcd.Model(positions, indices);          // Float32Array/Float64Array, indices
+//   const r = antcd.collide(a, poseA, b, poseB, { allContacts: true });
+//   a.delete();
+//
+// Poses are column-major 4x4 rigid matrices (three.js Matrix4.elements; 16 numbers). Bad input
+// throws a JS Error whose message names the argument and the problem. Queries copy their poses into
+// a fixed block of WebAssembly memory and read their answers from a reused one: no WebAssembly
+// allocation per query once the buffers have grown; collides() (the verdict alone) allocates
+// nothing in JS either.
+import factory from './dist/antcd_core.cjs';
+
+const isNode = typeof process !== 'undefined' && process.versions != null && process.versions.node != null;
+
+async function wasmBytes(options) {
+  if (options.wasmBinary) return options.wasmBinary;
+  const url = new URL('./dist/antcd_core.wasm', import.meta.url);
+  if (isNode && url.protocol === 'file:') {
+    const fs = await import('node:fs/promises');
+    return fs.readFile(url);
+  }
+  const response = await fetch(url);
+  if (!response.ok) throw new Error(`antcd: cannot load ${url}: HTTP ${response.status}`);
+  return new Uint8Array(await response.arrayBuffer());
+}
+
+/** Contact records: triangleA, triangleB, point x y z, distance, normal x y z, depth. */
+export const CONTACT_STRIDE = 10;
+const EMPTY = new Float64Array(0);
+const NO_OPTIONS = Object.freeze({});
+
+function isPose(p) {
+  return (Array.isArray(p) || ArrayBuffer.isView(p)) && p.length === 16;
+}
+
+/**
+ * Loads the WebAssembly module. options.wasmBinary: the .wasm bytes (otherwise read beside this
+ * file: the file system under node, fetch in a browser).
+ */
+export default async function createAntcd(options = {}) {
+  const core = await factory({ wasmBinary: await wasmBytes(options) });
+  const poseBase = core.poseBlock() / 8;
+
+  function fail(fn) {
+    throw new Error(core.lastError() || `${fn} failed`);
+  }
+  function check(fn, rc) {
+    if (rc < 0) fail(fn);
+    return rc;
+  }
+  function writePose(slot, pose, fn, name) {
+    if (!isPose(pose)) {
+      throw new Error(`${fn}: ${name} must be 16 numbers (a column-major 4x4 matrix), got ${describe(pose)}`);
+    }
+    const heap = core.HEAPF64;
+    const base = poseBase + 16 * slot;
+    for (let k = 0; k < 16; ++k) heap[base + k] = pose[k];
+  }
+  function out(n) {
+    return new Float64Array(core.HEAPF64.buffer, core._antcd_out_block(), n);
+  }
+  // A copy of the first n numbers of the output block (one allocation: no view in between).
+  function outCopy(n) {
+    if (n === 0) return EMPTY;
+    const base = core._antcd_out_block() / 8;
+    return core.HEAPF64.slice(base, base + n);
+  }
+  function number(fn, name, v, dflt) {
+    if (v === undefined) return dflt;
+    if (typeof v !== 'number' || Number.isNaN(v)) throw new Error(`${fn}: ${name} must be a number, got ${describe(v)}`);
+    return v;
+  }
+  function modelOf(fn, name, m) {
+    if (!(m instanceof Model) || m.id === null) {
+      throw new Error(`${fn}: ${name} must be a live antcd Model${m instanceof Model ? ' (it was deleted)' : ''}`);
+    }
+    return m.id;
+  }
+  function optionsOf(fn, opts) {
+    if (opts !== undefined && (opts === null || typeof opts !== 'object')) throw new Error(`${fn}: options must be an object`);
+    return opts ?? NO_OPTIONS;
+  }
+  // Bits of the collision flags argument: every contact, contact normals, volume (solids).
+  function collisionFlags(o) {
+    return (o.allContacts ? 1 : 0) | (o.contactNormals ? 2 : 0) | (o.volume ? 4 : 0);
+  }
+  function info(model) {
+    check('Model', core.modelInfo(modelOf('Model', 'this', model)));
+    return out(4);
+  }
+
+  /** A triangle mesh with its bounding-volume hierarchy (built once; immutable). */
+  class Model {
+    /**
+     * positions: x y z per vertex (Float32Array, Float64Array or numbers); indices: three vertex
+     * indices per triangle (Uint32Array, Uint16Array, Int32Array or numbers). options.name names
+     * the model in error messages.
+     */
+    constructor(positions, indices, options = {}) {
+      this.id = null;
+      if (positions === SHAPE) {
+        this.id = indices;
+        return;
+      }
+      const name = options.name ?? 'mesh';
+      const f32 = positions instanceof Float32Array;
+      if (!(f32 || positions instanceof Float64Array || Array.isArray(positions))) {
+        throw new Error(`Model ${name}: positions must be a Float32Array, Float64Array or array of numbers, got ${describe(positions)}`);
+      }
+      if (positions.length % 3 !== 0) throw new Error(`Model ${name}: positions has ${positions.length} numbers, not a multiple of 3`);
+      if (!(ArrayBuffer.isView(indices) || Array.isArray(indices))) {
+        throw new Error(`Model ${name}: indices must be an integer typed array or array of numbers, got ${describe(indices)}`);
+      }
+      if (indices.length % 3 !== 0) throw new Error(`Model ${name}: indices has ${indices.length} numbers, not a multiple of 3`);
+      const nv = positions.length / 3;
+      let ix = indices;
+      if (!(indices instanceof Uint32Array) && !(indices instanceof Uint16Array)) {
+        ix = new Uint32Array(indices.length);
+        for (let k = 0; k < indices.length; ++k) {
+          const v = indices[k];
+          if (!Number.isInteger(v) || v < 0 || v >= nv) {
+            throw new Error(`Model ${name}: indices[${k}] = ${v} is not a vertex index in [0, ${nv})`);
+          }
+          ix[k] = v;
+        }
+      }
+      const posBytes = positions.length * (f32 ? 4 : 8);
+      const pPos = core.allocBytes(Math.max(posBytes, 8));
+      const pIdx = core.allocBytes(Math.max(indices.length * 4, 4));
+      try {
+        if (f32) core.HEAPF32.set(positions, pPos / 4);
+        else core.HEAPF64.set(positions, pPos / 8);
+        core.HEAPU32.set(ix, pIdx / 4);
+        this.id = check('Model', core.modelCreate(pPos, positions.length, f32, pIdx, indices.length, String(name)));
+      } finally {
+        core.freeBytes(pPos);
+        core.freeBytes(pIdx);
+      }
+    }
+    get triangleCount() { return info(this)[0]; }
+    get vertexCount() { return info(this)[1]; }
+    /** Closed and consistently oriented (bounds a solid): volume queries and penetration apply. */
+    get isClosed() { return info(this)[2] === 1; }
+    get name() { return core.modelName(modelOf('Model', 'this', this)); }
+    /** { positions: Float64Array, indices: Uint32Array } of the model's mesh. */
+    mesh() {
+      check('Model.mesh', core.modelMesh(modelOf('Model', 'this', this)));
+      const head = out(2);
+      const nv = head[0];
+      const nt = head[1];
+      const all = out(2 + 3 * nv + 3 * nt);
+      return { positions: all.slice(2, 2 + 3 * nv), indices: Uint32Array.from(all.subarray(2 + 3 * nv)) };
+    }
+    /** Frees the WebAssembly memory (a World still holding the model keeps its own reference). */
+    delete() {
+      if (this.id !== null) {
+        core.modelRelease(this.id);
+        this.id = null;
+      }
+    }
+    static box(hx, hy, hz, subdivisions = 1) { return shape('box', hx, hy, hz, subdivisions, 0); }
+    static sphere(radius, slices = 32, stacks = 16) { return shape('sphere', radius, 0, 0, slices, stacks); }
+    static cylinder(radius, height, slices = 32, stacks = 1) { return shape('cylinder', radius, height, 0, slices, stacks); }
+    static torus(major, minor, majorSegments = 48, minorSegments = 24) {
+      return shape('torus', major, minor, 0, majorSegments, minorSegments);
+    }
+  }
+  const SHAPE = Symbol('shape');
+  function shape(kind, a, b, c, n1, n2) {
+    const fn = `Model.${kind}`;
+    for (const [k, v] of [['size', a], ['size', b], ['size', c]]) number(fn, k, v);
+    for (const v of [n1, n2]) {
+      if (!Number.isInteger(v) || v < 0 || v > 1e6) throw new Error(`${fn}: segment count ${describe(v)} is not an integer in [0, 1e6]`);
+    }
+    return new Model(SHAPE, check(fn, core.modelShape(kind, a, b, c, n1, n2)));
+  }
+
+  /** Exact collision of two posed models: { colliding, contacts } (contacts: CONTACT_STRIDE per contact, world frame). */
+  function collide(a, poseA, b, poseB, opts) {
+    const ca = modelOf('collide', 'a', a);
+    const cb = modelOf('collide', 'b', b);
+    writePose(0, poseA, 'collide', 'poseA');
+    writePose(1, poseB, 'collide', 'poseB');
+    const o = optionsOf('collide', opts);
+    const rc = check('collide', core._antcd_collide(ca, cb, collisionFlags(o), number('collide', 'delta', o.delta, 0),
+      number('collide', 'maxContacts', o.maxContacts, 0)));
+    return { colliding: rc > 0, contacts: rc > 1 ? outCopy(CONTACT_STRIDE * (rc - 1)) : EMPTY };
+  }
+
+  /**
+   * The verdict of collide() alone, for hot loops: no contact is copied out, nothing is allocated
+   * (options as collide's; allContacts makes no difference to the verdict).
+   */
+  function collides(a, poseA, b, poseB, opts) {
+    const ca = modelOf('collides', 'a', a);
+    const cb = modelOf('collides', 'b', b);
+    writePose(0, poseA, 'collides', 'poseA');
+    writePose(1, poseB, 'collides', 'poseB');
+    const o = optionsOf('collides', opts);
+    return check('collides', core._antcd_collide(ca, cb, collisionFlags(o) & ~1, number('collides', 'delta', o.delta, 0), 0)) > 0;
+  }
+
+  /** Minimum distance between the surfaces (signed for two closed models with options.signed). */
+  function distance(a, poseA, b, poseB, opts = {}) {
+    const ca = modelOf('distance', 'a', a);
+    const cb = modelOf('distance', 'b', b);
+    writePose(0, poseA, 'distance', 'poseA');
+    writePose(1, poseB, 'distance', 'poseB');
+    check('distance', core._antcd_distance(ca, cb, number('distance', 'upperBound', opts.upperBound, Infinity),
+      number('distance', 'absTolerance', opts.absTolerance, 0), number('distance', 'relTolerance', opts.relTolerance, 0),
+      opts.signed ? 1 : 0));
+    const o = out(11);
+    return {
+      distance: o[0], lowerBound: o[1], pointA: o.slice(2, 5), pointB: o.slice(5, 8),
+      triangleA: o[8], triangleB: o[9], intersecting: (o[10] & 1) !== 0, approximate: (o[10] & 2) !== 0,
+      beyondUpperBound: (o[10] & 4) !== 0,
+    };
+  }
+
+  /** Continuous collision: A from poseA0 to poseA1, B from poseB0 to poseB1 over t in [0, 1]. */
+  function sweep(a, poseA0, poseA1, b, poseB0, poseB1, opts = {}) {
+    const ca = modelOf('sweep', 'a', a);
+    const cb = modelOf('sweep', 'b', b);
+    writePose(0, poseA0, 'sweep', 'poseA0');
+    writePose(1, poseA1, 'sweep', 'poseA1');
+    writePose(2, poseB0, 'sweep', 'poseB0');
+    writePose(3, poseB1, 'sweep', 'poseB1');
+    check('sweep', core.sweep(ca, cb, number('sweep', 'minSeparation', opts.minSeparation, 0),
+      number('sweep', 'timeTolerance', opts.timeTolerance, 1e-6), number('sweep', 'maxIterations', opts.maxIterations, 100000)));
+    const o = out(5 + CONTACT_STRIDE);
+    return {
+      hit: (o[4] & 1) !== 0, toi: o[0], distance: o[1], motionBound: o[2], iterations: o[3],
+      toleranceDecided: (o[4] & 2) !== 0, budgetExhausted: (o[4] & 4) !== 0, contact: o.slice(5),
+    };
+  }
+
+  const SHAPES = { auto: 0, convex: 1, general: 2 };
+  /** Penetration depth bounds of two closed models (lower <= depth <= upper). */
+  function penetration(a, poseA, b, poseB, opts = {}) {
+    const ca = modelOf('penetration', 'a', a);
+    const cb = modelOf('penetration', 'b', b);
+    const shapeCode = SHAPES[opts.shape ?? 'auto'];
+    if (shapeCode === undefined) throw new Error(`penetration: shape must be 'auto', 'convex' or 'general', got ${describe(opts.shape)}`);
+    writePose(0, poseA, 'penetration', 'poseA');
+    writePose(1, poseB, 'penetration', 'poseB');
+    check('penetration', core.penetration(ca, cb, shapeCode, number('penetration', 'absTolerance', opts.absTolerance, 0),
+      number('penetration', 'relTolerance', opts.relTolerance, 0.01),
+      number('penetration', 'maxEvaluations', opts.maxEvaluations, 64)));
+    const o = out(16);
+    return {
+      overlapping: (o[15] & 1) !== 0, exact: (o[15] & 2) !== 0, converged: (o[15] & 4) !== 0,
+      lower: o[0], upper: o[1], direction: o.slice(2, 5), witness: o.slice(5, 8), pointA: o.slice(8, 11),
+      pointB: o.slice(11, 14), evaluations: o[14],
+    };
+  }
+
+  /** A live set of posed objects; handles are numbers. */
+  class World {
+    constructor() { this.core = new core.World(); }
+    #live(fn) {
+      if (this.core === null) throw new Error(`${fn}: the World was deleted`);
+      return this.core;
+    }
+    /** Adds a model at a pose; options: name, group, mask. Returns the object's handle. */
+    add(model, pose, options = {}) {
+      const w = this.#live('World.add');
+      const m = modelOf('World.add', 'model', model);
+      writePose(0, pose, 'World.add', 'pose');
+      const h = w.add(m, String(options.name ?? ''), number('World.add', 'group', options.group, 1),
+        number('World.add', 'mask', options.mask, 4294967295));
+      if (h < 0) fail('World.add');
+      return h;
+    }
+    remove(handle) {
+      check('World.remove', this.#live('World.remove').remove(number('World.remove', 'handle', handle)));
+    }
+    setPose(handle, pose) {
+      const w = this.#live('World.setPose');
+      writePose(0, pose, 'World.setPose', 'pose');
+      check('World.setPose', w.setPose(number('World.setPose', 'handle', handle)));
+    }
+    get size() { return this.#live('World.size').size(); }
+    /** Every colliding pair: { pairs: Float64Array (a, b handles), contactCounts, contacts }. */
+    collideAll(opts) {
+      const w = this.#live('World.collideAll');
+      const o = optionsOf('World.collideAll', opts);
+      const n = check('World.collideAll', w.collideAll(Boolean(o.allContacts), number('World.collideAll', 'delta', o.delta, 0),
+        Boolean(o.contactNormals), number('World.collideAll', 'maxContacts', o.maxContacts, 0)));
+      const head = out(3 * n);
+      const pairs = new Float64Array(2 * n);
+      const contactCounts = new Uint32Array(n);
+      let total = 0;
+      for (let k = 0; k < n; ++k) {
+        pairs[2 * k] = head[3 * k];
+        pairs[2 * k + 1] = head[3 * k + 1];
+        contactCounts[k] = head[3 * k + 2];
+        total += contactCounts[k];
+      }
+      const all = out(3 * n + CONTACT_STRIDE * total);
+      return { pairs, contactCounts, contacts: total === 0 ? EMPTY : all.slice(3 * n) };
+    }
+    /** Pairs whose meshes are within `d` of each other: Float64Array of (a, b) handles. */
+    pairsWithin(d) {
+      const w = this.#live('World.pairsWithin');
+      const n = check('World.pairsWithin', w.pairsWithin(number('World.pairsWithin', 'distance', d)));
+      return outCopy(2 * n);
+    }
+    /** Nearest hit of the ray origin + s * direction, 0 <= s <= maxDistance, or null. */
+    raycast(origin, direction, maxDistance = Infinity) {
+      const w = this.#live('World.raycast');
+      for (const [name, v] of [['origin', origin], ['direction', direction]]) {
+        if (!((Array.isArray(v) || ArrayBuffer.isView(v)) && v.length === 3)) {
+          throw new Error(`World.raycast: ${name} must be 3 numbers, got ${describe(v)}`);
+        }
+      }
+      const hit = check('World.raycast', w.raycast(origin[0], origin[1], origin[2], direction[0], direction[1],
+        direction[2], number('World.raycast', 'maxDistance', maxDistance)));
+      if (hit === 0) return null;
+      const o = out(9);
+      return { object: o[0], triangle: o[1], distance: o[2], point: o.slice(3, 6), normal: o.slice(6, 9) };
+    }
+    delete() {
+      if (this.core !== null) {
+        this.core.delete();
+        this.core = null;
+      }
+    }
+  }
+
+  return { Model, World, collide, collides, distance, sweep, penetration, version: core.version(), CONTACT_STRIDE };
+}
+
+function describe(v) {
+  if (v === null) return 'null';
+  if (Array.isArray(v)) return `an array of length ${v.length}`;
+  if (ArrayBuffer.isView(v)) return `a ${v.constructor.name} of length ${v.length}`;
+  if (typeof v === 'object') return 'an object';
+  return `${typeof v} ${String(v).slice(0, 40)}`;
+}

@@ -1,0 +1,523 @@
+// Embind bindings of the core for the npm package `antcd` (wasm/index.mjs wraps them in the
+// documented JS API; index.d.ts states it). The two hot queries, antcd_collide and antcd_distance,
+// are raw exports (Module._antcd_collide: no Embind call wrapper; a rejected query from node fell
+// from about 1.2 to 0.55 us); models are passed by id (the table g_models), World objects by
+// handle.
+//
+// Calling convention (one thread, as in every Emscripten build without pthreads):
+// - Poses: JS writes up to kPoseSlots column-major 4x4 matrices (16 doubles each, three.js
+//   Matrix4.elements order) into the input block at poseBlock(); functions read pose k from slot k.
+// - Results: a function fills the output block (at antcd_out_block(), a reused vector: no
+//   allocation once it has grown) and returns a count, or -1 after an error whose one-line
+//   message lastError() gives.
+//   Contacts are records of kContactStride doubles (see write_contact).
+// - Handles of World objects are doubles: slot + generation * 2^32 (exact below 2^53).
+#include <antcd/collide.hpp>
+#include <antcd/distance.hpp>
+#include <antcd/error.hpp>
+#include <antcd/mesh.hpp>
+#include <antcd/penetration.hpp>
+#include <antcd/sweep.hpp>
+#include <antcd/version.hpp>
+#include <antcd/world.hpp>
+
+#include <emscripten/bind.h>
+#include <emscripten/emscripten.h>
+
+#include <cmath>
+#include <cstdint>
+#include <cstdlib>
+#include <exception>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "util/number_text.hpp"
+#include "util/pose_check.hpp"
+
+namespace {
+
+using namespace antcd;
+
+constexpr int kPoseSlots = 4;
+constexpr int kContactStride = 10;
+constexpr double kGenerationScale = 4294967296.0;   // 2^32
+constexpr std::uint32_t kMaxGeneration = 1U << 20;  // handles stay below 2^52
+
+double g_poses[kPoseSlots * 16];
+std::vector<double> g_out;
+std::string g_error;
+CollisionResult g_collision;
+
+std::string text(double v) {
+  std::string out;
+  detail::append_double(out, v);
+  return out;
+}
+
+int fail(const std::string& message) {
+  g_error = message;
+  return -1;
+}
+
+// Runs `body` (returning an int), turning a thrown antcd or standard exception into -1 and its
+// message. Hot paths do not throw; only argument errors do.
+template <class F>
+int guarded(const char* function, F&& body) {
+  try {
+    return body();
+  } catch (const std::exception& e) {
+    const std::string what = e.what();
+    return fail(what.rfind(function, 0) == 0 ? what : std::string(function) + ": " + what);
+  }
+}
+
+// Pose k of the input block as a rigid Transform; throws ArgumentError naming `what`.
+Transform pose_at(int k, const char* function, const char* what) {
+  const double* m = g_poses + 16 * k;
+  Transform t;
+  for (int c = 0; c < 3; ++c) {
+    for (int r = 0; r < 3; ++r) t.rotation(r, c) = m[4 * c + r];
+  }
+  t.translation = Vec3(m[12], m[13], m[14]);
+  const double row_error = std::abs(m[3]) + std::abs(m[7]) + std::abs(m[11]) + std::abs(m[15] - 1);
+  Scalar err = 0;
+  const char* problem = detail::pose_problem(t, err);
+  if (problem == nullptr && !(row_error <= detail::kPoseTolerance)) {
+    problem = "is not a rigid motion (last row of the matrix is not 0, 0, 0, 1)";
+  }
+  if (problem != nullptr) {
+    throw ArgumentError(std::string(function) + ": " + what + " " + problem);
+  }
+  return t;
+}
+
+void write_vec(double* out, const Vec3& v) {
+  out[0] = v.x();
+  out[1] = v.y();
+  out[2] = v.z();
+}
+
+// A contact record: triangle_a, triangle_b, point (3), distance, normal (3), depth.
+void write_contact(double* out, const Contact& c) {
+  out[0] = c.triangle_a;
+  out[1] = c.triangle_b;
+  write_vec(out + 2, c.point);
+  out[5] = c.distance;
+  write_vec(out + 6, c.normal);
+  out[9] = c.depth;
+}
+
+double* out_resize(std::size_t n) {
+  if (g_out.size() < n) g_out.resize(n);
+  return g_out.data();
+}
+
+// An integer in [1, 2^32) given as a JS number; throws ArgumentError naming it.
+std::uint32_t positive_count(double v, const char* name) {
+  if (!(v >= 1 && v <= 4294967295.0) || v != std::floor(v)) {
+    throw ArgumentError(std::string(name) + " " + text(v) + " is not an integer in [1, 2^32)");
+  }
+  return static_cast<std::uint32_t>(v);
+}
+
+CollisionRequest collision_request(bool all_contacts, double delta, bool normals,
+                                   double max_contacts) {
+  CollisionRequest r;
+  r.all_contacts = all_contacts;
+  r.delta = delta;
+  r.contact_normals = normals;
+  if (!(max_contacts >= 0) || max_contacts != std::floor(max_contacts)) {
+    throw ArgumentError("maxContacts " + text(max_contacts) + " is not a non-negative integer");
+  }
+  r.max_contacts = static_cast<std::size_t>(max_contacts);
+  return r;
+}
+
+}  // namespace
+
+namespace {
+
+// Models by id (a JS Model holds its id), shared with the Worlds they were added to: JS may
+// release a model while a World still uses it.
+std::vector<std::shared_ptr<const Model>> g_models;
+std::vector<int> g_free_ids;
+
+int register_model(std::shared_ptr<const Model> m) {
+  if (!g_free_ids.empty()) {
+    const int id = g_free_ids.back();
+    g_free_ids.pop_back();
+    g_models[static_cast<std::size_t>(id)] = std::move(m);
+    return id;
+  }
+  g_models.push_back(std::move(m));
+  return static_cast<int>(g_models.size()) - 1;
+}
+
+const std::shared_ptr<const Model>& model_ref(int id, const char* what) {
+  if (id < 0 || static_cast<std::size_t>(id) >= g_models.size() ||
+      !g_models[static_cast<std::size_t>(id)]) {
+    throw ArgumentError(std::string(what) + " is not a live model");
+  }
+  return g_models[static_cast<std::size_t>(id)];
+}
+
+// positions: n_coords numbers (float32 when f32, else float64) at `positions`; indices: n_indices
+// uint32 at `indices` (the JS wrapper converted and range-checked the types).
+int model_create(std::uintptr_t positions, double n_coords, bool f32, std::uintptr_t indices,
+                 double n_indices, const std::string& name) {
+  try {
+    Mesh mesh;
+    const auto nv = static_cast<std::size_t>(n_coords) / 3;
+    const auto nt = static_cast<std::size_t>(n_indices) / 3;
+    mesh.vertices.resize(nv);
+    if (f32) {
+      const auto* p = reinterpret_cast<const float*>(positions);
+      for (std::size_t i = 0; i < nv; ++i)
+        mesh.vertices[i] = Vec3(p[3 * i], p[3 * i + 1], p[3 * i + 2]);
+    } else {
+      const auto* p = reinterpret_cast<const double*>(positions);
+      for (std::size_t i = 0; i < nv; ++i)
+        mesh.vertices[i] = Vec3(p[3 * i], p[3 * i + 1], p[3 * i + 2]);
+    }
+    const auto* ix = reinterpret_cast<const std::uint32_t*>(indices);
+    mesh.triangles.resize(nt);
+    for (std::size_t i = 0; i < nt; ++i)
+      mesh.triangles[i] = {ix[3 * i], ix[3 * i + 1], ix[3 * i + 2]};
+    return register_model(std::make_shared<const Model>(std::move(mesh), BuildOptions{}, name));
+  } catch (const std::exception& e) {
+    return fail(std::string("Model: ") + e.what());
+  }
+}
+
+// Models built from the generated shapes of mesh.hpp (the same meshes as the native library's).
+int model_shape(const std::string& kind, double a, double b, double c, int n1, int n2) {
+  try {
+    Mesh mesh;
+    if (kind == "box") {
+      mesh = make_box(Vec3(a, b, c), n1);
+    } else if (kind == "sphere") {
+      mesh = make_sphere(a, n1, n2);
+    } else if (kind == "cylinder") {
+      mesh = make_cylinder(a, b, n1, n2);
+    } else if (kind == "torus") {
+      mesh = make_torus(a, b, n1, n2);
+    } else {
+      throw ArgumentError("shape '" + kind + "' is not box, sphere, cylinder or torus");
+    }
+    return register_model(std::make_shared<const Model>(std::move(mesh), BuildOptions{}, kind));
+  } catch (const std::exception& e) {
+    return fail(std::string("Model.") + kind + ": " + e.what());
+  }
+}
+
+int write_mesh(const Mesh& mesh) {
+  double* out = out_resize(2 + 3 * mesh.vertices.size() + 3 * mesh.triangles.size());
+  out[0] = static_cast<double>(mesh.vertices.size());
+  out[1] = static_cast<double>(mesh.triangles.size());
+  double* p = out + 2;
+  for (const Vec3& v : mesh.vertices) {
+    write_vec(p, v);
+    p += 3;
+  }
+  for (const TriangleIndices& t : mesh.triangles) {
+    for (int k = 0; k < 3; ++k) *p++ = t[static_cast<std::size_t>(k)];
+  }
+  return 1;
+}
+
+void model_release(int id) {
+  if (id >= 0 && static_cast<std::size_t>(id) < g_models.size() &&
+      g_models[static_cast<std::size_t>(id)]) {
+    g_models[static_cast<std::size_t>(id)].reset();
+    g_free_ids.push_back(id);
+  }
+}
+
+// Out: triangle count, vertex count, closed (0/1), degenerate triangles.
+int model_info(int id) {
+  return guarded("Model", [&] {
+    const Model& m = *model_ref(id, "this");
+    double* out = out_resize(4);
+    out[0] = static_cast<double>(m.mesh().triangles.size());
+    out[1] = static_cast<double>(m.mesh().vertices.size());
+    out[2] = m.is_closed() ? 1 : 0;
+    out[3] = static_cast<double>(m.stats().degenerate_triangles);
+    return 1;
+  });
+}
+
+std::string model_name(int id) {
+  return id >= 0 && static_cast<std::size_t>(id) < g_models.size() &&
+                 g_models[static_cast<std::size_t>(id)]
+             ? g_models[static_cast<std::size_t>(id)]->source()
+             : std::string();
+}
+
+// The mesh of a model into the output block: vertex count, triangle count, coordinates, indices.
+int model_mesh(int id) {
+  return guarded("Model.mesh", [&] { return write_mesh(model_ref(id, "this")->mesh()); });
+}
+
+}  // namespace
+
+// Poses 0 (a) and 1 (b). Returns 0 when apart, 1 + the number of contact records written when
+// colliding (a boolean query writes at most one; a volume containment none), or -1.
+// flags: 1 all contacts, 2 contact normals, 4 volume. A raw export (no Embind wrapper): the hot
+// path from JS.
+extern "C" EMSCRIPTEN_KEEPALIVE int antcd_collide(int a, int b, int flags, double delta,
+                                                  double max_contacts) {
+  return guarded("collide", [&] {
+    CollisionRequest r = collision_request((flags & 1) != 0, delta, (flags & 2) != 0, max_contacts);
+    r.volume = (flags & 4) != 0;
+    const Model& ma = *model_ref(a, "a");
+    const Model& mb = *model_ref(b, "b");
+    const Transform pa = pose_at(0, "collide", "poseA");
+    const Transform pb = pose_at(1, "collide", "poseB");
+    antcd::collide(ma, pa, mb, pb, r, g_collision);
+    if (!g_collision.colliding) return 0;
+    double* out = out_resize(kContactStride * g_collision.contacts.size());
+    for (const Contact& c : g_collision.contacts) {
+      write_contact(out, c);
+      out += kContactStride;
+    }
+    return static_cast<int>(g_collision.contacts.size()) + 1;
+  });
+}
+
+// Out: distance, lower_bound, point_a (3), point_b (3), triangle_a, triangle_b, flags
+// (1 intersecting, 2 approximate, 4 beyond_upper_bound).
+extern "C" EMSCRIPTEN_KEEPALIVE int antcd_distance(int a, int b, double upper_bound,
+                                                   double abs_tolerance, double rel_tolerance,
+                                                   int signed_distance) {
+  return guarded("distance", [&] {
+    DistanceRequest r;
+    r.upper_bound = upper_bound;
+    r.abs_tolerance = abs_tolerance;
+    r.rel_tolerance = rel_tolerance;
+    r.signed_distance = signed_distance != 0;
+    const Model& ma = *model_ref(a, "a");
+    const Model& mb = *model_ref(b, "b");
+    const Transform pa = pose_at(0, "distance", "poseA");
+    const Transform pb = pose_at(1, "distance", "poseB");
+    const DistanceResult d = antcd::distance(ma, pa, mb, pb, r);
+    double* out = out_resize(11);
+    out[0] = d.distance;
+    out[1] = d.lower_bound;
+    write_vec(out + 2, d.point_a);
+    write_vec(out + 5, d.point_b);
+    out[8] = d.triangle_a;
+    out[9] = d.triangle_b;
+    out[10] = (d.intersecting ? 1 : 0) + (d.approximate ? 2 : 0) + (d.beyond_upper_bound ? 4 : 0);
+    return 1;
+  });
+}
+
+// The output block's address (it moves when the block grows): a raw export, read after every query.
+extern "C" EMSCRIPTEN_KEEPALIVE std::uintptr_t antcd_out_block() {
+  return reinterpret_cast<std::uintptr_t>(g_out.data());
+}
+
+namespace {
+
+// Poses 0, 1 (A at t = 0, 1) and 2, 3 (B). Out: toi, distance, motion_bound, iterations, flags
+// (1 hit, 2 tolerance_decided, 4 budget_exhausted), then the contact record.
+int wasm_sweep(int a, int b, double min_separation, double time_tolerance, double max_iterations) {
+  return guarded("sweep", [&] {
+    SweepRequest r;
+    r.min_separation = min_separation;
+    r.time_tolerance = time_tolerance;
+    r.max_iterations = positive_count(max_iterations, "maxIterations");
+    const SweepResult s = antcd::sweep(
+        *model_ref(a, "a"), pose_at(0, "sweep", "poseA0"), pose_at(1, "sweep", "poseA1"),
+        *model_ref(b, "b"), pose_at(2, "sweep", "poseB0"), pose_at(3, "sweep", "poseB1"), r);
+    double* out = out_resize(5 + kContactStride);
+    out[0] = s.toi;
+    out[1] = s.distance;
+    out[2] = s.motion_bound;
+    out[3] = s.iterations;
+    out[4] = (s.hit ? 1 : 0) + (s.tolerance_decided ? 2 : 0) + (s.budget_exhausted ? 4 : 0);
+    write_contact(out + 5, s.contact);
+    return 1;
+  });
+}
+
+// Poses 0, 1. shape: 0 auto, 1 convex, 2 general. Out: lower, upper, direction (3), witness (3),
+// point_a (3), point_b (3), evaluations, flags (1 overlapping, 2 exact, 4 converged).
+int wasm_penetration(int a, int b, int shape, double abs_tolerance, double rel_tolerance,
+                     double max_evaluations) {
+  return guarded("penetration", [&] {
+    PenetrationRequest r;
+    if (shape < 0 || shape > 2) throw ArgumentError("shape must be 'auto', 'convex' or 'general'");
+    r.shape = static_cast<PenetrationRequest::Shape>(shape);
+    r.abs_tolerance = abs_tolerance;
+    r.rel_tolerance = rel_tolerance;
+    r.max_evaluations = positive_count(max_evaluations, "maxEvaluations");
+    const PenetrationResult p =
+        antcd::penetration(*model_ref(a, "a"), pose_at(0, "penetration", "poseA"),
+                           *model_ref(b, "b"), pose_at(1, "penetration", "poseB"), r);
+    double* out = out_resize(16);
+    out[0] = p.lower;
+    out[1] = p.upper;
+    write_vec(out + 2, p.direction);
+    write_vec(out + 5, p.witness);
+    write_vec(out + 8, p.point_a);
+    write_vec(out + 11, p.point_b);
+    out[14] = p.evaluations;
+    out[15] = (p.overlapping ? 1 : 0) + (p.exact ? 2 : 0) + (p.converged ? 4 : 0);
+    return 1;
+  });
+}
+
+double handle_of(ObjectId id) { return id.slot + id.generation * kGenerationScale; }
+
+}  // namespace
+
+class WasmWorld {
+ public:
+  /// Pose 0. Returns the handle, or -1.
+  double add(int model, const std::string& name, double group, double mask) {
+    double handle = -1;
+    guarded("World.add", [&] {
+      ObjectOptions o;
+      o.name = name;
+      o.group = filter_bits(group, "group");
+      o.mask = filter_bits(mask, "mask");
+      const ObjectId id = world_.add(model_ref(model, "model"), pose_at(0, "World.add", "pose"), o);
+      if (id.generation >= kMaxGeneration) {
+        world_.remove(id);
+        throw ArgumentError("too many objects have used this slot");
+      }
+      handle = handle_of(id);
+      return 0;
+    });
+    return handle;
+  }
+  int remove(double handle) {
+    return guarded("World.remove", [&] {
+      world_.remove(id_of(handle, "World.remove"));
+      return 0;
+    });
+  }
+  /// Pose 0.
+  int set_pose(double handle) {
+    return guarded("World.setPose", [&] {
+      world_.set_pose(id_of(handle, "World.setPose"), pose_at(0, "World.setPose", "pose"));
+      return 0;
+    });
+  }
+  [[nodiscard]] double size() const { return static_cast<double>(world_.size()); }
+  /// Out: per colliding pair (handle a, handle b, contact count); then every contact record in
+  /// pair order. Returns the number of pairs.
+  int collide_all(bool all_contacts, double delta, bool normals, double max_contacts) {
+    return guarded("World.collideAll", [&] {
+      const auto pairs =
+          world_.collide_all(collision_request(all_contacts, delta, normals, max_contacts));
+      std::size_t contacts = 0;
+      for (const PairContacts& p : pairs) contacts += p.contacts.size();
+      double* out = out_resize(3 * pairs.size() + kContactStride * contacts);
+      double* rec = out + 3 * pairs.size();
+      for (const PairContacts& p : pairs) {
+        out[0] = handle_of(p.a);
+        out[1] = handle_of(p.b);
+        out[2] = static_cast<double>(p.contacts.size());
+        out += 3;
+        for (const Contact& c : p.contacts) {
+          write_contact(rec, c);
+          rec += kContactStride;
+        }
+      }
+      return static_cast<int>(pairs.size());
+    });
+  }
+  /// Out: (handle a, handle b) per pair. Returns the number of pairs.
+  int pairs_within(double d) {
+    return guarded("World.pairsWithin", [&] {
+      const auto pairs = world_.pairs_within(d);
+      double* out = out_resize(2 * pairs.size());
+      for (const ObjectPair& p : pairs) {
+        *out++ = handle_of(p.a);
+        *out++ = handle_of(p.b);
+      }
+      return static_cast<int>(pairs.size());
+    });
+  }
+  /// Out: handle, triangle, distance, point (3), normal (3). Returns 1 for a hit, 0 for none.
+  int raycast(double ox, double oy, double oz, double dx, double dy, double dz, double max_d) {
+    return guarded("World.raycast", [&] {
+      Ray ray;
+      ray.origin = Vec3(ox, oy, oz);
+      ray.direction = Vec3(dx, dy, dz);
+      ray.max_distance = max_d;
+      const auto hit = world_.raycast(ray);
+      if (!hit) return 0;
+      double* out = out_resize(9);
+      out[0] = handle_of(hit->object);
+      out[1] = hit->triangle;
+      out[2] = hit->distance;
+      write_vec(out + 3, hit->point);
+      write_vec(out + 6, hit->normal);
+      return 1;
+    });
+  }
+
+ private:
+  static std::uint32_t filter_bits(double v, const char* what) {
+    if (!(v >= 0 && v <= 4294967295.0) || v != std::floor(v)) {
+      throw ArgumentError(std::string(what) + " " + text(v) + " is not an integer in [0, 2^32)");
+    }
+    return static_cast<std::uint32_t>(v);
+  }
+  static ObjectId id_of(double handle, const char* function) {
+    if (!(handle >= 0 && handle < kMaxGeneration * kGenerationScale) ||
+        handle != std::floor(handle)) {
+      throw ArgumentError(std::string(function) + ": " + text(handle) + " is not an object handle");
+    }
+    const double gen = std::floor(handle / kGenerationScale);
+    return ObjectId{static_cast<std::uint32_t>(handle - gen * kGenerationScale),
+                    static_cast<std::uint32_t>(gen)};
+  }
+
+  World world_;
+};
+
+namespace {
+
+std::uintptr_t alloc_bytes(double n) {
+  return reinterpret_cast<std::uintptr_t>(std::malloc(static_cast<std::size_t>(n)));
+}
+void free_bytes(std::uintptr_t p) { std::free(reinterpret_cast<void*>(p)); }
+std::uintptr_t pose_block() { return reinterpret_cast<std::uintptr_t>(g_poses); }
+
+std::string last_error() { return g_error; }
+std::string version() { return kVersion; }
+
+}  // namespace
+
+EMSCRIPTEN_BINDINGS(antcd_core) {
+  using namespace emscripten;
+  class_<WasmWorld>("World")
+      .constructor<>()
+      .function("add", &WasmWorld::add)
+      .function("remove", &WasmWorld::remove)
+      .function("setPose", &WasmWorld::set_pose)
+      .function("size", &WasmWorld::size)
+      .function("collideAll", &WasmWorld::collide_all)
+      .function("pairsWithin", &WasmWorld::pairs_within)
+      .function("raycast", &WasmWorld::raycast);
+  function("modelCreate", &model_create);
+  function("modelShape", &model_shape);
+  function("modelMesh", &model_mesh);
+  function("modelRelease", &model_release);
+  function("modelInfo", &model_info);
+  function("modelName", &model_name);
+  function("sweep", &wasm_sweep);
+  function("penetration", &wasm_penetration);
+  function("allocBytes", &alloc_bytes);
+  function("freeBytes", &free_bytes);
+  function("poseBlock", &pose_block);
+  function("lastError", &last_error);
+  function("version", &version);
+  constant("poseSlots", kPoseSlots);
+  constant("contactStride", kContactStride);
+}
