@@ -42,8 +42,17 @@ constexpr std::uint64_t kMaxCount = 0xFFFFFFFFULL;
 // Models at least this large check their closedness and their tree in parallel.
 constexpr std::size_t kParallelCheck = 16384;
 
-float f32_at(const std::uint8_t* p) { return std::bit_cast<float>(read_le32(p)); }
-double f64_at(const std::uint8_t* p) { return std::bit_cast<double>(read_le64(p)); }
+/// The bits of `from` as a To (std::bit_cast, which the WebAssembly build's libc++ lacks).
+template <class To, class From>
+To same_bits(const From& from) {
+  static_assert(sizeof(To) == sizeof(From));
+  To to;
+  std::memcpy(&to, &from, sizeof to);
+  return to;
+}
+
+float f32_at(const std::uint8_t* p) { return same_bits<float>(read_le32(p)); }
+double f64_at(const std::uint8_t* p) { return same_bits<double>(read_le64(p)); }
 std::uint32_t u32_at(const std::uint8_t* p) { return read_le32(p); }
 Vec3 vec3_at(const std::uint8_t* p) { return {f64_at(p), f64_at(p + 8), f64_at(p + 16)}; }
 
@@ -74,8 +83,8 @@ class Writer {
   explicit Writer(std::uint8_t* p) : p_(p) {}
   void u32(std::uint32_t v) { put(v, 4); }
   void u64(std::uint64_t v) { put(v, 8); }
-  void f32(float v) { put(std::bit_cast<std::uint32_t>(v), 4); }
-  void f64(double v) { put(std::bit_cast<std::uint64_t>(v), 8); }
+  void f32(float v) { put(same_bits<std::uint32_t>(v), 4); }
+  void f64(double v) { put(same_bits<std::uint64_t>(v), 8); }
   void vec3(const Vec3& v) {
     for (int k = 0; k < 3; ++k) f64(v[k]);
   }
@@ -155,8 +164,9 @@ class Reader {
            std::to_string(record_bytes) + " bytes need more than the " + std::to_string(left) +
            " bytes that remain");
     }
-    records = take(n * record_bytes, what);
-    return n;
+    const auto count = static_cast<std::size_t>(n);  // <= 2^32 - 1 and <= the bytes left
+    records = take(count * record_bytes, what);
+    return count;
   }
 
   [[nodiscard]] std::size_t remaining() const { return data_.size() - pos_; }
