@@ -282,10 +282,10 @@ void Model::count_stats() {
       stats_.max_leaf_size = std::max<std::size_t>(stats_.max_leaf_size, node.count);
     }
   }
-  stats_.memory_bytes =
-      mesh_.vertices.capacity() * sizeof(Vec3) +
-      mesh_.triangles.capacity() * sizeof(TriangleIndices) + nodes_.capacity() * sizeof(BvhNode) +
-      leaf_triangles_.capacity() * sizeof(std::uint32_t);
+  stats_.memory_bytes = mesh_.vertices.capacity() * sizeof(Vec3) +
+                        mesh_.triangles.capacity() * sizeof(TriangleIndices) +
+                        nodes_.capacity() * sizeof(BvhNode) +
+                        leaf_triangles_.capacity() * sizeof(std::uint32_t);
 }
 
 }  // namespace antcd
