@@ -60,9 +60,20 @@ struct PosedAxes {
   }
 };
 
+/// The box test of a traversal. full: the 15 axes of geometry::obb_overlap, every box pair culled
+/// that those separate. faces: the six face axes only (geometry::detail::obb_face_separated), for
+/// walks whose leaves go on to exact triangle tests: a box pair that only an edge-edge axis
+/// separates holds no triangle pair within the margin either, so the extra node pairs it lets
+/// through never add a contact and never change the order in which contacts are found; they cost
+/// less than the nine cross axes on every node pair that overlaps (most node pairs of an exact
+/// query; the pair and scene sections of bench/icount.cpp measure it).
+enum class BoxTest { full, faces };
+
 /// Separating-axis test between A's node box (third axis `a2` = a.axis0 x a.axis1) and B's node
-/// box with axes `rb` and centre `cb` in A's model frame: the 15 axes, tolerances and margin of
-/// geometry::obb_overlap, inlined into the traversal. True when a separating axis was found.
+/// box with axes `rb` and centre `cb` in A's model frame: the axes of kBox with the tolerances and
+/// margin of geometry::obb_overlap, inlined into the traversal. True when a separating axis was
+/// found.
+template <BoxTest kBox>
 [[gnu::always_inline]] inline bool obb_disjoint(const BvhNode& a, const Vec3& a2, const BvhNode& b,
                                                 const PosedAxes& rb, const Vec3& cb,
                                                 Scalar margin) {
@@ -72,7 +83,13 @@ struct PosedAxes {
       a.axis1.dot(rb.b0), a.axis1.dot(rb.b1), a.axis1.dot(rb.b2),   //
       a2.dot(rb.b0), a2.dot(rb.b1), a2.dot(rb.b2);
   const Vec3 t(a.axis0.dot(d), a.axis1.dot(d), a2.dot(d));
-  return geometry::detail::obb_separated(a.half_extents().array() + margin, b.half_extents(), r, t);
+  const Vec3 ea = a.half_extents().array() + margin;
+  if constexpr (kBox == BoxTest::faces) {
+    return geometry::detail::obb_face_separated(ea, b.half_extents(), r,
+                                                geometry::detail::obb_abs_rotation(r), t);
+  } else {
+    return geometry::detail::obb_separated(ea, b.half_extents(), r, t);
+  }
 }
 
 /// Which triangles of a leaf (bits of `live`, triangle k of the leaf at bit k) may come within the
@@ -117,7 +134,10 @@ inline constexpr Scalar kMaskRatio = 2;
 /// kNearestFirst (for walks that stop at the first hit): of the two children descended, the one
 /// whose sphere centre is nearer the other node's centre is visited first. Every overlapping leaf
 /// pair is still reached unless on_leaf stops the walk; only the order changes.
-template <bool kNearestFirst = false, class OnLeaf>
+///
+/// kBox: the box test after the sphere test (BoxTest); with faces, on_leaf also meets leaf pairs
+/// whose boxes only an edge-edge axis separates.
+template <bool kNearestFirst = false, BoxTest kBox = BoxTest::full, class OnLeaf>
 TraversalStats dual_traverse(const Model& a, const Model& b, const PairFrame& frame,
                              OnLeaf&& on_leaf) {
   TraversalStats stats;
@@ -173,7 +193,7 @@ TraversalStats dual_traverse(const Model& a, const Model& b, const PairFrame& fr
       third_of = item.ia;
       a2 = na.axis0.cross(na.axis1);
     }
-    if (obb_disjoint(na, a2, nb, rb, cb, frame.margin)) {
+    if (obb_disjoint<kBox>(na, a2, nb, rb, cb, frame.margin)) {
       ++stats.obb_rejects;
       continue;
     }

@@ -2,11 +2,13 @@
 #include <antcd/collide.hpp>
 
 #include "bvh/traverse.hpp"
+#include "exact/coherent.hpp"
 #include "exact/manifold.hpp"
 #include "exact/volume.hpp"
 #include "geometry/penetration.hpp"
 
 #include <array>
+#include <cassert>
 #include <cmath>
 #include <cstdint>
 #include <numbers>
@@ -25,10 +27,11 @@ geometry::TrianglePenetration apart(const Vec3& a0, const Vec3& a1, const Vec3& 
   return geometry::detail::apart_penetration(td.pa, td.pb);
 }
 
-}  // namespace
-
-bool collide(const Model& a, const Transform& pose_a, const Model& b, const Transform& pose_b,
-             const CollisionRequest& request, CollisionResult& result) {
+// The exact query with the walk `walk(frame, on_leaf, limit)` -> TraversalStats, which calls
+// on_leaf(leaf_a, leaf_b, live_a, live_b) on the leaf pairs to test and stops when it returns true.
+template <class Walk>
+bool collide_walk(const Model& a, const Transform& pose_a, const Model& b, const Transform& pose_b,
+                  const CollisionRequest& request, CollisionResult& result, Walk&& walk) {
   if (!(request.delta >= 0) || !std::isfinite(request.delta)) {
     throw antcd::ArgumentError("collision threshold delta must be finite and >= 0, got " +
                                std::to_string(request.delta));
@@ -118,8 +121,9 @@ bool collide(const Model& a, const Transform& pose_a, const Model& b, const Tran
           c.distance = distance;
           if (normals) {
             const geometry::TrianglePenetration pen =
-                distance > 0 ? apart(a0, a1, a2, *b0, *b1, *b2)
-                             : geometry::detail::intersecting_penetration(a0, a1, a2, *b0, *b1, *b2);
+                distance > 0
+                    ? apart(a0, a1, a2, *b0, *b1, *b2)
+                    : geometry::detail::intersecting_penetration(a0, a1, a2, *b0, *b1, *b2);
             c.normal = pose_a.apply_vector(pen.normal);
             c.depth = pen.depth;
           }
@@ -129,9 +133,7 @@ bool collide(const Model& a, const Transform& pose_a, const Model& b, const Tran
     }
     return false;
   };
-  // A query that stops at its first contact visits the nearer children first.
-  result.traversal = limit == 1 ? detail::dual_traverse<true>(a, b, frame, on_leaf)
-                                : detail::dual_traverse<false>(a, b, frame, on_leaf);
+  result.traversal = walk(frame, on_leaf, limit);
   if (request.manifold_points > 0) {
     result.regions = detail::reduce_to_manifold(result.contacts, request.manifold_points,
                                                 std::cos(request.manifold_angle));
@@ -149,6 +151,52 @@ bool collide(const Model& a, const Transform& pose_a, const Model& b, const Tran
     }
   }
   return result.colliding;
+}
+
+// The leaves' exact triangle tests decide, so the boxes need only their face axes.
+constexpr auto kFaces = detail::BoxTest::faces;
+
+}  // namespace
+
+bool collide(const Model& a, const Transform& pose_a, const Model& b, const Transform& pose_b,
+             const CollisionRequest& request, CollisionResult& result) {
+  // A query that stops at its first contact visits the nearer children first.
+  return collide_walk(a, pose_a, b, pose_b, request, result,
+                      [&](const detail::PairFrame& frame, auto& on_leaf, std::size_t limit) {
+                        return limit == 1
+                                   ? detail::dual_traverse<true, kFaces>(a, b, frame, on_leaf)
+                                   : detail::dual_traverse<false, kFaces>(a, b, frame, on_leaf);
+                      });
+}
+
+bool detail::collide_coherent(const Model& a, const Transform& pose_a, const Model& b,
+                              const Transform& pose_b, const CollisionRequest& request,
+                              CollisionResult& result, PairWitness& witness) {
+  assert(!request.all_contacts && request.manifold_points == 0);
+  if (witness.a != &a || witness.b != &b) witness = {&a, &b, false, 0, 0};
+  // A front of the last walk (Ehmann and Lin's generalised front tracking) was tried as well: on
+  // the generated VR scenes (docs/performance.md) it visited more node pairs than a walk from the
+  // root, since a front only deepens while objects approach and leave it again.
+  const auto walk = [&](const PairFrame& frame, auto& on_leaf, std::size_t) {
+    constexpr std::uint32_t kAll = ~std::uint32_t{0};  // every triangle of both leaves
+    const bool tried = witness.valid;
+    if (tried && on_leaf(witness.leaf_a, witness.leaf_b, kAll, kAll)) {
+      TraversalStats stats;
+      stats.leaf_pairs = 1;
+      return stats;
+    }
+    witness.valid = false;
+    TraversalStats stats = dual_traverse<true, kFaces>(
+        a, b, frame,
+        [&](std::uint32_t la, std::uint32_t lb, std::uint32_t live_a, std::uint32_t live_b) {
+          if (!on_leaf(la, lb, live_a, live_b)) return false;
+          witness = {&a, &b, true, la, lb};
+          return true;
+        });
+    if (tried) ++stats.leaf_pairs;
+    return stats;
+  };
+  return collide_walk(a, pose_a, b, pose_b, request, result, walk);
 }
 
 CollisionResult collide(const Model& a, const Transform& pose_a, const Model& b,

@@ -15,6 +15,7 @@
 #include <mutex>
 #include <stdexcept>
 
+#include "exact/coherent.hpp"
 #include "random/detect.hpp"
 #include "scene/pair_query.hpp"
 #include "util/parallel.hpp"
@@ -31,6 +32,30 @@ struct Scene::Broad {
   std::vector<ObjectId> moving_ids;
   std::vector<Transform> moving_poses;
 
+  /// The exact method's per-pair hints from frame to frame (detail::PairWitness), one per
+  /// candidate pair of the last frame that used them, sorted by pair. A frame that finds them in
+  /// use by another run_frame call runs without (the hints change no verdict).
+  std::mutex witnesses_mutex;
+  std::vector<std::pair<std::uint64_t, detail::PairWitness>> witnesses;
+  std::vector<std::pair<std::uint64_t, detail::PairWitness>> spare_witnesses;
+
+  /// Lines `witnesses` up with `cand` (sorted pairs): entry k is pair cand[k]'s, kept from the
+  /// last frame when the pair was a candidate there, else new. Hold witnesses_mutex.
+  void align_witnesses(const std::vector<std::pair<std::uint32_t, std::uint32_t>>& cand) {
+    spare_witnesses.clear();
+    std::size_t old = 0;
+    for (const auto& [i, j] : cand) {
+      const std::uint64_t key = std::uint64_t{i} << 32 | j;
+      while (old < witnesses.size() && witnesses[old].first < key) ++old;
+      if (old < witnesses.size() && witnesses[old].first == key) {
+        spare_witnesses.emplace_back(key, witnesses[old].second);
+      } else {
+        spare_witnesses.emplace_back(key, detail::PairWitness{});
+      }
+    }
+    std::swap(witnesses, spare_witnesses);
+  }
+
   /// The frame's poses into the World (the moving objects' only), then its candidate pairs: one
   /// caller at a time (the World's mutations must not overlap its queries).
   std::vector<std::pair<std::uint32_t, std::uint32_t>> candidates(
@@ -44,6 +69,29 @@ struct Scene::Broad {
     out.reserve(pairs.size());
     for (const ObjectPair& p : pairs) out.emplace_back(p.a.slot, p.b.slot);
     return out;
+  }
+
+  /// Continuous: the World to the poses of frame - 1 (frame 0: frame 0), then the swept broad
+  /// phase and a sweep per candidate pair to the poses of `frame`, into `result`.
+  void continuous(const std::vector<SceneObject>& objects, std::size_t frame, Scalar delta,
+                  FrameResult& result) {
+    const std::lock_guard<std::mutex> lock(mutex);
+    moving_poses.clear();
+    const std::size_t from = frame == 0 ? 0 : frame - 1;
+    for (const std::uint32_t i : moving) moving_poses.push_back(objects[i].pose(from));
+    world.set_poses(moving_ids, moving_poses);
+    moving_poses.clear();
+    for (const std::uint32_t i : moving) moving_poses.push_back(objects[i].pose(frame));
+    for (const ObjectPair& p : world.swept_candidate_pairs(moving_ids, moving_poses, delta)) {
+      result.candidates.emplace_back(p.a.slot, p.b.slot);
+    }
+    SweepRequest request;
+    request.min_separation = delta;
+    for (const PairToi& p : world.set_poses_continuous(moving_ids, moving_poses, request)) {
+      result.pairs.emplace_back(p.a.slot, p.b.slot);
+      result.toi.push_back(p.sweep.toi);
+      result.contact_points.push_back(p.sweep.contact.point);
+    }
   }
 };
 
@@ -124,6 +172,13 @@ FrameResult Scene::run_frame(std::size_t frame, const SceneQuery& query,
     throw ArgumentError("volume queries are for the exact method, not " +
                         std::string(method_name(query.method)));
   }
+  if (query.continuous && query.method != Method::Exact) {
+    throw ArgumentError("continuous queries are for the exact method, not " +
+                        std::string(method_name(query.method)));
+  }
+  if (query.continuous && query.volume) {
+    throw ArgumentError("continuous queries test surfaces: volume must be off");
+  }
   if (query.method != Method::Exact && query.method != Method::SphereObb) {
     DetectRequest request = query.random;
     request.delta = query.delta;
@@ -148,8 +203,15 @@ FrameResult Scene::run_frame(std::size_t frame, const SceneQuery& query,
     request.volume = query.volume;
     const auto& cand = result.candidates;
     const std::size_t m = cand.size();
+    // Each pair's query starts where the last frame's query of the pair found its contact.
+    std::unique_lock<std::mutex> hints(broad_->witnesses_mutex, std::try_to_lock);
+    if (hints.owns_lock()) broad_->align_witnesses(cand);
     const auto hit = [&](std::size_t k, CollisionResult& scratch) {
       const auto [i, j] = cand[k];
+      if (hints.owns_lock()) {
+        return detail::collide_coherent(model_of(i), pose(i), model_of(j), pose(j), request,
+                                        scratch, broad_->witnesses[k].second);
+      }
       return collide(model_of(i), pose(i), model_of(j), pose(j), request, scratch);
     };
     if (query.threads == 1 || m < 2) {
@@ -212,6 +274,10 @@ FrameResult Scene::run_frame(std::size_t frame, const SceneQuery& query,
   // The whole frame runs in one task arena of query.threads slots, kept by the calling thread
   // from frame to frame, so that threads = 1 keeps it on the calling thread.
   parallel::in_thread_arena(query.threads, [&] {
+    if (query.continuous) {
+      broad_->continuous(description_.objects, frame, query.delta, result);
+      return;
+    }
     result.candidates = broad_->candidates(description_.objects, frame, query.delta);
     if (query.method == Method::Exact) {
       exact_frame();

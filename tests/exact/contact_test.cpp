@@ -64,19 +64,11 @@ void expect_contacts_separate(const Model& a, const Transform& pa, const Model& 
   }
 }
 
-// The mesh centred on its box and scaled to a largest extent of 1, so two files of different
-// units meet when posed near the origin.
-Mesh unit_size(Mesh m) {
-  const Aabb box = m.bounds();
-  const Vec3 centre = 0.5 * (box.min + box.max);
-  const Scalar scale = 1 / box.extent().maxCoeff();
-  for (Vec3& v : m.vertices) v = (v - centre) * scale;
-  return m;
-}
-
 TEST(ContactNormals, RealMeshesEveryContactIsItsPairsSeparatingPush) {
-  const Model spider(unit_size(load_mesh(test::assimp_model("OBJ/spider.obj"))), {}, "spider");
-  const Model wuson(unit_size(load_mesh(test::assimp_model("OFF/Wuson.off"))), {}, "wuson");
+  // Both scaled to a largest extent of 1, so two files of different units meet near the origin.
+  const Model spider(test::unit_size(load_mesh(test::assimp_model("OBJ/spider.obj"))), {},
+                     "spider");
+  const Model wuson(test::unit_size(load_mesh(test::assimp_model("OFF/Wuson.off"))), {}, "wuson");
   std::mt19937_64 rng(15);
   const Scalar size = 2;
   int colliding = 0;

@@ -11,6 +11,7 @@
 #include <map>
 #include <random>
 #include <string>
+#include <thread>
 
 #include "support/test_support.hpp"
 
@@ -90,6 +91,34 @@ TEST(Scene, ExactEqualsAllPairsBruteForce) {
     }
   }
   EXPECT_GT(colliding, 40u);
+}
+
+// The exact method starts each pair's query where the pair's last query found its contact (a
+// hint kept by the scene): frames run backwards, skipped, repeated or by two threads at once
+// answer as frames run in order.
+TEST(Scene, ExactFramesAnswerTheSameInAnyOrder) {
+  const auto dir = test::fresh_temp_dir("scene_order");
+  const Scene scene(small_scene(dir, 30, 24, 5));
+  SceneQuery q;
+  std::vector<std::vector<std::pair<std::uint32_t, std::uint32_t>>> forward;
+  std::size_t colliding = 0;
+  for (std::size_t f = 0; f < 24; ++f) {
+    forward.push_back(scene.run_frame(f, q).pairs);
+    colliding += forward.back().size();
+  }
+  EXPECT_GT(colliding, 24u);
+  for (std::size_t f = 24; f-- > 0;) EXPECT_EQ(scene.run_frame(f, q).pairs, forward[f]) << f;
+  for (const std::size_t f : {5u, 17u, 17u, 2u, 23u, 0u}) {
+    EXPECT_EQ(scene.run_frame(f, q).pairs, forward[f]) << f;
+  }
+  std::vector<std::vector<std::pair<std::uint32_t, std::uint32_t>>> even(24);
+  std::vector<std::vector<std::pair<std::uint32_t, std::uint32_t>>> odd(24);
+  std::thread other([&] {
+    for (std::size_t f = 1; f < 24; f += 2) odd[f] = scene.run_frame(f, q).pairs;
+  });
+  for (std::size_t f = 0; f < 24; f += 2) even[f] = scene.run_frame(f, q).pairs;
+  other.join();
+  for (std::size_t f = 0; f < 24; ++f) EXPECT_EQ(f % 2 == 0 ? even[f] : odd[f], forward[f]) << f;
 }
 
 TEST(Scene, ThreadsDoNotChangeAnyMethodsAnswer) {

@@ -37,6 +37,14 @@ void write_file(const std::filesystem::path& path, const std::string& text) {
   out.write(text.data(), static_cast<std::streamsize>(text.size()));
 }
 
+Mesh unit_size(Mesh m) {
+  const Aabb box = m.bounds();
+  const Vec3 centre = 0.5 * (box.min + box.max);
+  const Scalar scale = 1 / box.extent().maxCoeff();
+  for (Vec3& v : m.vertices) v = (v - centre) * scale;
+  return m;
+}
+
 Transform random_pose(std::mt19937_64& rng, Scalar extent) {
   std::normal_distribution<Scalar> gauss(0.0, 1.0);
   std::uniform_real_distribution<Scalar> uni(-extent, extent);

@@ -24,6 +24,9 @@ std::string read_all(const std::filesystem::path& path);
 /// Writes `text` to `path` (binary-safe).
 void write_file(const std::filesystem::path& path, const std::string& text);
 
+/// `m` centred on its bounding box's centre and scaled so that the box's longest side is 1.
+Mesh unit_size(Mesh m);
+
 /// Uniformly random rotation and a translation uniform in the cube [-extent, extent]^3.
 Transform random_pose(std::mt19937_64& rng, Scalar extent);
 
