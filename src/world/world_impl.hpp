@@ -88,6 +88,10 @@ struct World::Impl {
 /// widened by a rounding allowance; `tolerance` receives that allowance.
 Aabb posed_box(const Model& model, const Transform& pose, Scalar& tolerance);
 
+/// Throws ArgumentError naming `function` unless `pose` is finite (queries about a model outside
+/// the world; the world's own poses are checked, rigidity included, when they are set).
+void require_finite_pose(const Transform& pose, const char* function);
+
 /// `box` grown by `by` on every side.
 inline Aabb grown(Aabb box, Scalar by) {
   box.min.array() -= by;
