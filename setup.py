@@ -24,7 +24,7 @@ from setuptools import Extension, setup
 from setuptools.command.build_ext import build_ext
 
 SOURCE = Path(__file__).resolve().parent
-PACKAGE_FILES = ("__init__.py", "collision.py", "py.typed", "__init__.pyi")
+PACKAGE_FILES = ("__init__.py", "cluster.py", "collision.py", "py.typed", "__init__.pyi")
 
 
 def project_version():

@@ -12,6 +12,13 @@
 // value). assimp_import runs assimp's reader with the post-processing antcd's assimp path used
 // (triangulate, join identical vertices): antcd's conversion to a Mesh is not in it, so it is
 // the lower bound of that path. Each benchmark reports `triangles`.
+//
+// Model files (issue 27): model_build/torus builds the Model of a 5,000,000-triangle torus
+// (make_torus(1, 0.3, 2500, 1000), in memory) and model_load/torus loads the same model from its
+// .antcd file (Model::load: read, checksum, validation, no build; the file is in the page cache
+// after its first read), model_from_bytes/torus from bytes in memory (what unpickling does). The
+// load-vs-build ratio is model_build / model_load. Run them alone with
+// --benchmark_filter='model_'.
 // Medians: --benchmark_repetitions=3 --benchmark_report_aggregates_only=true.
 #include <antcd/bvh.hpp>
 #include <antcd/load.hpp>
@@ -19,9 +26,10 @@
 
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
-#include <assimp/Importer.hpp>
 #include <benchmark/benchmark.h>
+#include <assimp/Importer.hpp>
 
+#include <unistd.h>
 #include <charconv>
 #include <cstdint>
 #include <cstdio>
@@ -30,7 +38,7 @@
 #include <stdexcept>
 #include <string>
 #include <system_error>
-#include <unistd.h>
+#include <vector>
 
 namespace {
 
@@ -202,8 +210,9 @@ void assimp_import(benchmark::State& state, Format format) {
   std::size_t triangles = 0;
   for (auto _ : state) {
     Assimp::Importer importer;
-    const aiScene* scene = importer.ReadFile(
-        path.string(), aiProcess_Triangulate | aiProcess_SortByPType | aiProcess_JoinIdenticalVertices);
+    const aiScene* scene =
+        importer.ReadFile(path.string(), aiProcess_Triangulate | aiProcess_SortByPType |
+                                             aiProcess_JoinIdenticalVertices);
     if (scene == nullptr) {
       state.SkipWithError(importer.GetErrorString());
       return;
@@ -215,15 +224,112 @@ void assimp_import(benchmark::State& state, Format format) {
   state.counters["triangles"] = static_cast<double>(triangles);
 }
 
-BENCHMARK_CAPTURE(load_mesh_double, obj, Format::Obj)->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();
-BENCHMARK_CAPTURE(assimp_import, obj, Format::Obj)->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();
-BENCHMARK_CAPTURE(load_mesh_double, off, Format::Off)->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();
-BENCHMARK_CAPTURE(assimp_import, off, Format::Off)->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();
-BENCHMARK_CAPTURE(load_mesh_double, ply, Format::Ply)->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();
-BENCHMARK_CAPTURE(assimp_import, ply, Format::Ply)->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();
-BENCHMARK_CAPTURE(load_mesh_double, stl, Format::Stl)->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();
-BENCHMARK_CAPTURE(assimp_import, stl, Format::Stl)->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();
-BENCHMARK_CAPTURE(load_and_build, stl, Format::Stl)->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();
+/// The 5-million-triangle torus, its Model and that model saved, made once, removed at exit.
+class TorusModel {
+ public:
+  TorusModel() : mesh_(antcd::make_torus(1.0, 0.3, 2500, 1000)), model_(mesh_, {}, "torus") {
+    dir_ = fs::temp_directory_path() / ("antcd_model_bench_" + std::to_string(::getpid()));
+    fs::create_directories(dir_);
+    path_ = dir_ / "torus.antcd";
+    model_.save(path_);
+    bytes_ = model_.to_bytes();
+  }
+  ~TorusModel() {
+    std::error_code ec;
+    fs::remove_all(dir_, ec);
+  }
+  TorusModel(const TorusModel&) = delete;
+  TorusModel& operator=(const TorusModel&) = delete;
+  [[nodiscard]] const antcd::Mesh& mesh() const { return mesh_; }
+  [[nodiscard]] const fs::path& path() const { return path_; }
+  [[nodiscard]] const std::vector<std::uint8_t>& bytes() const { return bytes_; }
+
+ private:
+  antcd::Mesh mesh_;
+  antcd::Model model_;
+  fs::path dir_;
+  fs::path path_;
+  std::vector<std::uint8_t> bytes_;
+};
+
+const TorusModel& torus() {
+  static const TorusModel model;
+  return model;
+}
+
+void model_build(benchmark::State& state) {
+  std::size_t triangles = 0;
+  for (auto _ : state) {
+    state.PauseTiming();
+    antcd::Mesh mesh = torus().mesh();
+    state.ResumeTiming();
+    const antcd::Model model(std::move(mesh));
+    triangles = model.mesh().triangles.size();
+    benchmark::DoNotOptimize(model.nodes().data());
+  }
+  state.counters["triangles"] = static_cast<double>(triangles);
+}
+
+void model_load(benchmark::State& state) {
+  std::size_t triangles = 0;
+  for (auto _ : state) {
+    const antcd::Model model = antcd::Model::load(torus().path());
+    triangles = model.mesh().triangles.size();
+    benchmark::DoNotOptimize(model.nodes().data());
+  }
+  state.counters["triangles"] = static_cast<double>(triangles);
+  state.counters["file_MiB"] = static_cast<double>(torus().bytes().size()) / (1 << 20);
+}
+
+void model_from_bytes(benchmark::State& state) {
+  std::size_t triangles = 0;
+  for (auto _ : state) {
+    const antcd::Model model = antcd::Model::from_bytes(torus().bytes());
+    triangles = model.mesh().triangles.size();
+    benchmark::DoNotOptimize(model.nodes().data());
+  }
+  state.counters["triangles"] = static_cast<double>(triangles);
+}
+
+BENCHMARK(model_build)->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();
+BENCHMARK(model_load)->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();
+BENCHMARK(model_from_bytes)->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();
+BENCHMARK_CAPTURE(load_mesh_double, obj, Format::Obj)
+    ->Unit(benchmark::kSecond)
+    ->Iterations(1)
+    ->UseRealTime();
+BENCHMARK_CAPTURE(assimp_import, obj, Format::Obj)
+    ->Unit(benchmark::kSecond)
+    ->Iterations(1)
+    ->UseRealTime();
+BENCHMARK_CAPTURE(load_mesh_double, off, Format::Off)
+    ->Unit(benchmark::kSecond)
+    ->Iterations(1)
+    ->UseRealTime();
+BENCHMARK_CAPTURE(assimp_import, off, Format::Off)
+    ->Unit(benchmark::kSecond)
+    ->Iterations(1)
+    ->UseRealTime();
+BENCHMARK_CAPTURE(load_mesh_double, ply, Format::Ply)
+    ->Unit(benchmark::kSecond)
+    ->Iterations(1)
+    ->UseRealTime();
+BENCHMARK_CAPTURE(assimp_import, ply, Format::Ply)
+    ->Unit(benchmark::kSecond)
+    ->Iterations(1)
+    ->UseRealTime();
+BENCHMARK_CAPTURE(load_mesh_double, stl, Format::Stl)
+    ->Unit(benchmark::kSecond)
+    ->Iterations(1)
+    ->UseRealTime();
+BENCHMARK_CAPTURE(assimp_import, stl, Format::Stl)
+    ->Unit(benchmark::kSecond)
+    ->Iterations(1)
+    ->UseRealTime();
+BENCHMARK_CAPTURE(load_and_build, stl, Format::Stl)
+    ->Unit(benchmark::kSecond)
+    ->Iterations(1)
+    ->UseRealTime();
 
 }  // namespace
 

@@ -39,6 +39,8 @@ cmake -S "$repo" -B "$build_dir" \
 fuzzers=(fuzz_mesh_load fuzz_scene_parse)
 # Hostile-input readers (issue 28): points CSV (fuzz/corpus/points), run results (fuzz/corpus/run).
 fuzzers+=(fuzz_points_csv fuzz_run_result)
+# The model-file reader (issue 27), corpus fuzz/corpus/model.
+fuzzers+=(fuzz_model_file)
 cmake --build "$build_dir" -j "$jobs" --target "${fuzzers[@]}"
 
 # ---- run ----

@@ -14,6 +14,7 @@ packages=(
   assimp-testmodels gnuplot-nox valgrind
   python3-dev python3-pybind11 pybind11-dev python3-numpy python3-pytest python3-matplotlib
   python3-pip python3-setuptools python3-wheel python3-venv python3-build
+  python3-distributed
   chromium
   # The WebAssembly package (wasm/) and the live viewer page: Emscripten 3.1 (with node-acorn).
   emscripten

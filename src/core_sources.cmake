@@ -17,6 +17,7 @@ set(ANTCD_CORE_SOURCES
   bvh/build.cpp
   bvh/traverse.cpp
   bvh/refit.cpp
+  bvh/model_file.cpp
   exact/exact.cpp
   exact/volume.cpp
   exact/manifold.cpp

@@ -61,6 +61,8 @@ QuietStderr::QuietStderr() : saved_(std::cerr.rdbuf(nullptr)) {}
 QuietStderr::~QuietStderr() { std::cerr.rdbuf(saved_); }  // also clears the stream's bad state
 
 Model load_model(const std::filesystem::path& path, const BuildOptions& options) {
+  // A saved model keeps its own hierarchy (and the options it was built with).
+  if (is_model_path(path)) return Model::load(path);
   Mesh mesh;
   {
     const QuietStderr quiet;

@@ -49,7 +49,8 @@ class QuietStderr {
   std::streambuf* saved_;
 };
 
-/// Loads a mesh (std::cerr quiet meanwhile) and builds its hierarchy; errors name the file.
+/// Loads a mesh (std::cerr quiet meanwhile) and builds its hierarchy; errors name the file. A
+/// model file (".antcd", Model::save) is loaded as saved: `options` do not apply to it.
 Model load_model(const std::filesystem::path& path, const BuildOptions& options);
 /// Prints "warning: SOURCE: N zero-area triangle(s) ignored" on stderr when the model left some out.
 void warn_degenerate(const Model& model);

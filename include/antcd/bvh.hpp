@@ -16,8 +16,10 @@
 
 #include <array>
 #include <cstdint>
+#include <filesystem>
 #include <memory>
 #include <span>
+#include <string_view>
 #include <vector>
 
 namespace antcd {
@@ -25,6 +27,7 @@ namespace antcd {
 namespace detail {
 struct ModelCache;
 struct ModelCacheAccess;
+struct ModelFile;
 }  // namespace detail
 
 struct BuildOptions {
@@ -142,8 +145,39 @@ class ANTCD_API Model {
   /// is not in the tree: build a new Model). On a throw the Model is unchanged.
   void refit(std::span<const Vec3> new_vertices);
 
+  // ---- Model files (.antcd; the format is docs/model_file.md) ----
+  // A model file holds the mesh, the source name, the build options and the built hierarchy,
+  // field by field, little-endian, with a format version and a checksum of its payload. Loading
+  // validates everything before use (sizes against the file size before any allocation, every
+  // index, finite coordinates, the tree's shape) and rebuilds nothing: a loaded Model answers
+  // every query bit for bit as the saved one. Point-query and penetration caches are not saved:
+  // they are derived again on first use, as on a built Model. stats() is the saved model's
+  // (build_ms is the original build's time; memory_bytes is this process's). Thread-safe
+  // (save/to_bytes are const; load/from_bytes touch nothing shared).
+
+  /// Writes the model file to `path` atomically (temporary file, then rename). Throws antcd::Error
+  /// naming `path` when it cannot be written.
+  void save(const std::filesystem::path& path) const;
+  /// The model file's bytes (what save() writes).
+  [[nodiscard]] std::vector<std::uint8_t> to_bytes() const;
+  /// Reads a model file written by save(); the Model's source() is `path`. Throws MeshError naming
+  /// `path` for a file that is not a model file, truncated, corrupted (checksum), of another
+  /// format version, or inconsistent (an index out of range, a non-finite coordinate, a malformed
+  /// tree); antcd::Error when it is missing or unreadable.
+  [[nodiscard]] static Model load(const std::filesystem::path& path);
+  /// The Model whose to_bytes() are `bytes`; its source() is the saved model's. Errors as load(),
+  /// named `name`.
+  [[nodiscard]] static Model from_bytes(std::span<const std::uint8_t> bytes,
+                                        std::string_view name = "model bytes");
+
  private:
   friend struct detail::ModelCacheAccess;
+  friend struct detail::ModelFile;
+  /// An empty model for detail::ModelFile to fill.
+  Model();
+  /// stats_ from the mesh, the nodes and the leaves (all but depth, degenerate_triangles and
+  /// build_ms).
+  void count_stats();
   Mesh mesh_;
   std::string source_;
   BuildOptions options_;
@@ -155,6 +189,10 @@ class ANTCD_API Model {
   /// so that concurrent const queries stay safe.
   std::shared_ptr<detail::ModelCache> cache_;
 };
+
+/// True when `path` names a model file by its extension: ".antcd" (any letter case). The
+/// loaders (antcd::load_mesh, the CLI, the scene files, Python) read such paths with Model::load.
+ANTCD_API bool is_model_path(const std::filesystem::path& path);
 
 /// Counters of one traversal, for tests and tuning.
 struct TraversalStats {

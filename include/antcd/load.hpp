@@ -14,7 +14,8 @@ namespace antcd {
 
 /// Loads every triangle of every mesh in a file (OBJ, STL ASCII/binary, PLY, OFF, glTF/GLB and the
 /// other formats assimp reads), with node transforms of the file's scene graph applied, polygons
-/// triangulated and identical vertices joined. Points and lines are ignored.
+/// triangulated and identical vertices joined. Points and lines are ignored. A model file
+/// (is_model_path: ".antcd", written by Model::save) gives the saved model's mesh, bit for bit.
 /// Precision: OBJ, OFF and PLY (ASCII, and binary little-endian doubles) coordinates are the
 /// nearest doubles to the file's text (a binary double bit for bit); OFF/PLY layouts the loader
 /// does not follow, and the other formats, are read by assimp in single precision

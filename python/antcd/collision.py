@@ -270,6 +270,25 @@ class CollisionManager:
         self._world.set_pose(self._ids[name], transform)
         self._posed[name] = (self._posed[name][0], transform)
 
+    def __getstate__(self) -> dict:
+        """Pickling: the objects as (name, Model, transform) in the order they were added. Each
+        Model pickles as its model-file bytes (Model.to_bytes), once however many objects share
+        it (pickle's memo), and unpickles without building anything."""
+        order = sorted(self._ids.items(), key=lambda item: item[1])
+        return {"objects": [(name, *self._posed[name]) for name, _ in order]}
+
+    def __setstate__(self, state: dict) -> None:
+        objects = state.get("objects") if isinstance(state, dict) else None
+        if not isinstance(objects, list):
+            raise ValueError("antcd.CollisionManager pickle state must be a dict with an "
+                             "'objects' list")
+        self.__init__()
+        for entry in objects:
+            if not (isinstance(entry, tuple) and len(entry) == 3 and isinstance(entry[1], Model)):
+                raise ValueError("antcd.CollisionManager pickle state: each object must be a "
+                                 "(name, Model, transform) tuple")
+            self.add_object(*entry)
+
     def in_collision_single(self, mesh: Any, transform: Any = None, return_names: bool = False,
                             return_data: bool = False) -> Any:
         """Checks one mesh (not added) against every object.

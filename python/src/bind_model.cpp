@@ -1,4 +1,5 @@
-// python/src/bind_model.cpp — antcd.load_mesh and antcd.Model.
+// python/src/bind_model.cpp — antcd.load_mesh and antcd.Model (built, or read from a model file or
+// bytes: Model::save / load / to_bytes / from_bytes, which pickling uses too).
 #include <antcd/bvh.hpp>
 #include <antcd/load.hpp>
 #include <antcd/mesh.hpp>
@@ -8,7 +9,9 @@
 #include <pybind11/stl.h>
 
 #include <memory>
+#include <span>
 #include <string>
+#include <vector>
 
 #include "bindings.hpp"
 #include "convert.hpp"
@@ -30,6 +33,38 @@ std::shared_ptr<Model> build(Mesh mesh, const BuildOptions& options, std::string
   return std::make_shared<Model>(std::move(mesh), options, std::move(name));
 }
 
+/// The Model of a model file (bvh.hpp, Model::load), the GIL released while it is read.
+std::shared_ptr<Model> load_saved(const std::filesystem::path& path) {
+  require_readable_file(path, "model file");
+  py::gil_scoped_release release;
+  return std::make_shared<Model>(Model::load(path));
+}
+
+/// A bytes-like object's bytes as a Model (Model::from_bytes); TypeError for anything else.
+std::shared_ptr<Model> from_bytes(const py::handle data) {
+  if (!PyObject_CheckBuffer(data.ptr())) {
+    throw py::type_error("data must be bytes-like (bytes, bytearray, memoryview), got " +
+                         std::string(py::str(py::type::of(data).attr("__name__"))));
+  }
+  const py::buffer_info info = py::reinterpret_borrow<py::buffer>(data).request();
+  if (info.ndim != 1 || info.itemsize != 1 || info.strides[0] != 1) {
+    throw py::type_error("data must be a contiguous buffer of bytes");
+  }
+  const std::span<const std::uint8_t> bytes(static_cast<const std::uint8_t*>(info.ptr),
+                                            static_cast<std::size_t>(info.size));
+  py::gil_scoped_release release;
+  return std::make_shared<Model>(Model::from_bytes(bytes));
+}
+
+py::bytes to_bytes(const Model& model) {
+  std::vector<std::uint8_t> bytes;
+  {
+    py::gil_scoped_release release;
+    bytes = model.to_bytes();
+  }
+  return {reinterpret_cast<const char*>(bytes.data()), bytes.size()};
+}
+
 Mesh load(const py::handle path_in) {
   const std::filesystem::path path = to_path(path_in);
   require_readable_file(path, "mesh file");
@@ -47,10 +82,11 @@ void bind_model(py::module_& m) {
         auto vertices = make_rows<double>(mesh.vertices.size(), 3, [&](std::size_t i, double* out) {
           for (int k = 0; k < 3; ++k) out[k] = mesh.vertices[i][k];
         });
-        auto faces =
-            make_rows<std::int64_t>(mesh.triangles.size(), 3, [&](std::size_t i, std::int64_t* out) {
-              for (std::size_t k = 0; k < 3; ++k) out[k] = mesh.triangles[i][k];
-            });
+        auto faces = make_rows<std::int64_t>(mesh.triangles.size(), 3,
+                                             [&](std::size_t i, std::int64_t* out) {
+                                               for (std::size_t k = 0; k < 3; ++k)
+                                                 out[k] = mesh.triangles[i][k];
+                                             });
         return py::make_tuple(vertices, faces);
       },
       py::arg("path"),
@@ -88,10 +124,38 @@ void bind_model(py::module_& m) {
           "load",
           [](const py::object& path, const py::object& leaf_size, const std::string& covariance) {
             const BuildOptions options = build_options(leaf_size, covariance);
+            if (is_model_path(to_path(path))) return load_saved(to_path(path));
             return build(load(path), options, to_path(path).string());
           },
           py::arg("path"), py::kw_only(), py::arg("leaf_size") = 4, py::arg("covariance") = "area",
-          "Loads a mesh file (see load_mesh) and builds its Model, named after the path.")
+          "Loads a mesh file (see load_mesh) and builds its Model, named after the path. A model "
+          "file (.antcd, written by Model.save) is read as saved, without building anything "
+          "(leaf_size and covariance are then the saved model's).")
+      .def(
+          "save",
+          [](const Model& model, const py::object& path) {
+            const std::filesystem::path p = to_path(path);
+            py::gil_scoped_release release;
+            model.save(p);
+          },
+          py::arg("path"),
+          "Writes the model (mesh, options and built hierarchy) to a model file, atomically; "
+          "Model.load and every mesh argument read it back without building (name the file "
+          "*.antcd). The format is versioned, little-endian and checksummed (docs/model_file.md). "
+          "Raises ValueError when the file cannot be written.")
+      .def("to_bytes", &to_bytes,
+           "The model file's bytes (what save writes, and what pickling stores).")
+      .def_static("from_bytes", &from_bytes, py::arg("data"),
+                  "The Model of a model file's bytes (Model.to_bytes), bit for bit the saved one; "
+                  "nothing is built. Raises ValueError for truncated, corrupted, other-version or "
+                  "inconsistent data, TypeError when data is not bytes-like.")
+      .def(py::pickle([](const Model& model) { return py::make_tuple(to_bytes(model)); },
+                      [](const py::tuple& state) {
+                        if (state.size() != 1) {
+                          throw py::value_error("antcd.Model pickle state must be a 1-tuple");
+                        }
+                        return from_bytes(state[0]);
+                      }))
       .def_property_readonly(
           "vertices",
           [](const py::object& self) {
@@ -108,13 +172,18 @@ void bind_model(py::module_& m) {
                                                 mesh.triangles.size(), 3, self);
           },
           "uint32[m, 3] vertex indices (read-only view, no copy).")
-      .def_property_readonly("name", &Model::source, "The name given at construction (a path for Model.load).")
-      .def_property_readonly("leaf_size", [](const Model& model) { return model.options().leaf_size; })
-      .def_property_readonly("covariance", [](const Model& model) {
-        return std::string(covariance_name(model.options().covariance));
-      })
-      .def_property_readonly("triangle_count", [](const Model& model) { return model.mesh().triangles.size(); })
-      .def_property_readonly("vertex_count", [](const Model& model) { return model.mesh().vertices.size(); })
+      .def_property_readonly("name", &Model::source,
+                             "The name given at construction (a path for Model.load).")
+      .def_property_readonly("leaf_size",
+                             [](const Model& model) { return model.options().leaf_size; })
+      .def_property_readonly("covariance",
+                             [](const Model& model) {
+                               return std::string(covariance_name(model.options().covariance));
+                             })
+      .def_property_readonly("triangle_count",
+                             [](const Model& model) { return model.mesh().triangles.size(); })
+      .def_property_readonly("vertex_count",
+                             [](const Model& model) { return model.mesh().vertices.size(); })
       .def_property_readonly(
           "degenerate_triangles",
           [](const Model& model) { return model.stats().degenerate_triangles; },
@@ -144,10 +213,12 @@ void bind_model(py::module_& m) {
             d["memory_bytes"] = s.memory_bytes;
             return d;
           },
-          "Hierarchy statistics: triangles, nodes, leaves, depth, build time (ms), memory (bytes)...")
+          "Hierarchy statistics: triangles, nodes, leaves, depth, build time (ms), memory "
+          "(bytes)...")
       .def("__repr__", [](const Model& model) {
-        return "<antcd.Model '" + model.source() + "': " + std::to_string(model.mesh().vertices.size()) +
-               " vertices, " + std::to_string(model.mesh().triangles.size()) + " triangles>";
+        return "<antcd.Model '" + model.source() +
+               "': " + std::to_string(model.mesh().vertices.size()) + " vertices, " +
+               std::to_string(model.mesh().triangles.size()) + " triangles>";
       });
 }
 

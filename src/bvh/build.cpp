@@ -263,8 +263,17 @@ Model::Model(Mesh mesh, const BuildOptions& options, std::string source)
   for (std::size_t i = 0; i < kept; ++i) leaf_triangles_[i] = tris[i].index;
   tris_storage.reset();
 
+  count_stats();
+  stats_.build_ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+void Model::count_stats() {
   stats_.triangles = mesh_.triangles.size();
   stats_.nodes = nodes_.size();
+  stats_.leaves = 0;
+  stats_.max_leaf_size = 0;
+  stats_.obb_volume_sum = 0;
   for (const BvhNode& node : nodes_) {
     stats_.obb_volume_sum += node.obb().volume();
     if (node.is_leaf()) {
@@ -272,12 +281,10 @@ Model::Model(Mesh mesh, const BuildOptions& options, std::string source)
       stats_.max_leaf_size = std::max<std::size_t>(stats_.max_leaf_size, node.count);
     }
   }
-  stats_.memory_bytes =
-      mesh_.vertices.capacity() * sizeof(Vec3) +
-      mesh_.triangles.capacity() * sizeof(TriangleIndices) + nodes_.capacity() * sizeof(BvhNode) +
-      leaf_triangles_.capacity() * sizeof(std::uint32_t);
-  stats_.build_ms =
-      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  stats_.memory_bytes = mesh_.vertices.capacity() * sizeof(Vec3) +
+                        mesh_.triangles.capacity() * sizeof(TriangleIndices) +
+                        nodes_.capacity() * sizeof(BvhNode) +
+                        leaf_triangles_.capacity() * sizeof(std::uint32_t);
 }
 
 }  // namespace antcd

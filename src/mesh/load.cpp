@@ -14,6 +14,7 @@
 // its NullLogger, so loading prints nothing. The one exception seen over all of assimp-testmodels:
 // the OpenDDL parser inside the OpenGEX reader writes "nullptr returned by creating DDLNode." to
 // stderr for OpenGEX/empty_camera.ogex, past assimp's logger.
+#include <antcd/bvh.hpp>
 #include <antcd/load.hpp>
 #include <antcd/mesh.hpp>
 
@@ -353,6 +354,8 @@ Mesh load_mesh(const std::filesystem::path& path) {
   if (status.type() != std::filesystem::file_type::regular) {
     throw MeshError(source, "is not a regular file");
   }
+  // A saved Model (bvh.hpp): its mesh, exactly as it was saved.
+  if (is_model_path(path)) return Model::load(path).mesh();
   // The first bytes, for the checks assimp does not make (and a clear message when unreadable).
   std::array<char, 4096> head{};
   std::size_t head_size = 0;

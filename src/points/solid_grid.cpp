@@ -28,11 +28,16 @@ SolidGrid::SolidGrid(const Model& model, const std::function<int(const Vec3&)>& 
   const Vec3 extent = box.extent();
   const Scalar largest = extent.maxCoeff();
   if (!(largest > 0)) return;
-  const Scalar target = std::clamp(kCellsPerTriangle * static_cast<Scalar>(lv.size()),
-                                   kMinCells, kMaxCells);
+  const Scalar target =
+      std::clamp(kCellsPerTriangle * static_cast<Scalar>(lv.size()), kMinCells, kMaxCells);
   // Flat axes count as 1/256 of the largest one, so that a thin solid still gets cells.
   const Vec3 sized = extent.cwiseMax(largest / 256);
   const Scalar cell = std::cbrt(sized.prod() / target);
+  // Coordinates near the ends of the double range overflow (or underflow) the cell arithmetic:
+  // no grid then (every point goes to the exact query), never a NaN cast to an index.
+  if (!std::isfinite(largest) || !(cell > 0) || !std::isfinite(cell) || !std::isfinite(1 / cell)) {
+    return;
+  }
   for (int a = 0; a < 3; ++a) {
     dims_[a] = static_cast<std::int64_t>(std::ceil(extent[a] / cell)) + 2;  // one cell of margin
   }
@@ -45,8 +50,10 @@ SolidGrid::SolidGrid(const Model& model, const std::function<int(const Vec3&)>& 
   cells_.assign(total, kOutside);
 
   auto cell_of = [&](Scalar x, int a) {
-    const auto c = static_cast<std::int64_t>(std::floor((x - origin_[a]) * inverse_cell_));
-    return std::clamp<std::int64_t>(c, 0, dims_[a] - 1);
+    // Clamped as a double before the conversion (a NaN goes to cell 0).
+    const Scalar c = std::floor((x - origin_[a]) * inverse_cell_);
+    const Scalar top = static_cast<Scalar>(dims_[a] - 1);
+    return static_cast<std::int64_t>(c >= 0 ? std::min(c, top) : Scalar{0});
   };
   auto index_of = [&](std::int64_t x, std::int64_t y, std::int64_t z) {
     return static_cast<std::size_t>((z * dims_[1] + y) * dims_[0] + x);

@@ -1,6 +1,8 @@
 #include <antcd/error.hpp>
 #include <antcd/io.hpp>
 
+#include "util/huge_pages.hpp"
+
 #include <algorithm>
 #include <atomic>
 #include <cerrno>
@@ -107,10 +109,24 @@ std::string read_file(const std::filesystem::path& path) {
   }
   std::ifstream in(path, std::ios::binary);
   if (!in) throw Error(path.string() + ": cannot open for reading");
-  std::ostringstream text;
-  text << in.rdbuf();
+  // Read in one piece into a string of the file's size (a large model file is read once, not
+  // through a growing stream buffer and a copy), then whatever a growing file added meanwhile.
+  std::string text;
+  const std::uintmax_t size = std::filesystem::file_size(path, ec);
+  if (!ec && size > 0 && size < text.max_size()) {
+    text.reserve(static_cast<std::size_t>(size));
+    detail::advise_huge_pages(text.data(), text.capacity());  // a large file: fewer page faults
+    text.resize(static_cast<std::size_t>(size));
+    in.read(text.data(), static_cast<std::streamsize>(size));
+    text.resize(static_cast<std::size_t>(in.gcount()));
+  }
+  if (in.good()) {
+    std::ostringstream rest;
+    rest << in.rdbuf();
+    text += rest.str();
+  }
   if (in.bad()) throw Error(path.string() + ": read failed");
-  return text.str();
+  return text;
 }
 
 void create_folders(const std::filesystem::path& path) {
