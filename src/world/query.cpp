@@ -142,13 +142,6 @@ bool spheres_apart(const Object& a, const Object& b, Scalar delta) {
   return (ca - cb).squaredNorm() > reach * reach;
 }
 
-Obb posed_obb(const Object& o) {
-  Obb b = o.model->root().obb();
-  b.axes = o.pose.rotation * b.axes;
-  b.center = o.pose.apply(b.center);
-  return b;
-}
-
 }  // namespace
 
 std::vector<ObjectPair> World::candidate_pairs(Scalar delta) const {
@@ -164,17 +157,16 @@ std::vector<ObjectPair> World::candidate_pairs(Scalar delta) const {
     const Bounds& bb = w.bounds[j];
     const Aabb query = grown(ba.box, 2 * (delta * (1 + 1e-12) + ba.tolerance));
     if (!detail::boxes_overlap(query, grown(bb.box, bb.tolerance))) return false;
-    const Object& a = w.objects[i];
-    const Object& b = w.objects[j];
-    const Sphere sa = a.model->root().sphere();
-    const Sphere sb = b.model->root().sphere();
-    const Vec3 ca = a.pose.apply(sa.center);
-    const Vec3 cb = b.pose.apply(sb.center);
-    const Scalar reach = sa.radius + sb.radius + delta;
+    // The posed root spheres (centred on the posed root boxes), then the posed root boxes.
+    const World::Impl::Root& ra = w.roots[i];
+    const World::Impl::Root& rb = w.roots[j];
+    const Vec3& ca = ra.box.center;
+    const Vec3& cb = rb.box.center;
+    const Scalar reach = ra.radius + rb.radius + delta;
     if ((ca - cb).squaredNorm() > reach * reach) return false;
     // Rounding allowance of the box fit and of the separating-axis arithmetic.
     const Scalar margin = delta + 1e-9 * (reach + std::max(ca.norm(), cb.norm()));
-    return geometry::obb_overlap(posed_obb(a), posed_obb(b), margin);
+    return geometry::obb_overlap(ra.box, rb.box, margin);
   };
   std::vector<ObjectPair> out;
   for (const auto& [i, j] : self_pairs(w, gap)) {
@@ -286,7 +278,8 @@ std::vector<ObjectContacts> World::collide_model(const Model& model, const Trans
     throw ArgumentError("World::collide_model: pose is not finite (NaN or infinity)");
   }
   Bounds probe;
-  probe.box = posed_box(model, pose, probe.tolerance);
+  World::Impl::Root probe_root;
+  probe.box = posed_box(model, pose, probe.tolerance, probe_root);
   const Aabb query = grown(probe.box, exact_growth(probe, request.delta));
   const Impl& w = *impl_;
   return against_world(w, model, pose, query, request,
