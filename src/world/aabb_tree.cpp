@@ -158,7 +158,20 @@ Scalar AabbTree::refit_subtree(std::int32_t i) {
 
 void AabbTree::refit() {
   if (root_ == kNull) return;
-  const Scalar sum = refit_subtree(root_);
+  Scalar sum = 0;
+  if (height_[root_] > kParallelHeight) {
+    sum = refit_subtree(root_);  // in parallel over subtrees
+  } else {
+    // One backward pass over the nodes in depth-first order (children after their parent): no
+    // recursion. The order holds from one refit to the next unless leaves were inserted or removed.
+    if (!ordered_) relayout();
+    for (std::size_t i = nodes_.size(); i-- > 0;) {
+      Node& n = nodes_[i];
+      if (n.child1 == kNull) continue;
+      merge_into(n, nodes_[n.child1], nodes_[n.child2]);
+      sum += area(n);
+    }
+  }
   const Scalar root_area = area(nodes_[root_]);
   // Loose: the boxes' total area (the expected cost of a query) grew by half since the rebuild.
   if (root_area > 0 && sum / root_area > 1.5 * built_area_ && leaves_ >= 64) rebuild();
@@ -240,7 +253,44 @@ void AabbTree::rebuild() {
   build(build, items.data(), items.data() + items.size(), 0, kNull);
   nodes_ = std::move(next);
   root_ = 0;
+  ordered_ = true;
   built_area_ = relative_area();
+}
+
+void AabbTree::relayout() {
+  struct Item {
+    std::int32_t old;     // the node's index before
+    std::int32_t parent;  // its parent's index after (kNull for the root)
+    bool second;          // whether it is that parent's child2
+  };
+  std::vector<Node> next(2 * leaves_ - 1);
+  std::vector<std::int32_t> parent(next.size(), kNull);
+  std::vector<std::int32_t> height(next.size(), 0);
+  std::int32_t at = 0;
+  Stack<Item> stack;
+  stack.push({root_, kNull, false});
+  while (!stack.empty()) {
+    const Item item = stack.pop();
+    const Node& n = nodes_[item.old];
+    next[at] = n;
+    parent[at] = item.parent;
+    height[at] = height_[item.old];
+    if (item.parent != kNull)
+      (item.second ? next[item.parent].child2 : next[item.parent].child1) = at;
+    if (n.child1 == kNull) {
+      leaf_of_[n.child2] = at;
+    } else {
+      stack.push({n.child2, at, true});  // popped after the whole child1 subtree
+      stack.push({n.child1, at, false});
+    }
+    ++at;
+  }
+  nodes_ = std::move(next);
+  parent_ = std::move(parent);
+  height_ = std::move(height);
+  free_.clear();
+  root_ = 0;
+  ordered_ = true;
 }
 
 Scalar AabbTree::relative_area() const {
@@ -303,6 +353,7 @@ std::vector<AabbTree::PairTask> AabbTree::pair_tasks(Scalar gap, std::size_t tar
 }
 
 void AabbTree::insert_leaf(std::int32_t leaf) {
+  ordered_ = false;
   if (root_ == kNull) {
     root_ = leaf;
     parent_[leaf] = kNull;
@@ -351,6 +402,7 @@ void AabbTree::insert_leaf(std::int32_t leaf) {
 }
 
 void AabbTree::remove_leaf(std::int32_t leaf) {
+  ordered_ = false;
   if (leaf == root_) {
     root_ = kNull;
     return;

@@ -5,8 +5,8 @@
 // Layout: 32-byte nodes (single-precision boxes rounded outward, so a node box always contains the
 // double box it was made from; two children or one object), with parents and heights kept apart
 // because only the mutations read them. A leaf is addressed by its object (a small integer, the
-// World's slot), so a rebuild may renumber every node: it lays the tree out in depth-first order,
-// which keeps a subtree in one stretch of memory for the traversals.
+// World's slot), so a rebuild (or the relayout before a refit) may renumber every node: it lays the
+// tree out in depth-first order, which keeps a subtree in one stretch of memory for the traversals.
 //
 // Keeping it tight: greedy insertion and height-only rotations keep the height O(log n) but not the
 // boxes tight (on many objects spread through a volume, internal boxes grow into overlapping
@@ -285,6 +285,8 @@ class AabbTree {
   void remove_leaf(std::int32_t leaf);
   std::int32_t balance(std::int32_t a);
   void refit_upwards(std::int32_t i);
+  /// Renumbers the nodes in depth-first order (the tree unchanged): a parent before its children.
+  void relayout();
   /// Refits the subtree at i; returns the sum of its internal nodes' areas.
   Scalar refit_subtree(std::int32_t i);
 
@@ -300,6 +302,7 @@ class AabbTree {
   std::int32_t root_ = kNull;
   std::size_t leaves_ = 0;
   std::size_t changes_ = 0;        // incremental changes since the last rebuild
+  bool ordered_ = false;           // nodes_ in depth-first order, none free (rebuild, relayout)
   Scalar built_area_ = 0;          // relative_area() right after the last rebuild
 };
 
