@@ -27,20 +27,52 @@ namespace {
 // flush-to-zero): no branch on which way the conversion rounded, which is a coin toss and was
 // mispredicted for every leaf box of a moving world. Beyond the float range: -infinity, or the
 // largest float.
-float down(Scalar x) {
+[[maybe_unused]] float down(Scalar x) {
   constexpr Scalar kMax = std::numeric_limits<float>::max();
   const auto f = static_cast<float>(std::min(std::max(x, -kMax), kMax));
   return f - (std::abs(f) * 0x1p-23F + std::numeric_limits<float>::min());
 }
-float up(Scalar x) { return -down(-x); }
+[[maybe_unused]] float up(Scalar x) { return -down(-x); }
 
 }  // namespace
 
 void AabbTree::set_node_box(Node& n, const Aabb& b) {
+#if defined(__SSE2__)
+  // down() on the four lanes (min x, min y, min z, -max x) and on (-max y, -max z): the same IEEE
+  // operations lane by lane, so the same floats (this runs for every moved object of a frame).
+  const __m128d limit = _mm_set1_pd(std::numeric_limits<float>::max());
+  const __m128d sign = _mm_set1_pd(-0.0);
+  const auto to_float = [&](__m128d x) {
+    return _mm_cvtpd_ps(_mm_min_pd(_mm_max_pd(x, _mm_xor_pd(limit, sign)), limit));
+  };
+  const __m128d mxy = _mm_loadu_pd(b.min.data());
+  const __m128d mz_hx =
+      _mm_unpacklo_pd(_mm_load_sd(b.min.data() + 2), _mm_xor_pd(_mm_load_sd(b.max.data()), sign));
+  const __m128d hyz = _mm_xor_pd(_mm_loadu_pd(b.max.data() + 1), sign);
+  const __m128 f1 = _mm_movelh_ps(to_float(mxy), to_float(mz_hx));
+  const __m128 f2 = to_float(hyz);
+  const __m128 abs_mask = _mm_castsi128_ps(_mm_set1_epi32(0x7fffffff));
+  const __m128 ulp = _mm_set1_ps(0x1p-23F);
+  const __m128 tiny = _mm_set1_ps(std::numeric_limits<float>::min());
+  const auto down4 = [&](__m128 f) {
+    return _mm_sub_ps(f, _mm_add_ps(_mm_mul_ps(_mm_and_ps(f, abs_mask), ulp), tiny));
+  };
+  alignas(16) float d1[4];
+  alignas(16) float d2[4];
+  _mm_store_ps(d1, down4(f1));
+  _mm_store_ps(d2, down4(f2));
+  n.lo[0] = d1[0];
+  n.lo[1] = d1[1];
+  n.lo[2] = d1[2];
+  n.hi[0] = -d1[3];
+  n.hi[1] = -d2[0];
+  n.hi[2] = -d2[1];
+#else
   for (int k = 0; k < 3; ++k) {
     n.lo[k] = down(b.min[k]);
     n.hi[k] = up(b.max[k]);
   }
+#endif
 }
 
 void AabbTree::merge_into(Node& n, const Node& a, const Node& b) {

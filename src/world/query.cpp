@@ -83,6 +83,7 @@ std::vector<SlotPair> self_pairs(const World::Impl& w, Scalar gap) {
   };
   std::vector<SlotPair> out;
   if (w.live < kParallelObjects || parallel::max_concurrency() == 1) {
+    out.reserve(w.live);  // one allocation, not a doubling series, for up to a pair per object
     w.tree.pairs(w.tree.all_pairs(), gap, emit_into(out));
   } else {
     const std::vector<detail::AabbTree::PairTask> tasks = w.tree.pair_tasks(gap, kPairTasks);
@@ -168,8 +169,10 @@ std::vector<ObjectPair> World::candidate_pairs(Scalar delta) const {
     const Scalar margin = delta + 1e-9 * (reach + std::max(ca.norm(), cb.norm()));
     return geometry::obb_overlap(ra.box, rb.box, margin);
   };
+  const std::vector<SlotPair> pairs = self_pairs(w, gap);
   std::vector<ObjectPair> out;
-  for (const auto& [i, j] : self_pairs(w, gap)) {
+  out.reserve(pairs.size());
+  for (const auto& [i, j] : pairs) {
     if (w.admits(i, j) && accept(i, j)) out.push_back({w.id_of(i), w.id_of(j)});
   }
   return out;
