@@ -58,6 +58,25 @@ double number(const json& j, const std::string& key, const std::string& source,
   return j[key].get<double>();
 }
 
+// A frame's array of one number per pair (each in [0, 1] if unit_interval).
+std::vector<double> per_pair_numbers(const json& j, std::size_t pairs, const std::string& source,
+                                     const std::string& where, const std::string& name,
+                                     bool unit_interval) {
+  if (!j.is_array() || j.size() != pairs) {
+    fail(source, where + "'" + name + "' must be an array of one number per pair");
+  }
+  std::vector<double> out;
+  for (const json& x : j) {
+    if (!x.is_number()) fail(source, where + "'" + name + "' must hold numbers");
+    const double v = x.get<double>();
+    if (unit_interval && !(v >= 0 && v <= 1)) {
+      fail(source, where + "'" + name + "' must hold numbers in [0, 1]");
+    }
+    out.push_back(v);
+  }
+  return out;
+}
+
 // Unordered key for a name pair, so that ["a", "b"] and ["b", "a"] compare equal.
 NamePair key(const NamePair& p) { return p.first < p.second ? p : NamePair{p.second, p.first}; }
 
@@ -67,6 +86,9 @@ RunResult run_scene(const Scene& scene, const SceneQuery& query, const std::stri
                     const std::function<void(std::size_t, std::size_t)>& progress,
                     std::size_t frame_step, bool memory) {
   if (frame_step < 1) throw Error("frame step must be at least 1");
+  if (query.continuous && frame_step != 1) {
+    throw Error("a continuous run sweeps from each frame to the next: frame step must be 1");
+  }
   RunResult out;
   out.method = std::string(method_name(query.method));
   out.scene = scene_name;
@@ -74,6 +96,7 @@ RunResult run_scene(const Scene& scene, const SceneQuery& query, const std::stri
   out.seed = query.seed;
   out.threads = query.threads;
   out.volume = query.volume;
+  out.continuous = query.continuous;
   out.build_ms = scene.build_ms();
   const std::size_t frames = scene.description().frames;
   const std::size_t runs = (frames + frame_step - 1) / frame_step;
@@ -97,6 +120,11 @@ RunResult run_scene(const Scene& scene, const SceneQuery& query, const std::stri
       if (query.random.count_truth) rec.feature_truth = r.feature_truth;
       rec.evaluations = r.evaluations;
       rec.undecided = names_of(scene, r.undecided);
+    }
+    if (query.continuous) {
+      rec.toi = std::vector<double>(r.toi.begin(), r.toi.end());
+      rec.contact_points.emplace();
+      for (const Vec3& p : r.contact_points) rec.contact_points->push_back({p.x(), p.y(), p.z()});
     }
     out.total_ms += r.time_ms;
     out.frames.push_back(std::move(rec));
@@ -145,6 +173,7 @@ std::string to_json(const RunResult& result) {
     root["leaf_scan"] = result.leaf_scan;
   }
   if (result.volume) root["volume"] = true;
+  if (result.continuous) root["continuous"] = true;
   root["build_ms"] = result.build_ms;
   root["total_ms"] = result.total_ms;
   json frames = json::array();
@@ -161,6 +190,8 @@ std::string to_json(const RunResult& result) {
       jf["undecided"] = pairs_json(f.undecided);
     }
     if (f.distances) jf["distances"] = *f.distances;
+    if (f.toi) jf["toi"] = *f.toi;
+    if (f.contact_points) jf["contact_points"] = *f.contact_points;
     frames.push_back(std::move(jf));
   }
   root["frames"] = std::move(frames);
@@ -192,6 +223,9 @@ RunResult parse_run_result(std::string_view text, const std::string& source) {
     out.leaf_scan = root["leaf_scan"].get<bool>();
   }
   if (root.contains("volume") && root["volume"].is_boolean()) out.volume = root["volume"].get<bool>();
+  if (root.contains("continuous") && root["continuous"].is_boolean()) {
+    out.continuous = root["continuous"].get<bool>();
+  }
   out.build_ms = number(root, "build_ms", source, "");
   out.total_ms = number(root, "total_ms", source, "");
   if (!root.contains("frames") || !root["frames"].is_array())
@@ -221,14 +255,24 @@ RunResult parse_run_result(std::string_view text, const std::string& source) {
     if (jf.contains("undecided"))
       f.undecided = parse_pairs(jf["undecided"], source, where + "'undecided'");
     if (jf.contains("distances")) {
-      const json& d = jf["distances"];
-      if (!d.is_array() || d.size() != f.pairs.size()) {
-        fail(source, where + "'distances' must be an array of one number per pair");
+      f.distances =
+          per_pair_numbers(jf["distances"], f.pairs.size(), source, where, "distances", false);
+    }
+    if (jf.contains("toi")) {
+      f.toi = per_pair_numbers(jf["toi"], f.pairs.size(), source, where, "toi", true);
+    }
+    if (jf.contains("contact_points")) {
+      const json& c = jf["contact_points"];
+      if (!c.is_array() || c.size() != f.pairs.size()) {
+        fail(source, where + "'contact_points' must be an array of one point per pair");
       }
-      f.distances.emplace();
-      for (const json& x : d) {
-        if (!x.is_number()) fail(source, where + "'distances' must hold numbers");
-        f.distances->push_back(x.get<double>());
+      f.contact_points.emplace();
+      for (const json& p : c) {
+        if (!p.is_array() || p.size() != 3 || !p[0].is_number() || !p[1].is_number() ||
+            !p[2].is_number()) {
+          fail(source, where + "'contact_points' must hold points [x, y, z]");
+        }
+        f.contact_points->push_back({p[0].get<double>(), p[1].get<double>(), p[2].get<double>()});
       }
     }
     out.frames.push_back(std::move(f));

@@ -14,10 +14,16 @@
 // minimum distance between the two surfaces of each pair (antcd::distance, 0 when they meet),
 // in the order of "pairs"; and with SceneQuery::volume the top level says "volume": true.
 // Both are absent otherwise, so older readers see the format they know.
+// Continuous runs (SceneQuery::continuous, `antcd run --continuous`) say "continuous": true at the
+// top, and each frame's "pairs" are the pairs that touched during the step from the previous
+// frame; per pair, in the order of "pairs", "toi" holds the first time of impact in [0, 1] over
+// that step (0: the previous frame, 1: this one) and "contact_points" the contact point there
+// ([x, y, z], world frame). Results without these fields (older files) still load.
 #pragma once
 
 #include <antcd/scene.hpp>
 
+#include <array>
 #include <functional>
 #include <optional>
 #include <string>
@@ -39,6 +45,10 @@ struct FrameRecord {
   std::vector<NamePair> undecided;           ///< random methods: pairs left without a witness
   /// With report_distance: the surface distance of each pair, in the order of `pairs`.
   std::optional<std::vector<double>> distances;
+  /// Continuous runs: per pair, the first time of impact over the step from the previous frame.
+  std::optional<std::vector<double>> toi;
+  /// Continuous runs: per pair, the contact point at that time (world frame).
+  std::optional<std::vector<std::array<double, 3>>> contact_points;
 };
 
 struct RunResult {
@@ -51,6 +61,7 @@ struct RunResult {
   bool memory = false;  ///< random methods: colonies carried from frame to frame (SceneMemory)
   bool leaf_scan = false;  ///< random methods: AntParams::scan_covered_spaces
   bool volume = false;  ///< SceneQuery::volume was set
+  bool continuous = false;  ///< SceneQuery::continuous was set
   double build_ms = 0;
   double total_ms = 0;  ///< sum of the frames' time_ms
   std::vector<FrameRecord> frames;
@@ -60,7 +71,7 @@ struct RunResult {
 /// default); `progress(done, total)` is called after each frame run when set. `build_ms` is taken
 /// from the scene (loading and building). Random methods carry their colonies from each frame run
 /// to the next (one SceneMemory for the whole run) unless `memory` is false. Throws antcd::Error if
-/// frame_step is 0.
+/// frame_step is 0, or not 1 for a continuous query (each frame sweeps from the one before).
 RunResult run_scene(const Scene& scene, const SceneQuery& query, const std::string& scene_name,
                     const std::function<void(std::size_t, std::size_t)>& progress = {},
                     std::size_t frame_step = 1, bool memory = true);

@@ -38,6 +38,7 @@ struct RunOptions {
   bool colony_only = false;
   bool report_distance = false;
   bool volume = false;
+  bool continuous = false;
   std::string out;
   std::string model;
 };
@@ -63,6 +64,14 @@ int run_run(const RunOptions& o) {
   if (o.volume && o.method != "exact") {
     throw UsageError("--volume is for --method exact, not " + o.method);
   }
+  if (o.continuous && o.method != "exact") {
+    throw UsageError("--continuous is for --method exact, not " + o.method);
+  }
+  if (o.continuous && (o.volume || o.report_distance)) {
+    throw UsageError(std::string("--continuous cannot be combined with ") +
+                     (o.volume ? "--volume (sweeps test surfaces)"
+                               : "--report-distance (its distances are at the frame poses)"));
+  }
   SceneQuery query;
   if (!learned) query.method = parse_method(o.method);
   if (o.colony_only && (learned || (query.method != Method::Aco && query.method != Method::Maco))) {
@@ -86,6 +95,7 @@ int run_run(const RunOptions& o) {
   query.random.search.ant.scan_covered_spaces = !o.colony_only;
   query.frame_seconds = o.frame_seconds;
   query.volume = o.volume;
+  query.continuous = o.continuous;
   const Scene scene = [&] {
     const QuietStderr quiet;  // the scene's mesh loads
     return Scene(load_scene(o.scene));
@@ -130,6 +140,16 @@ int run_run(const RunOptions& o) {
       "frame\n",
       colliding, static_cast<double>(colliding) / static_cast<double>(result.frames.size()),
       static_cast<double>(candidates) / static_cast<double>(result.frames.size()));
+  if (o.continuous) {
+    double earliest = 1;
+    for (const auto& f : result.frames) {
+      for (const double t : *f.toi) earliest = std::min(earliest, t);
+    }
+    std::printf(
+        "continuous: pairs touching between frames, earliest time of impact %.6g of a step "
+        "(--out writes each pair's toi and contact point)\n",
+        colliding == 0 ? 1.0 : earliest);
+  }
   if (o.report_distance) {
     double largest = 0;
     for (const auto& f : result.frames) {
@@ -250,6 +270,10 @@ void add_scene_commands(CLI::App& app, int& code) {
                 "order of \"pairs\")");
   cmd->add_flag("--volume", run->volume,
                 "Exact method: closed objects also collide when one lies wholly inside another");
+  cmd->add_flag("--continuous", run->continuous,
+                "Exact method: report the pairs that touch anywhere between each frame and the "
+                "next, with the first time of impact and contact point (\"toi\", "
+                "\"contact_points\")");
   cmd->add_option("--model", run->model,
                   "box-dnn / box-lstm: the model file written by antcd learn train")
       ->type_name("MODEL.pt");

@@ -99,6 +99,8 @@ json pack_result(const shared::RunResult& r, const std::filesystem::path& path,
   json pairs = json::array();
   json times = json::array();
   json candidates = json::array();
+  json tois = json::array();     // continuous results: per frame, each pair's first time of impact
+  json touches = json::array();  // and contact point there, in the order of the input pairs
   std::set<std::size_t> seen;
   for (const shared::FrameRecord& f : r.frames) {
     if (f.frame >= scene.frames) {
@@ -128,10 +130,28 @@ json pack_result(const shared::RunResult& r, const std::filesystem::path& path,
     pairs.push_back(std::move(fp));
     times.push_back(f.time_ms);
     candidates.push_back(f.candidates.size());
+    if (r.continuous) {
+      if (!f.toi || !f.contact_points) {
+        throw UsageError(src + ": frame " + std::to_string(f.frame) +
+                         ": a continuous result without 'toi' and 'contact_points'");
+      }
+      tois.push_back(*f.toi);
+      touches.push_back(*f.contact_points);
+    }
   }
-  return json{{"label", path.filename().string()}, {"method", r.method},     {"frames", frames},
-              {"pairs", pairs},                    {"time_ms", times},       {"candidates", candidates},
-              {"delta", r.delta},                  {"seed", r.seed}};
+  json out{{"label", path.filename().string()},
+           {"method", r.method},
+           {"frames", frames},
+           {"pairs", pairs},
+           {"time_ms", times},
+           {"candidates", candidates},
+           {"delta", r.delta},
+           {"seed", r.seed}};
+  if (r.continuous) {
+    out["toi"] = std::move(tois);
+    out["touch_points"] = std::move(touches);
+  }
+  return out;
 }
 
 // Exact contact points (world frame) of every pair some result reports, on every frame a result

@@ -21,6 +21,12 @@
 // run their narrow phases at once; with threads > 1 the work is spread over oneTBB workers and the
 // answer is the same as with one thread (each pair's random stream depends only on the seed, the
 // frame and the two object indices).
+// Continuous queries (SceneQuery::continuous, exact method only): frame f reports the pairs whose
+// surfaces come within delta anywhere during the step from frame f - 1 to frame f (frame 0: at
+// frame 0), each with its first time of impact in [0, 1] over the step, the objects moving as in
+// ccd.hpp (World::sweep_poses, sweep.hpp: conservative, never a missed contact, toi <= the true
+// first contact). The candidates are the pairs whose swept boxes come within delta. Such frames
+// hold the World's mutex for their whole run, so concurrent continuous frames take turns.
 #pragma once
 
 #include <antcd/bvh.hpp>
@@ -97,6 +103,9 @@ struct SceneQuery {
   /// Exact method: CollisionRequest::volume, so two closed objects also collide when one lies
   /// wholly inside the other (open ones keep surface semantics). Refused with other methods.
   bool volume = false;
+  /// Exact method: continuous detection over the step from the previous frame (see above);
+  /// `delta` is the sweep's min_separation. Refused with other methods and with `volume`.
+  bool continuous = false;
 };
 
 /// The seed of object pair (i, j)'s random query in `frame` of a run seeded with `seed`: what
@@ -143,6 +152,11 @@ struct FrameResult {
   /// Random methods: fitness evaluations spent over the frame.
   std::uint64_t evaluations = 0;
   double time_ms = 0;  ///< pose update + broad phase + narrow phase
+  /// Continuous queries: per pair of `pairs`, its first time of impact in [0, 1] over the step
+  /// from the previous frame (0 = at frame - 1, 1 = at frame; frame 0: 0), and the contact point
+  /// there (world frame, SweepResult::contact). Empty otherwise.
+  std::vector<Scalar> toi;
+  std::vector<Vec3> contact_points;
 };
 
 class ANTCD_API Scene {

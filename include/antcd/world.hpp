@@ -35,6 +35,7 @@
 #include <antcd/collide.hpp>
 #include <antcd/error.hpp>
 #include <antcd/export.hpp>
+#include <antcd/sweep.hpp>
 
 #include <cstdint>
 #include <limits>
@@ -117,6 +118,29 @@ ANTCD_API std::vector<RayHit> raycast_all(const Model& model, const Transform& p
 /// The nearest hit of raycast_all (ties: smallest triangle index), or nothing.
 ANTCD_API std::optional<RayHit> raycast(const Model& model, const Transform& pose, const Ray& ray);
 
+// ---- continuous motion (src/world/continuous.cpp) ----
+//
+// Motion: between the current poses (t = 0) and new ones (t = 1) each object moves as in
+// antcd/ccd.hpp (translation linear, rotation at constant angular velocity about its model
+// origin); objects not given a new pose stay put. A pair's time of impact and its guarantees are
+// antcd::sweep's (sweep.hpp): conservative (never a missed contact, toi <= the true first time the
+// surfaces come within request.min_separation), proven or tolerance-decided as flagged.
+// Broad phase: each object's swept box is the box of its world boxes at both poses, grown by
+// r theta^2 / 8 (r: the model's radius about its origin, theta: the rotation angle; the most a
+// point on a slerped arc strays from the straight line between its end points) and a rounding
+// allowance, so it holds the object at every t; only pairs whose swept boxes come within
+// min_separation are swept. Pairs of two unmoved objects count too (toi 0 when they touch).
+// Cost: O(n log n) to fit the swept boxes of all n objects, then one sweep per candidate pair
+// (spread over oneTBB workers like the other queries).
+
+/// A pair that comes within min_separation during the motion, and antcd::sweep's answer for it.
+struct PairToi {
+  ObjectId a;  ///< a < b
+  ObjectId b;
+  /// hit is true; toi, contact (triangle_a indexes a's mesh; world frame at toi), flags.
+  SweepResult sweep;
+};
+
 class ANTCD_API World {
  public:
   explicit World(const WorldOptions& options = {});
@@ -178,6 +202,24 @@ class ANTCD_API World {
   /// Every hit, sorted by (distance, object, triangle).
   [[nodiscard]] std::vector<RayHit> raycast_all(const Ray& ray,
                                                 const QueryFilter& filter = {}) const;
+
+  // ---- continuous motion (see the block above the class; src/world/continuous.cpp) ----
+
+  /// Broad phase of a continuous motion: the admitted pairs whose swept boxes come within
+  /// `min_separation` >= 0, sorted. ids[k] moves to new_poses[k]; each id at most once.
+  [[nodiscard]] std::vector<ObjectPair> swept_candidate_pairs(std::span<const ObjectId> ids,
+                                                              std::span<const Transform> new_poses,
+                                                              Scalar min_separation = 0) const;
+  /// Every admitted pair whose surfaces come within request.min_separation while ids[k] moves
+  /// from its pose to new_poses[k] (the others stay), with its first time of impact, sorted by
+  /// (a, b). The World is not changed.
+  [[nodiscard]] std::vector<PairToi> sweep_poses(std::span<const ObjectId> ids,
+                                                 std::span<const Transform> new_poses,
+                                                 const SweepRequest& request = {}) const;
+  /// sweep_poses(), then set_poses(ids, new_poses): a mutation. On error nothing is changed.
+  std::vector<PairToi> set_poses_continuous(std::span<const ObjectId> ids,
+                                            std::span<const Transform> new_poses,
+                                            const SweepRequest& request = {});
 
   /// The implementation (opaque; defined inside the library).
   struct Impl;

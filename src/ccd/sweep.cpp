@@ -11,6 +11,7 @@
 #include <limits>
 #include <string>
 
+#include "ccd/motion.hpp"
 #include "util/pose_check.hpp"
 
 namespace antcd {
@@ -28,17 +29,6 @@ void check_pose(const Transform& p, const char* name) {
   if (const char* problem = detail::pose_problem(p, err)) {
     throw ArgumentError(std::string("sweep: ") + name + " " + problem);
   }
-}
-
-/// Angle of the rotation from r0 to r1 along the shorter arc (the slerp's total angle), rounded up.
-Scalar rotation_angle(const Mat3& r0, const Mat3& r1) {
-  const Scalar angle = Quat(r0).angularDistance(Quat(r1));
-  return angle * (1 + 1e-12) + 1e-15;
-}
-
-/// Radius about the model origin holding every vertex of the model's tree (root sphere).
-Scalar origin_radius(const Model& m) {
-  return m.root().center.norm() + static_cast<Scalar>(m.root().radius);
 }
 
 /// The larger of the two lower bounds distance() proves: its lower_bound, and its distance less
@@ -83,13 +73,13 @@ SweepResult sweep(const Model& a, const Transform& pose_a0, const Transform& pos
   }
   if (request.max_iterations == 0) throw ArgumentError("sweep: max_iterations must be >= 1");
 
-  const Scalar ra = origin_radius(a);
-  const Scalar rb = origin_radius(b);
+  const Scalar ra = ccd::origin_radius(a);
+  const Scalar rb = ccd::origin_radius(b);
   const Vec3 relative_move =
       (pose_a1.translation - pose_a0.translation) - (pose_b1.translation - pose_b0.translation);
   const Scalar mu =
-      (relative_move.norm() + rotation_angle(pose_a0.rotation, pose_a1.rotation) * ra +
-       rotation_angle(pose_b0.rotation, pose_b1.rotation) * rb) *
+      (relative_move.norm() + ccd::rotation_angle(pose_a0.rotation, pose_a1.rotation) * ra +
+       ccd::rotation_angle(pose_b0.rotation, pose_b1.rotation) * rb) *
       (1 + 1e-12);
   const Scalar scale = ra + rb + ms + pose_a0.translation.norm() + pose_a1.translation.norm() +
                        pose_b0.translation.norm() + pose_b1.translation.norm();

@@ -70,6 +70,29 @@ struct Scene::Broad {
     for (const ObjectPair& p : pairs) out.emplace_back(p.a.slot, p.b.slot);
     return out;
   }
+
+  /// Continuous: the World to the poses of frame - 1 (frame 0: frame 0), then the swept broad
+  /// phase and a sweep per candidate pair to the poses of `frame`, into `result`.
+  void continuous(const std::vector<SceneObject>& objects, std::size_t frame, Scalar delta,
+                  FrameResult& result) {
+    const std::lock_guard<std::mutex> lock(mutex);
+    moving_poses.clear();
+    const std::size_t from = frame == 0 ? 0 : frame - 1;
+    for (const std::uint32_t i : moving) moving_poses.push_back(objects[i].pose(from));
+    world.set_poses(moving_ids, moving_poses);
+    moving_poses.clear();
+    for (const std::uint32_t i : moving) moving_poses.push_back(objects[i].pose(frame));
+    for (const ObjectPair& p : world.swept_candidate_pairs(moving_ids, moving_poses, delta)) {
+      result.candidates.emplace_back(p.a.slot, p.b.slot);
+    }
+    SweepRequest request;
+    request.min_separation = delta;
+    for (const PairToi& p : world.set_poses_continuous(moving_ids, moving_poses, request)) {
+      result.pairs.emplace_back(p.a.slot, p.b.slot);
+      result.toi.push_back(p.sweep.toi);
+      result.contact_points.push_back(p.sweep.contact.point);
+    }
+  }
 };
 
 namespace {
@@ -148,6 +171,13 @@ FrameResult Scene::run_frame(std::size_t frame, const SceneQuery& query,
   if (query.volume && query.method != Method::Exact) {
     throw ArgumentError("volume queries are for the exact method, not " +
                         std::string(method_name(query.method)));
+  }
+  if (query.continuous && query.method != Method::Exact) {
+    throw ArgumentError("continuous queries are for the exact method, not " +
+                        std::string(method_name(query.method)));
+  }
+  if (query.continuous && query.volume) {
+    throw ArgumentError("continuous queries test surfaces: volume must be off");
   }
   if (query.method != Method::Exact && query.method != Method::SphereObb) {
     DetectRequest request = query.random;
@@ -244,6 +274,10 @@ FrameResult Scene::run_frame(std::size_t frame, const SceneQuery& query,
   // The whole frame runs in one task arena of query.threads slots, kept by the calling thread
   // from frame to frame, so that threads = 1 keeps it on the calling thread.
   parallel::in_thread_arena(query.threads, [&] {
+    if (query.continuous) {
+      broad_->continuous(description_.objects, frame, query.delta, result);
+      return;
+    }
     result.candidates = broad_->candidates(description_.objects, frame, query.delta);
     if (query.method == Method::Exact) {
       exact_frame();

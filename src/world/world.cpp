@@ -94,6 +94,7 @@ ObjectId World::add(std::shared_ptr<const Model> model, const Transform& pose,
       options.name.empty() ? std::string("the new object") : "object '" + options.name + "'";
   if (!model) throw ArgumentError("World::add: model is null (" + label + ")");
   check_pose(pose, "World::add", "pose of " + label);
+  const Transform new_pose = pose;  // `pose` may live in this World (add(m, world.pose(other)))
   Impl& w = *impl_;
   std::uint32_t slot;
   if (!w.free_slots.empty()) {
@@ -111,7 +112,7 @@ ObjectId World::add(std::shared_ptr<const Model> model, const Transform& pose,
   }
   Impl::Object& o = w.objects[slot];
   o.model = std::move(model);
-  o.pose = pose;
+  o.pose = new_pose;
   o.options = std::move(options);
   o.ignored.clear();
   w.handles[slot] |= 1;

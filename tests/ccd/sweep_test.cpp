@@ -19,36 +19,18 @@
 #include <thread>
 #include <vector>
 
+#include "ccd/continuous_support.hpp"
 #include "support/test_support.hpp"
 
 namespace antcd {
 namespace {
-
-/// First of the times k / steps (k = 0 .. steps) at which the exact discrete query finds the
-/// surfaces within `delta`, or nullopt.
-std::optional<Scalar> first_discrete_contact(const Model& a, const Transform& a0,
-                                             const Transform& a1, const Model& b,
-                                             const Transform& b0, const Transform& b1, Scalar delta,
-                                             int steps = 1000) {
-  CollisionRequest req;
-  req.delta = delta;
-  CollisionResult res;
-  for (int k = 0; k <= steps; ++k) {
-    const Scalar t = static_cast<Scalar>(k) / steps;
-    if (collide(a, ccd::interpolate_pose(a0, a1, t), b, ccd::interpolate_pose(b0, b1, t), req,
-                res)) {
-      return t;
-    }
-  }
-  return std::nullopt;
-}
 
 /// The sweep's promises on one motion, checked against dense sub-stepping and the exact distance.
 void check_motion(const Model& a, const Transform& a0, const Transform& a1, const Model& b,
                   const Transform& b0, const Transform& b1, const SweepRequest& req,
                   const std::string& what, int* hits = nullptr) {
   const SweepResult r = sweep(a, a0, a1, b, b0, b1, req);
-  const auto dense = first_discrete_contact(a, a0, a1, b, b0, b1, req.min_separation);
+  const auto dense = test::first_substep_contact(a, a0, a1, b, b0, b1, req.min_separation);
   if (dense) {
     ASSERT_TRUE(r.hit) << what << ": dense stepping touches at " << *dense;
     EXPECT_LE(r.toi, *dense) << what;
@@ -191,21 +173,10 @@ TEST(Sweep, FastSheetSceneContinuousFindsEveryContactDiscreteMisses) {
   // up or down per frame with a slight drift and tilt, for 20 frames. Per frame step and pair:
   // truth = 200-step sub-stepping with exact collide; discrete = collide at the frame poses;
   // continuous = sweep between the two frames.
-  const Model sheet = box_model({0.5, 0.5, 0.005}, "sheet");
-  std::mt19937_64 rng(10);
-  std::uniform_real_distribution<Scalar> unit(-1, 1);
+  const Model sheet = box_model(test::fast_sheet_half(), "sheet");
   constexpr int kSheets = 12;
   constexpr int kFrames = 20;
-  std::vector<std::vector<Transform>> poses(kSheets);
-  for (auto& track : poses) {
-    Vec3 at(0.3 * unit(rng), 0.3 * unit(rng), unit(rng));
-    const Vec3 velocity(0.01 * unit(rng), 0.01 * unit(rng), unit(rng) < 0 ? -0.1 : 0.1);
-    const Vec3 axis(unit(rng), unit(rng), unit(rng));
-    for (int f = 0; f <= kFrames; ++f) {
-      track.push_back(Transform::from_axis_angle(axis, 0.05 * std::sin(0.3 * f), at));
-      at += velocity;
-    }
-  }
+  const auto poses = test::fast_sheet_tracks(kSheets, kFrames + 1);
   int truth = 0, discrete = 0, continuous = 0, false_alarms = 0;
   for (int f = 0; f < kFrames; ++f) {
     for (int i = 0; i < kSheets; ++i) {
@@ -214,7 +185,7 @@ TEST(Sweep, FastSheetSceneContinuousFindsEveryContactDiscreteMisses) {
         const auto& b = poses[static_cast<std::size_t>(j)];
         const auto fi = static_cast<std::size_t>(f);
         const auto dense =
-            first_discrete_contact(sheet, a[fi], a[fi + 1], sheet, b[fi], b[fi + 1], 0, 200);
+            test::first_substep_contact(sheet, a[fi], a[fi + 1], sheet, b[fi], b[fi + 1], 0, 200);
         const bool frame_hit = collide(sheet, a[fi + 1], sheet, b[fi + 1]).colliding;
         const SweepResult r = sweep(sheet, a[fi], a[fi + 1], sheet, b[fi], b[fi + 1]);
         truth += dense ? 1 : 0;

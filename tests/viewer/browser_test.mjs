@@ -164,6 +164,24 @@ try {
   const exited = new Promise((resolve) => server.on('exit', (code, signal) => resolve({ code, signal })));
   server.kill('SIGINT');
   assert.deepEqual(await exited, { code: 0, signal: null }, '--serve stops cleanly on SIGINT');
+
+  // A continuous result (antcd run --continuous): the frame's pairs with their first time of
+  // impact since the previous frame, in data-first-touch and in the panel.
+  antcd('run', 'scene/scene.json', '--continuous', '--out', 'continuous.json');
+  antcd('view', 'scene/scene.json', '--result', 'continuous.json', '--out', 'continuous.html');
+  const cont = JSON.parse(readFileSync(join(work, 'continuous.json'), 'utf8'));
+  const touched = cont.frames.reduce((a, f) => (f.pairs.length > a.pairs.length ? f : a));
+  assert.ok(touched.pairs.length > 0, 'the continuous run reports a pair');
+  const page3 = await watchedPage(browser, problems);
+  await page3.goto(`${pathToFileURL(join(work, 'continuous.html')).href}#frame=${touched.frame}`);
+  await page3.waitForSelector('#antcd-viewer[data-ready="true"]', { timeout: 30000 });
+  const d3 = await page3.locator('#antcd-viewer').evaluate((e) => ({ ...e.dataset }));
+  const wantTouches = touched.pairs
+    .map(([a, b], n) => [...sortPairs([[a, b]])[0], touched.toi[n]])
+    .sort((p, q) => p[2] - q[2] || order.get(p[0]) - order.get(q[0]) || order.get(p[1]) - order.get(q[1]));
+  assert.deepEqual(JSON.parse(d3.firstTouch), wantTouches, `data-first-touch, frame ${touched.frame}`);
+  assert.match(await page3.locator('#antcd-viewer').innerText(), /first touch: \S+ – \S+ (at t = [0-9.]+ of the step from frame \d+|at frame 0)/,
+               'the panel lists the first touches');
 } finally {
   await browser.close();
 }

@@ -51,6 +51,13 @@ class Result {
   timeAt(frame) { const k = this.row.get(frame); return k === undefined ? null : this.time_ms[k]; }
   candidatesAt(frame) { const k = this.row.get(frame); return k === undefined ? null : this.candidates[k]; }
   has(frame, i, j) { const k = this.row.get(frame); return k !== undefined && this.keys[k].has(pairKey(i, j)); }
+  // Continuous results: the pairs of a frame with their first time of impact over the step from
+  // the previous frame (0: previous frame, 1: this one) and the contact point there.
+  touchesAt(frame) {
+    const k = this.row.get(frame);
+    if (k === undefined || !this.toi) return [];
+    return this.pairs[k].map(([i, j], n) => ({ i, j, toi: this.toi[k][n], point: this.touch_points[k][n] }));
+  }
 }
 
 // Pair classes of a frame: 'collide' (reported, and with two results reported by both), 'false'
@@ -76,6 +83,21 @@ export class ViewModel {
 
   contactsAt(frame) {
     return this.contacts.get(frame) ?? new Float32Array(0);
+  }
+
+  // First touches of the frame (continuous results; with two, the first result's for a pair both
+  // report), sorted by (toi, i, j).
+  firstTouches(frame) {
+    const seen = new Set();
+    const out = [];
+    for (const r of this.results) {
+      for (const t of r.touchesAt(frame)) {
+        if (seen.has(pairKey(t.i, t.j))) continue;
+        seen.add(pairKey(t.i, t.j));
+        out.push(t);
+      }
+    }
+    return out.sort((a, b) => a.toi - b.toi || a.i - b.i || a.j - b.j);
   }
 
   compared(frame) {

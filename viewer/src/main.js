@@ -5,7 +5,9 @@
 //   in the current frame, [[nameA, nameB], ...], names in scene order, pairs sorted (every pair any
 //   loaded result reports there); data-false-alarms / data-misses the same for the pairs only the
 //   second / only the first of two results reports; data-selected the clicked object's name;
-//   data-contacts the number of exact contact points drawn; data-ready "true" once the first
+//   data-contacts the number of exact contact points drawn; data-first-touch (continuous results)
+//   JSON list [[nameA, nameB, toi], ...] of the frame's pairs with their first time of impact over
+//   the step from the previous frame, sorted by (toi, pair); data-ready "true" once the first
 //   frame is drawn, or data-error with the message.
 // The URL fragment #frame=K opens frame K and follows the current frame.
 import { loadView } from './data.js';
@@ -39,6 +41,7 @@ async function main() {
   let playing = false;
   let lastStep = 0;
   let pairs = [];
+  let touches = [];
 
   const names = (list) => JSON.stringify(list.map((p) => [model.objects[p.i].name, model.objects[p.j].name]));
   const setFrame = (k) => {
@@ -46,9 +49,11 @@ async function main() {
     if (next === frame) return;
     frame = next;
     pairs = model.classify(frame);
-    stage.show(frame, pairs, model.contactsAt(frame));
+    touches = model.firstTouches(frame);
+    stage.show(frame, pairs, model.contactsAt(frame), touches);
     panel.showFrame(frame, pairs, playing);
     panel.showObject(stage.selected, frame, pairs);
+    root.dataset.firstTouch = JSON.stringify(touches.map((t) => [model.objects[t.i].name, model.objects[t.j].name, t.toi]));
     root.dataset.frame = String(frame);
     root.dataset.colliding = names(pairs);
     root.dataset.falseAlarms = names(pairs.filter((p) => p.kind === 'false'));
@@ -93,7 +98,7 @@ async function main() {
     stage.selected = stage.pick(e.clientX, e.clientY);
     if (stage.selected >= 0) root.dataset.selected = model.objects[stage.selected].name;
     else delete root.dataset.selected;
-    stage.show(frame, pairs, model.contactsAt(frame));
+    stage.show(frame, pairs, model.contactsAt(frame), touches);
     panel.showObject(stage.selected, frame, pairs);
   });
 

@@ -1,6 +1,6 @@
 // The page's controls and read-outs (plain DOM): player, legend and counts, per-frame time plot,
 // the clicked object's details.
-import { KIND_COLOURS } from './stage.js';
+import { KIND_COLOURS, TOUCH_COLOUR } from './stage.js';
 import { frameRanges } from './data.js';
 
 const CSS = `
@@ -67,7 +67,10 @@ export class Panel {
     const item = (kind, text) => [el('span', { class: 'swatch', style: `background:${hex(KIND_COLOURS[kind])}` }), text];
     return el('div', { class: 'legend' },
       ...item('collide', two ? 'colliding (both)' : 'colliding'),
-      ...(two ? [...item('false', 'false alarm'), ...item('miss', 'miss')] : []));
+      ...(two ? [...item('false', 'false alarm'), ...item('miss', 'miss')] : []),
+      ...(this.model.results.some((r) => r.toi)
+        ? [el('span', { class: 'swatch', style: `background:${hex(TOUCH_COLOUR)}` }), 'first touch since the previous frame']
+        : []));
   }
 
   showFrame(frame, pairs, playing) {
@@ -88,6 +91,13 @@ export class Panel {
     } else if (m.results.length === 1) {
       lines.push(m.results[0].covers(frame) ? `this frame: ${pairs.length} colliding pairs` : 'this frame: not in the result');
     }
+    const touches = m.firstTouches(frame);
+    const shown = 8;
+    for (const t of touches.slice(0, shown)) {
+      const when = frame === 0 ? 'at frame 0' : `at t = ${t.toi.toFixed(4)} of the step from frame ${frame - 1}`;
+      lines.push(`first touch: ${m.objects[t.i].name} – ${m.objects[t.j].name} ${when}`);
+    }
+    if (touches.length > shown) lines.push(`… ${touches.length - shown} more first touches`);
     this.counts.replaceChildren(...lines.map((t) => el('div', {}, t)));
     this.#drawPlot(frame);
   }

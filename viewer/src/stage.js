@@ -9,6 +9,8 @@ export const KIND_COLOURS = {
   false: 0xff9800, // false alarm: the second result only
   miss: 0x1e6bff, // miss: the first result only
 };
+// First-touch markers of continuous results.
+export const TOUCH_COLOUR = 0xd81b9c;
 // An object in several pairs shows the most telling class: a miss, else a true collision.
 const KIND_PRIORITY = { miss: 3, collide: 2, false: 1 };
 
@@ -65,6 +67,12 @@ export class Stage {
       new THREE.PointsMaterial({ color: 0x111111, size: 5, sizeAttenuation: false, depthTest: false }));
     this.contacts.renderOrder = 11;
     this.world.add(this.contacts);
+    // Continuous results: where each pair first touched between the previous frame and this one.
+    this.touches = new THREE.Points(
+      new THREE.BufferGeometry(),
+      new THREE.PointsMaterial({ color: TOUCH_COLOUR, size: 11, sizeAttenuation: false, depthTest: false }));
+    this.touches.renderOrder = 12;
+    this.world.add(this.touches);
 
     this.camera = new THREE.PerspectiveCamera(45, 1, 0.01, 1000);
     this.controls = new OrbitControls(this.camera, this.renderer.domElement);
@@ -112,8 +120,9 @@ export class Stage {
     this.world.updateMatrixWorld(true);
   }
 
-  // Poses the objects, highlights `pairs` ({i, j, kind}) and draws `contacts` (flat xyz).
-  show(frame, pairs, contacts) {
+  // Poses the objects, highlights `pairs` ({i, j, kind}), draws `contacts` (flat xyz) and the
+  // first-touch points of `touches` ({point: [x, y, z]}).
+  show(frame, pairs, contacts, touches = []) {
     this.setPoses(frame);
     const kindOf = new Map();
     for (const p of pairs) {
@@ -152,6 +161,8 @@ export class Stage {
     lines.computeBoundingSphere();
     this.contacts.geometry.setAttribute('position', new THREE.BufferAttribute(contacts, 3));
     this.contacts.geometry.computeBoundingSphere();
+    this.touches.geometry.setAttribute('position', new THREE.Float32BufferAttribute(touches.flatMap((t) => t.point), 3));
+    this.touches.geometry.computeBoundingSphere();
   }
 
   // The object under a canvas pixel, or -1.

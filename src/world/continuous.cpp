@@ -1,0 +1,169 @@
+// The World's continuous motion: swept boxes in a throwaway AABB tree (broad phase), then
+// antcd::sweep on each candidate pair (spread over oneTBB workers). See the block in world.hpp.
+#include <antcd/ccd.hpp>
+#include <antcd/error.hpp>
+#include <antcd/sweep.hpp>
+#include <antcd/world.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "ccd/motion.hpp"
+#include "util/parallel.hpp"
+#include "util/pose_check.hpp"
+#include "world/world_impl.hpp"
+
+namespace antcd {
+
+namespace {
+
+using SlotPair = std::pair<std::uint32_t, std::uint32_t>;
+
+// Below this many candidate pairs (or in an arena of one thread) the sweeps stay on the calling
+// thread.
+constexpr std::size_t kParallelSweeps = 8;
+
+/// Checks the arguments of a continuous motion (every one, before anything is computed) and
+/// returns, per slot, the index + 1 of the object's new pose in `poses` (0: it stays put).
+std::vector<std::size_t> motion_index(const World::Impl& w, std::span<const ObjectId> ids,
+                                      std::span<const Transform> poses, const char* function) {
+  if (ids.size() != poses.size()) {
+    throw ArgumentError(std::string(function) + ": " + std::to_string(ids.size()) + " ids but " +
+                        std::to_string(poses.size()) + " poses");
+  }
+  std::vector<std::size_t> index(w.objects.size(), 0);
+  for (std::size_t k = 0; k < ids.size(); ++k) {
+    const std::string arg = "ids[" + std::to_string(k) + "]";
+    w.get(ids[k], function, arg.c_str());
+    if (index[ids[k].slot] != 0) {
+      throw ArgumentError(std::string(function) + ": " + arg + " repeats ids[" +
+                          std::to_string(index[ids[k].slot] - 1) +
+                          "] (a continuous motion gives each object one end pose)");
+    }
+    index[ids[k].slot] = k + 1;
+    Scalar err = 0;
+    if (const char* problem = detail::pose_problem(poses[k], err)) {
+      throw ArgumentError(std::string(function) + ": new_poses[" + std::to_string(k) + "] " +
+                          problem);
+    }
+  }
+  return index;
+}
+
+/// A box holding the object at every t of its motion from `from` to `to` (see world.hpp): the
+/// box of its boxes at both poses (each holds its end point of every model point's path), grown
+/// by the most a slerped point strays from the chord's point at the same t (r theta^2 / 8: the
+/// path minus the chord vanishes at both ends and has second derivative at most r theta^2) and a
+/// rounding allowance for the interpolated poses.
+Aabb swept_box(const Model& model, const Transform& from, const Aabb& box_from,
+               const Transform& to) {
+  Scalar tolerance = 0;
+  const Aabb box_to = posed_box(model, to, tolerance);
+  Aabb box;
+  box.min = box_from.min.cwiseMin(box_to.min);
+  box.max = box_from.max.cwiseMax(box_to.max);
+  const Scalar r = ccd::origin_radius(model);
+  const Scalar theta = ccd::rotation_angle(from.rotation, to.rotation);
+  const Scalar rounding = 1e-9 * (r + from.translation.norm() + to.translation.norm());
+  return grown(box, r * theta * theta / 8 * (1 + 1e-12) + rounding);
+}
+
+/// The admitted pairs (i < j, slots, sorted) whose swept boxes come within min_separation.
+std::vector<SlotPair> swept_pairs(const World::Impl& w, const std::vector<std::size_t>& index,
+                                  std::span<const Transform> poses, Scalar min_separation) {
+  detail::AabbTree tree;
+  for (std::uint32_t s = 0; s < w.objects.size(); ++s) {
+    if (!w.alive(s)) continue;
+    const World::Impl::Object& o = w.objects[s];
+    const Aabb& now = w.bounds[s].box;
+    tree.insert(s, index[s] == 0 ? now : swept_box(*o.model, o.pose, now, poses[index[s] - 1]));
+  }
+  tree.rebuild();
+  std::vector<SlotPair> out;
+  tree.pairs(tree.all_pairs(), min_separation * (1 + 1e-12), [&](std::uint32_t a, std::uint32_t b) {
+    const std::uint32_t i = std::min(a, b);
+    const std::uint32_t j = std::max(a, b);
+    if (w.admits(i, j)) out.emplace_back(i, j);
+  });
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+void check_request(const SweepRequest& request, const char* function) {
+  if (!(request.min_separation >= 0) || !std::isfinite(request.min_separation)) {
+    throw ArgumentError(std::string(function) +
+                        ": request.min_separation must be finite and >= 0, got " +
+                        std::to_string(request.min_separation));
+  }
+  if (!(request.time_tolerance > 0) || !std::isfinite(request.time_tolerance)) {
+    throw ArgumentError(std::string(function) + ": request.time_tolerance must be finite and > 0");
+  }
+  if (request.max_iterations == 0) {
+    throw ArgumentError(std::string(function) + ": request.max_iterations must be >= 1");
+  }
+}
+
+}  // namespace
+
+std::vector<ObjectPair> World::swept_candidate_pairs(std::span<const ObjectId> ids,
+                                                     std::span<const Transform> new_poses,
+                                                     Scalar min_separation) const {
+  const char* function = "World::swept_candidate_pairs";
+  if (!(min_separation >= 0) || !std::isfinite(min_separation)) {
+    throw ArgumentError(std::string(function) + ": min_separation must be finite and >= 0, got " +
+                        std::to_string(min_separation));
+  }
+  const Impl& w = *impl_;
+  const std::vector<std::size_t> index = motion_index(w, ids, new_poses, function);
+  std::vector<ObjectPair> out;
+  for (const auto& [i, j] : swept_pairs(w, index, new_poses, min_separation)) {
+    out.push_back({w.id_of(i), w.id_of(j)});
+  }
+  return out;
+}
+
+std::vector<PairToi> World::sweep_poses(std::span<const ObjectId> ids,
+                                        std::span<const Transform> new_poses,
+                                        const SweepRequest& request) const {
+  const char* function = "World::sweep_poses";
+  check_request(request, function);
+  const Impl& w = *impl_;
+  const std::vector<std::size_t> index = motion_index(w, ids, new_poses, function);
+  const std::vector<SlotPair> pairs = swept_pairs(w, index, new_poses, request.min_separation);
+  const auto end_pose = [&](std::uint32_t s) -> const Transform& {
+    return index[s] == 0 ? w.objects[s].pose : new_poses[index[s] - 1];
+  };
+  std::vector<SweepResult> results(pairs.size());
+  const auto run = [&](std::size_t first, std::size_t last) {
+    for (std::size_t k = first; k != last; ++k) {
+      const auto [i, j] = pairs[k];
+      const Impl::Object& a = w.objects[i];
+      const Impl::Object& b = w.objects[j];
+      results[k] = sweep(*a.model, a.pose, end_pose(i), *b.model, b.pose, end_pose(j), request);
+    }
+  };
+  if (pairs.size() < kParallelSweeps || parallel::max_concurrency() == 1) {
+    run(0, pairs.size());
+  } else {
+    parallel::for_ranges(0, pairs.size(), 1, run);
+  }
+  std::vector<PairToi> out;
+  for (std::size_t k = 0; k < pairs.size(); ++k) {
+    if (results[k].hit)
+      out.push_back({w.id_of(pairs[k].first), w.id_of(pairs[k].second), results[k]});
+  }
+  return out;
+}
+
+std::vector<PairToi> World::set_poses_continuous(std::span<const ObjectId> ids,
+                                                 std::span<const Transform> new_poses,
+                                                 const SweepRequest& request) {
+  std::vector<PairToi> out = sweep_poses(ids, new_poses, request);
+  set_poses(ids, new_poses);
+  return out;
+}
+
+}  // namespace antcd
