@@ -281,8 +281,7 @@ std::vector<ObjectContacts> World::collide_model(const Model& model, const Trans
     throw ArgumentError("World::collide_model: pose is not finite (NaN or infinity)");
   }
   Bounds probe;
-  World::Impl::Root probe_root;
-  probe.box = posed_box(model, pose, probe.tolerance, probe_root);
+  probe.box = posed_box(model, pose, probe.tolerance);
   const Aabb query = grown(probe.box, exact_growth(probe, request.delta));
   const Impl& w = *impl_;
   return against_world(w, model, pose, query, request,

@@ -97,6 +97,11 @@ struct World::Impl {
 /// rounding allowance; `tolerance` receives that allowance and `root` the posed root volumes.
 Aabb posed_box(const Model& model, const Transform& pose, Scalar& tolerance,
                World::Impl::Root& root);
+/// The same box, for a pose that is not an object's (its root volumes are not kept).
+inline Aabb posed_box(const Model& model, const Transform& pose, Scalar& tolerance) {
+  World::Impl::Root root;
+  return posed_box(model, pose, tolerance, root);
+}
 
 /// `box` grown by `by` on every side.
 inline Aabb grown(Aabb box, Scalar by) {
