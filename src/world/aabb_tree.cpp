@@ -191,11 +191,16 @@ Scalar AabbTree::refit_subtree(std::int32_t i) {
 void AabbTree::refit() {
   if (root_ == kNull) return;
   Scalar sum = 0;
-  if (height_[root_] > kParallelHeight) {
-    sum = refit_subtree(root_);  // in parallel over subtrees
+  // One backward pass over the nodes in depth-first order (children after their parent), without
+  // recursion, when they are in that order, or when no leaf was inserted or removed since the last
+  // refit (then they are put in that order first, and likely stay so: a world whose objects only
+  // move). A tree changed between refits (jumps reinserted every frame) is refitted recursively:
+  // relaying it out costs more than the recursion saves. Tall trees: in parallel over subtrees.
+  const bool linear = height_[root_] <= kParallelHeight && (ordered_ || stable_);
+  stable_ = true;
+  if (!linear) {
+    sum = refit_subtree(root_);
   } else {
-    // One backward pass over the nodes in depth-first order (children after their parent): no
-    // recursion. The order holds from one refit to the next unless leaves were inserted or removed.
     if (!ordered_) relayout();
     for (std::size_t i = nodes_.size(); i-- > 0;) {
       Node& n = nodes_[i];
@@ -386,6 +391,7 @@ std::vector<AabbTree::PairTask> AabbTree::pair_tasks(Scalar gap, std::size_t tar
 
 void AabbTree::insert_leaf(std::int32_t leaf) {
   ordered_ = false;
+  stable_ = false;
   if (root_ == kNull) {
     root_ = leaf;
     parent_[leaf] = kNull;
@@ -435,6 +441,7 @@ void AabbTree::insert_leaf(std::int32_t leaf) {
 
 void AabbTree::remove_leaf(std::int32_t leaf) {
   ordered_ = false;
+  stable_ = false;
   if (leaf == root_) {
     root_ = kNull;
     return;

@@ -68,6 +68,20 @@ class AabbTree {
   }
   /// The box stored for `object` (its box rounded outward to single precision).
   [[nodiscard]] Aabb box(std::uint32_t object) const { return to_aabb(nodes_[leaf_of_[object]]); }
+  /// Whether `box` lies inside the box of the leaf's ancestor `levels` above it (the root's box
+  /// when the leaf is not that deep): refitting the leaf to `box` then grows no box above that
+  /// ancestor. Reads only internal nodes: safe beside set_box() calls on other leaves.
+  [[nodiscard]] bool inside_ancestor(std::uint32_t object, const Aabb& box, int levels) const {
+    std::int32_t i = leaf_of_[object];
+    for (int k = 0; k < levels && parent_[i] != kNull; ++k) i = parent_[i];
+    const Node& n = nodes_[i];
+    for (int k = 0; k < 3; ++k) {
+      if (box.min[k] < static_cast<Scalar>(n.lo[k]) || static_cast<Scalar>(n.hi[k]) < box.max[k]) {
+        return false;
+      }
+    }
+    return true;
+  }
   /// Starts loading the leaf of `object` (if any), for a later box() or set_box().
   void prefetch(std::uint32_t object) const {
     if (object < leaf_of_.size() && leaf_of_[object] != kNull) {
@@ -303,6 +317,7 @@ class AabbTree {
   std::size_t leaves_ = 0;
   std::size_t changes_ = 0;        // incremental changes since the last rebuild
   bool ordered_ = false;           // nodes_ in depth-first order, none free (rebuild, relayout)
+  bool stable_ = false;            // no leaf inserted or removed since the last refit
   Scalar built_area_ = 0;          // relative_area() right after the last rebuild
 };
 

@@ -201,9 +201,11 @@ void World::set_poses(std::span<const ObjectId> ids, std::span<const Transform> 
     const Aabb leaf = w.tree.box(slot);
     const Aabb tight = grown(b.box, 2 * b.tolerance);
     if (detail::box_contains(leaf, tight)) return;
-    // Jumped: the new box does not even meet the old one (a teleport, a respawn).
-    w.flags[slot] = detail::boxes_overlap(leaf, b.box) ? Impl::kEscaped
-                                                        : Impl::kEscaped | Impl::kJumped;
+    // Jumped: the new box does not even meet the old one (a teleport, a respawn) and lies outside
+    // the leaf's grandparent (a fast object still among its neighbours in the tree is not one).
+    const bool jumped =
+        !detail::boxes_overlap(leaf, b.box) && !w.tree.inside_ancestor(slot, tight, 2);
+    w.flags[slot] = jumped ? Impl::kEscaped | Impl::kJumped : Impl::kEscaped;
     w.tree.set_box(slot, tight);
   };
   // The leaves are in the tree's order, not the arguments': each one is a cache miss on a large
@@ -222,19 +224,24 @@ void World::set_poses(std::span<const ObjectId> ids, std::span<const Transform> 
     parallel::for_ranges(0, ids.size(), 1, fit_range);
   }
   std::size_t escaped = 0;
-  for (const ObjectId id : ids) escaped += w.flags[id.slot] != 0;
+  std::size_t jumped = 0;
+  for (const ObjectId id : ids) {
+    escaped += w.flags[id.slot] != 0;
+    jumped += (w.flags[id.slot] & Impl::kJumped) != 0;
+  }
   // Few leaves to update: one removal and insertion each (O(log n)), with the fattened box so that
   // small motions after this one need no update. Many (more than a sixteenth of the objects: a
   // frame of a moving world, where most objects move every frame): one O(n) refit of the new leaf
   // boxes, which rebuilds when the tree got loose; fattening would then buy nothing (the refit
   // costs O(n) anyway) and only let more pairs through the broad phase, so those leaves keep their
-  // unfattened boxes. On a large world, objects that jumped are taken out before the refit and
-  // reinserted after it: refitting would stretch every box on their old path across the jump. On a
-  // small one (fewer than kReinsertJumps objects) they stay in place: the refit (and the rebuild
-  // it starts when the boxes got loose) costs less than their removals and insertions (the
-  // 90-object production line, 45 moving and about 6 jumping a frame: set_poses 66 -> 38 thousand
-  // instructions a frame, no rebuild in 300 frames, the pair traversal 20 % cheaper).
-  constexpr std::size_t kReinsertJumps = 256;
+  // unfattened boxes. Objects that jumped are taken out before the refit and reinserted after it
+  // when they are few (at most a sixteenth of the objects): refitting would stretch every box on
+  // their old path across the jump. When more jump, they stay in place: a removal and insertion
+  // costs about a sixteenth of a rebuild, so the refit (and the rebuild it starts when the boxes
+  // got loose) costs less. Measured with callgrind, one thread, set_poses + candidate_pairs: the
+  // 90-object production line (45 moving, about 6 a frame moving more than their size, few
+  // outside their grandparent) set_poses 66 -> 38 thousand instructions a frame; 200 boxes with
+  // 2 % (20 %) jumping across the world a frame -5 % (-28 %) against reinserting every jump.
   const bool refit = escaped > w.live / 16;
   if (!refit) {
     for (const ObjectId id : ids) {
@@ -244,7 +251,7 @@ void World::set_poses(std::span<const ObjectId> ids, std::span<const Transform> 
     }
     return;
   }
-  const bool reinsert = w.live >= kReinsertJumps;
+  const bool reinsert = jumped <= w.live / 16;
   for (const ObjectId id : ids) {
     if (reinsert && (w.flags[id.slot] & Impl::kJumped) != 0 && w.tree.contains(id.slot)) {
       w.tree.remove(id.slot);

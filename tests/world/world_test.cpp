@@ -378,6 +378,52 @@ TEST(World, ManySmallMovesMatchBruteForce) {
   }
 }
 
+// A small world whose objects teleport: many at once on even frames (more than a sixteenth of the
+// objects: they stay in the tree and the refit covers them), a couple on odd frames among small
+// moves (reinserted). Every frame the exact pairs equal the oracle, and the candidate pairs equal
+// those of a world built afresh at the same poses (no box or posed root volume left stale).
+TEST(World, SmallWorldWithManyJumpsMatchesOracleAndAFreshWorld) {
+  const std::vector<ModelPtr> models = generated_models();
+  constexpr int kObjects = 48;
+  constexpr Scalar kExtent = 2.2;
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<Scalar> u(-1, 1);
+  World world;
+  Reference ref;
+  std::vector<ObjectId> ids;
+  for (int i = 0; i < kObjects; ++i) {
+    RefObject r;
+    r.model = models[i % models.size()];
+    r.pose = test::random_pose(rng, kExtent);
+    ids.push_back(world.add(r.model, r.pose));
+    ref.objects[ids.back()] = r;
+  }
+  std::size_t colliding_seen = 0;
+  for (int frame = 0; frame < 24; ++frame) {
+    std::vector<Transform> poses;
+    for (int i = 0; i < kObjects; ++i) {
+      RefObject& r = ref.objects[ids[i]];
+      const bool jump = frame % 2 == 0 ? i % 3 == frame % 3 : i == frame % kObjects || i == 7;
+      if (jump) {
+        r.pose = test::random_pose(rng, kExtent);
+      } else {
+        r.pose.translation += 0.05 * Vec3(u(rng), u(rng), u(rng));
+      }
+      poses.push_back(r.pose);
+    }
+    world.set_poses(ids, poses);
+    const std::vector<ObjectPair> expected = ref.colliding(0);
+    ASSERT_EQ(pairs_of(world.collide_all()), expected) << "frame " << frame;
+    colliding_seen += expected.size();
+    World fresh;
+    for (int i = 0; i < kObjects; ++i) fresh.add(ref.objects[ids[i]].model, poses[i]);
+    // Same slots in the same order: the ids agree.
+    ASSERT_EQ(world.candidate_pairs(0), fresh.candidate_pairs(0)) << "frame " << frame;
+    ASSERT_EQ(world.candidate_pairs(0.1), fresh.candidate_pairs(0.1)) << "frame " << frame;
+  }
+  EXPECT_GT(colliding_seen, 24u);  // the frames test colliding pairs, not only empty answers
+}
+
 // A large world (the parallel paths: batches of poses checked, fitted and written by oneTBB tasks,
 // new leaf boxes and a refit, objects that jump reinserted, the all-pairs traversal split into
 // tasks): every frame equals an oracle that does not use the World's boxes (root spheres, then
