@@ -181,26 +181,15 @@ class AabbTree {
     // Pushing an entry starts loading the children it will read when popped (the traversal waits
     // on memory: a large world's tree does not fit the caches).
     Stack<PairTask> stack;
-    const auto push = [&](std::int32_t a, std::int32_t b) {
-      stack.push({a, b});
-      for (const std::int32_t i : {a, b}) {
-        const Node& n = nodes_[i];
-        if (n.child1 != kNull) {
-          ANTCD_PREFETCH(&nodes_[n.child1]);
-          ANTCD_PREFETCH(&nodes_[n.child2]);
-        }
-        if (a == b) break;
-      }
-    };
-    push(task.a, task.b);
+    push_pair(stack, task.a, task.b);
     while (!stack.empty()) {
       const PairTask t = stack.pop();
       const Node& a = nodes_[t.a];
       if (t.a == t.b) {  // pairs within one subtree
         if (a.child1 == kNull) continue;
-        if (nodes_[a.child1].child1 != kNull) push(a.child1, a.child1);
-        if (nodes_[a.child2].child1 != kNull) push(a.child2, a.child2);
-        if (near(nodes_[a.child1], nodes_[a.child2])) push(a.child1, a.child2);
+        if (nodes_[a.child1].child1 != kNull) push_pair(stack, a.child1, a.child1);
+        if (nodes_[a.child2].child1 != kNull) push_pair(stack, a.child2, a.child2);
+        if (near(nodes_[a.child1], nodes_[a.child2])) push_pair(stack, a.child1, a.child2);
         continue;
       }
       const Node& b = nodes_[t.b];
@@ -209,12 +198,27 @@ class AabbTree {
       if (a_leaf && b_leaf) {
         visit(static_cast<std::uint32_t>(a.child2), static_cast<std::uint32_t>(b.child2));
       } else if (b_leaf || (!a_leaf && span(a) >= span(b))) {
-        if (near(nodes_[a.child1], b)) push(a.child1, t.b);
-        if (near(nodes_[a.child2], b)) push(a.child2, t.b);
+        if (near(nodes_[a.child1], b)) push_pair(stack, a.child1, t.b);
+        if (near(nodes_[a.child2], b)) push_pair(stack, a.child2, t.b);
       } else {
-        if (near(a, nodes_[b.child1])) push(t.a, b.child1);
-        if (near(a, nodes_[b.child2])) push(t.a, b.child2);
+        if (near(a, nodes_[b.child1])) push_pair(stack, t.a, b.child1);
+        if (near(a, nodes_[b.child2])) push_pair(stack, t.a, b.child2);
       }
+    }
+  }
+
+  /// Pushes the pair (a, b) of pairs_within() and starts loading the children it will read when
+  /// popped. Inlined by force: called for every node pair the traversal keeps.
+  template <class S>
+  [[gnu::always_inline]] void push_pair(S& stack, std::int32_t a, std::int32_t b) const {
+    stack.push({a, b});
+    for (const std::int32_t i : {a, b}) {
+      const Node& n = nodes_[i];
+      if (n.child1 != kNull) {
+        ANTCD_PREFETCH(&nodes_[n.child1]);
+        ANTCD_PREFETCH(&nodes_[n.child2]);
+      }
+      if (a == b) break;
     }
   }
 
