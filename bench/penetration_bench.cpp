@@ -1,6 +1,6 @@
 // bench/penetration_bench.cpp — antcd::penetration, convex and general.
 //
-// Convex: pairs of UV spheres (convex polytopes) of about 24, 112, 480 and 1984 triangles at 32
+// Convex: pairs of UV spheres (convex polytopes) of 24, 120, 528 and 2208 triangles at 32
 // seeded overlapping poses; antcd's exact path against FCL's signed distance on fcl::Convex (GJK
 // then EPA, libccd). Before timing, both depths are compared on every pose (FCL's tolerance,
 // 1e-4 of the radius); a mismatch skips the benchmark with an error.

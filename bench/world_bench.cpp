@@ -1,9 +1,9 @@
 // antcd::World against FCL's DynamicAABBTreeCollisionManager, in one binary (Google Benchmark).
 //
-// world_frame_<engine>/<objects>[/<threads>]: a world of N small moving meshes (boxes and spheres of 12 and 64
-// triangles, radius about 0.5, density 1 object per 8 volume units so that a few percent of them
-// touch). One iteration = one frame: every object gets its next pose (a drift and a spin, the
-// same sequence for both engines), then every pair is queried exactly (boolean).
+// world_frame_<engine>/<objects>[/<threads>]: a world of N small moving meshes (boxes and spheres
+// of 12 and 64 triangles, radius about 0.5, density 1 object per 8 volume units so that a few
+// percent of them touch). One iteration = one frame: every object gets its next pose (a drift and a
+// spin, the same sequence for both engines), then every pair is queried exactly (boolean).
 //   antcd: World::set_poses + World::collide_all, in oneTBB's default arena (threads 0: every
 //          core) or in an arena of 1 thread (FCL's manager is single-threaded).
 //   FCL:   setTransform + computeAABB per object, manager.update(), manager.collide() with a
@@ -17,6 +17,7 @@
 // dense_threads/<threads>: a dense world of tumbling real meshes (assimp test models when
 // installed, else generated tori), World::collide_all inside a oneTBB arena of 1 or 2 threads.
 // world_interleaved/<objects>: both engines frame by frame in turn (see there).
+// nearest/<objects>/<signed>: World::nearest_pair against a scan of every pair (see there).
 // parallel_control/<threads>: the machine's own two-thread ratio in the same run (see there).
 //
 // The numbers only mean something in one run on an otherwise idle machine; quote ratios of the two
@@ -44,10 +45,12 @@
 #include <filesystem>
 #include <iostream>
 #include <iterator>
+#include <limits>
+#include <memory>
+#include <optional>
+#include <random>
 #include <sstream>
 #include <string>
-#include <memory>
-#include <random>
 #include <utility>
 #include <vector>
 
@@ -442,8 +445,66 @@ void dense_threads(benchmark::State& state) {
   state.counters["candidates"] = static_cast<double>(world.candidate_pairs(0).size());
 }
 
+// ---- nearest pair: the World's branch and bound against brute force ----
+
+// The closest pair over every pair (i < j) in id order, each distance() bounded by the best so far
+// (the brute force: n (n - 1) / 2 distance calls, most of them stopped early by the bound).
+Scalar nearest_scan(const World& world, const NearestRequest& request) {
+  const std::vector<ObjectId> ids = world.objects();
+  Scalar best = std::numeric_limits<Scalar>::infinity();
+  for (std::size_t i = 0; i < ids.size(); ++i) {
+    for (std::size_t j = i + 1; j < ids.size(); ++j) {
+      const Model& a = world.model(ids[i]);
+      const Model& b = world.model(ids[j]);
+      DistanceRequest r;
+      r.upper_bound = std::max<Scalar>(best, 0);
+      r.signed_distance = request.signed_distance && a.is_closed() && b.is_closed();
+      const DistanceResult d = distance(a, world.pose(ids[i]), b, world.pose(ids[j]), r);
+      if (!d.beyond_upper_bound) best = std::min(best, d.distance);
+    }
+  }
+  return best;
+}
+
+// nearest/<objects>/<signed>: the world of world_frame_<engine> (N small meshes, a few percent
+// touching) at frame 0, one closest-pair query per iteration by each method in turn:
+// World::nearest_pair, then nearest_scan (both on this thread). Counters: each one's median CPU
+// time of this thread (ms) and their ratio;
+// the two answers must be equal (else the run stops with an error).
+void nearest(benchmark::State& state) {
+  const auto n = static_cast<std::size_t>(state.range(0));
+  const NearestRequest request{state.range(1) != 0};
+  std::vector<std::shared_ptr<const Model>> models;
+  for (const Mesh& m : small_meshes()) models.push_back(std::make_shared<const Model>(m));
+  const Motion motion(n, side_for(n), 42);
+  World world;
+  for (std::size_t i = 0; i < n; ++i) world.add(models[i % 2], motion.pose(i, 0));
+  std::vector<double> tree_ms;
+  std::vector<double> scan_ms;
+  Scalar found = 0;
+  for (auto _ : state) {
+    const double t0 = thread_seconds();
+    const std::optional<NearestPair> best = world.nearest_pair(request);
+    const double t1 = thread_seconds();
+    const Scalar scanned = nearest_scan(world, request);
+    const double t2 = thread_seconds();
+    if (!best || best->result.distance != scanned) {
+      state.SkipWithError("World::nearest_pair and the scan disagree");
+      return;
+    }
+    found = scanned;
+    tree_ms.push_back(1e3 * (t1 - t0));
+    scan_ms.push_back(1e3 * (t2 - t1));
+  }
+  state.counters["distance"] = found;
+  state.counters["world_ms"] = median(tree_ms);
+  state.counters["scan_ms"] = median(scan_ms);
+  state.counters["scan_over_world"] = median(scan_ms) / median(tree_ms);
+}
+
 }  // namespace
 
+BENCHMARK(nearest)->Args({1000, 0})->Args({1000, 1})->Unit(benchmark::kMillisecond)->Iterations(5);
 BENCHMARK(world_frame_antcd)->Args({10000, 0})->Args({100000, 0})->Args({10000, 1})->Args({100000, 1})->Unit(benchmark::kMillisecond)->Iterations(8)->Repetitions(3)->ReportAggregatesOnly(true);
 BENCHMARK(world_frame_fcl)->Arg(10000)->Arg(100000)->Unit(benchmark::kMillisecond)->Iterations(8)->Repetitions(3)->ReportAggregatesOnly(true);
 BENCHMARK(world_interleaved)->Arg(10000)->Arg(100000)->Unit(benchmark::kMillisecond)->Iterations(15);

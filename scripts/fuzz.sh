@@ -37,6 +37,8 @@ cmake -S "$repo" -B "$build_dir" \
   -DANTCD_BUILD_FUZZERS=ON \
   -DANTCD_BUILD_TESTS=OFF -DANTCD_BUILD_APPS=OFF -DANTCD_BUILD_BENCHMARKS=OFF
 fuzzers=(fuzz_mesh_load fuzz_scene_parse)
+# Hostile-input readers (issue 28): points CSV (fuzz/corpus/points), run results (fuzz/corpus/run).
+fuzzers+=(fuzz_points_csv fuzz_run_result)
 cmake --build "$build_dir" -j "$jobs" --target "${fuzzers[@]}"
 
 # ---- run ----
@@ -49,7 +51,7 @@ status=0
 summary=()
 for fuzzer in "${fuzzers[@]}"; do
   corpus_name="${fuzzer#fuzz_}"
-  corpus_name="${corpus_name%%_*}"  # fuzz_mesh_load -> mesh, fuzz_scene_parse -> scene
+  corpus_name="${corpus_name%%_*}"  # fuzz_mesh_load -> mesh, fuzz_run_result -> run
   run_dir="$build_dir/fuzz-run/$fuzzer"
   rm -rf "$run_dir"
   mkdir -p "$run_dir/corpus"

@@ -10,7 +10,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev libcgal-dev
   libfcl-dev libbullet-dev clang-format
   libkainjow-mustache-dev
-  libtorch-dev
+  libtorch-dev zlib1g-dev
   assimp-testmodels gnuplot-nox valgrind
   python3-dev python3-pybind11 pybind11-dev python3-numpy python3-pytest python3-matplotlib
   python3-pip python3-setuptools python3-wheel python3-venv python3-build

@@ -58,6 +58,50 @@ double number(const json& j, const std::string& key, const std::string& source,
   return j[key].get<double>();
 }
 
+/// Limits checked on the text before it is parsed: the format nests 5 levels (the top object,
+/// "frames", a frame, "pairs", a pair), and a run of 1000 frames with a few hundred pairs each
+/// holds about a million values. The JSON tree costs some 40 bytes a value, so these bound the
+/// memory a hostile file can take (a megabyte of '[' would otherwise build a million nested
+/// arrays).
+constexpr std::size_t kMaxResultNesting = 16;
+constexpr std::size_t kMaxResultValues = std::size_t{1} << 24;
+
+/// One pass over the bytes, outside strings: the deepest nesting of arrays and objects, and an
+/// upper bound of the values (1 + commas + containers), each refused above its limit.
+void check_shape(std::string_view text, const std::string& source) {
+  std::size_t depth = 0;
+  std::size_t values = 1;
+  bool in_string = false;
+  bool escaped = false;
+  for (const char c : text) {
+    if (in_string) {
+      if (escaped) {
+        escaped = false;
+      } else if (c == '\\') {
+        escaped = true;
+      } else if (c == '"') {
+        in_string = false;
+      }
+      continue;
+    }
+    if (c == '"') {
+      in_string = true;
+    } else if (c == '[' || c == '{') {
+      if (++depth > kMaxResultNesting) {
+        fail(source, "nested deeper than " + std::to_string(kMaxResultNesting) + " levels");
+      }
+      ++values;
+    } else if (c == ']' || c == '}') {
+      depth -= depth > 0 ? 1 : 0;  // unbalanced text is the parser's to report
+    } else if (c == ',') {
+      ++values;
+    }
+    if (values > kMaxResultValues) {
+      fail(source, "more than " + std::to_string(kMaxResultValues) + " values");
+    }
+  }
+}
+
 // A frame's array of one number per pair (each in [0, 1] if unit_interval).
 std::vector<double> per_pair_numbers(const json& j, std::size_t pairs, const std::string& source,
                                      const std::string& where, const std::string& name,
@@ -199,6 +243,7 @@ std::string to_json(const RunResult& result) {
 }
 
 RunResult parse_run_result(std::string_view text, const std::string& source) {
+  check_shape(text, source);  // before the tree is built
   json root;
   try {
     root = json::parse(text.begin(), text.end());

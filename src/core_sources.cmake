@@ -32,6 +32,7 @@ set(ANTCD_CORE_SOURCES
   world/world.cpp
   world/query.cpp
   world/raycast.cpp
+  world/nearest.cpp
   world/continuous.cpp
   ccd/primitive.cpp
   ccd/sweep.cpp

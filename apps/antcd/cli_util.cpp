@@ -3,12 +3,16 @@
 #include <antcd/load.hpp>
 #include <antcd/mesh.hpp>
 
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <iostream>
 #include <sstream>
 #include <utility>
 #include <vector>
+
+#include <unistd.h>
 
 namespace antcd::cli {
 
@@ -74,9 +78,10 @@ void warn_degenerate(const Model& model) {
 
 namespace {
 
-CLI::Validator finite_at_least_zero(bool zero_allowed) {
+/// A decimal number >= 0 (> 0 unless zero_allowed), finite unless infinity_allowed ("inf").
+CLI::Validator number_at_least_zero(bool zero_allowed, bool infinity_allowed) {
   return CLI::Validator(
-      [zero_allowed](std::string& text) -> std::string {
+      [zero_allowed, infinity_allowed](std::string& text) -> std::string {
         double value = 0;
         std::size_t used = 0;
         try {
@@ -84,19 +89,25 @@ CLI::Validator finite_at_least_zero(bool zero_allowed) {
         } catch (const std::exception&) {
           used = 0;
         }
-        if (used == 0 || used != text.size() || !std::isfinite(value) || value < 0 ||
+        // std::stod also reads hexadecimal ("0x10" is 16): decimal only.
+        const bool hex = text.find_first_of("xX") != std::string::npos;
+        const bool infinite = std::isinf(value) && !(infinity_allowed && value > 0);
+        if (used == 0 || used != text.size() || hex || std::isnan(value) || infinite || value < 0 ||
             (!zero_allowed && value == 0)) {
-          return std::string("expected a finite number ") + (zero_allowed ? ">= 0" : "> 0") +
-                 ", got '" + text + "'";
+          return std::string("expected a ") + (infinity_allowed ? "" : "finite ") + "number " +
+                 (zero_allowed ? ">= 0" : "> 0") + (infinity_allowed ? " or inf" : "") + ", got '" +
+                 text + "'";
         }
         return {};
       },
-      zero_allowed ? "NUMBER >= 0" : "NUMBER > 0");
+      std::string(zero_allowed ? "NUMBER >= 0" : "NUMBER > 0") +
+          (infinity_allowed ? " or inf" : ""));
 }
 
 }  // namespace
 
-CLI::Validator non_negative_finite() { return finite_at_least_zero(true); }
+CLI::Validator non_negative_finite() { return number_at_least_zero(true, false); }
+CLI::Validator non_negative_or_infinity() { return number_at_least_zero(true, true); }
 
 CLI::Validator unsigned_integer() {
   return CLI::Validator(
@@ -111,6 +122,62 @@ CLI::Validator unsigned_integer() {
       },
       "INTEGER >= 0");
 }
-CLI::Validator positive_finite() { return finite_at_least_zero(false); }
+CLI::Validator positive_finite() { return number_at_least_zero(false, false); }
+
+namespace {
+
+/// "" when `folder` (a path that exists) is a writable folder, else why not.
+std::string writable_folder_problem(const std::filesystem::path& folder) {
+  std::error_code ec;
+  if (!std::filesystem::is_directory(folder, ec))
+    return "'" + folder.string() + "' is not a folder";
+  if (::access(folder.c_str(), W_OK | X_OK) != 0) {
+    return "cannot write in '" + folder.string() + "': " + std::strerror(errno);
+  }
+  return {};
+}
+
+}  // namespace
+
+CLI::Validator writable_file() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        if (text.empty()) return "expected a file name, got ''";
+        const std::filesystem::path path(text);
+        std::error_code ec;
+        const auto status = std::filesystem::status(path, ec);
+        if (std::filesystem::is_directory(status)) return "'" + text + "' is a folder";
+        if (std::filesystem::exists(status) && !std::filesystem::is_regular_file(status)) {
+          return "'" + text + "' is not a regular file (a device, FIFO or socket is not replaced)";
+        }
+        if (path.filename().empty()) return "'" + text + "' names no file";
+        const std::filesystem::path folder =
+            path.parent_path().empty() ? std::filesystem::path(".") : path.parent_path();
+        if (!std::filesystem::exists(folder, ec)) {
+          return "cannot write '" + text + "': folder '" + folder.string() + "' does not exist";
+        }
+        const std::string problem = writable_folder_problem(folder);
+        return problem.empty() ? problem : "cannot write '" + text + "': " + problem;
+      },
+      "FILE");
+}
+
+CLI::Validator writable_folder() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        if (text.empty()) return "expected a folder name, got ''";
+        // The folder itself, or the nearest parent that exists (the rest is created).
+        std::filesystem::path folder = std::filesystem::absolute(text);
+        std::error_code ec;
+        while (!std::filesystem::exists(folder, ec) && folder.has_relative_path()) {
+          folder = folder.parent_path();
+        }
+        const std::string problem = writable_folder_problem(folder);
+        return problem.empty() || folder == std::filesystem::absolute(text)
+                   ? problem
+                   : "cannot create '" + text + "': " + problem;
+      },
+      "DIR");
+}
 
 }  // namespace antcd::cli

@@ -54,14 +54,23 @@ Model load_model(const std::filesystem::path& path, const BuildOptions& options)
 /// Prints "warning: SOURCE: N zero-area triangle(s) ignored" on stderr when the model left some out.
 void warn_degenerate(const Model& model);
 
-/// Option check for --delta and friends: a finite number >= 0. (CLI::NonNegativeNumber lets NaN
-/// through, and its message prints the largest double in full.)
+/// Option check for --delta and friends: a finite decimal number >= 0 (no hex).
+/// (CLI::NonNegativeNumber lets NaN through, and its message prints the largest double in full.)
 CLI::Validator non_negative_finite();
 /// The same, > 0.
 CLI::Validator positive_finite();
+/// A number >= 0 or "inf" (an upper bound that may be absent).
+CLI::Validator non_negative_or_infinity();
 /// Option check for seeds and counts: decimal digits only, at most 2^64 - 1. (CLI11 reads "-1" as
 /// 2^64 - 1 and an overflowing value as the largest one.)
 CLI::Validator unsigned_integer();
+
+/// Option check for an output file, run when the command line is parsed (before any long work):
+/// not empty; not a directory, device, FIFO or socket; its folder exists and is writable.
+CLI::Validator writable_file();
+/// Option check for an output folder (created if missing): not empty; an existing folder, or its
+/// nearest existing parent is a folder; and that folder is writable.
+CLI::Validator writable_folder();
 
 /// Registers the subcommands; each returns its exit code through the callback's `code`.
 void add_collide_command(CLI::App& app, int& code);

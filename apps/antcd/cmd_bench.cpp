@@ -25,6 +25,7 @@ void add_bench_paper_command(CLI::App& bench, int& code) {
                 "Fewer feature counts, frames, seeds and budgets (under 2 minutes; for CI)");
   cmd->add_option("--out", *out, "Output folder (created if missing)")
       ->required()
+      ->check(writable_folder())
       ->type_name("DIR");
   cmd->add_option("--seed", opts->seed, "Seed of the scene, the sampling and the searches")
       ->capture_default_str()

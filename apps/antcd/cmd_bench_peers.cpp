@@ -52,6 +52,7 @@ void add_bench_peers_command(CLI::App& bench, int& code) {
   cmd->add_option("--out", args->out,
                   "Also write report.md and CSV files (scenes, pairs, build, scale, "
                   "disagreements) into this folder")
+      ->check(writable_folder())
       ->type_name("DIR");
   cmd->add_option("--only", args->only, "Run only these sections (repeatable)")
       ->check(CLI::IsMember({"scenes", "pairs", "scale"}))

@@ -2,6 +2,7 @@
 // Wang et al.'s CCD benchmark), scored against the file's truth column.
 // antcd sweep A B: continuous collision between two meshes moving between two poses each.
 #include <antcd/ccd.hpp>
+#include <antcd/csv.hpp>
 #include <antcd/sweep.hpp>
 
 #include <nlohmann/json.hpp>
@@ -45,6 +46,9 @@ struct FileQuery {
 };
 
 #ifdef ANTCD_HAVE_GMP
+/// Longest row of a query file: 7 integers of the benchmark's size need a few hundred bytes.
+constexpr std::size_t kMaxQueryLine = 4096;
+
 /// One decimal integer (optional sign, digits only), or a UsageError naming the row and column.
 mpz_class parse_integer(const std::string& text, const std::string& where) {
   std::size_t start = (!text.empty() && (text[0] == '-' || text[0] == '+')) ? 1 : 0;
@@ -58,14 +62,15 @@ mpz_class parse_integer(const std::string& text, const std::string& where) {
 
 /// Reads the file: 8 rows per query, each x_num,x_den,y_num,y_den,z_num,z_den,truth.
 std::vector<FileQuery> read_queries(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw UsageError(path + ": cannot open");
+  // A regular file only, and bounded lines (antcd/csv.hpp): a FIFO, a device or a file without
+  // line breaks is refused instead of blocking or filling the memory.
+  std::ifstream in = open_regular_file(path, "query file");
+  CsvLines lines(in, path, kMaxQueryLine);
   std::vector<FileQuery> queries;
   std::string line;
   std::size_t row = 0;
   FileQuery current;
-  while (std::getline(in, line)) {
-    if (!line.empty() && line.back() == '\r') line.pop_back();
+  while (lines.next(line)) {
     if (line.empty()) continue;
     ++row;
     const std::string where = path + ": row " + std::to_string(row);
@@ -122,6 +127,7 @@ std::vector<FileQuery> read_queries(const std::string& path) {
     throw UsageError(path + ": row " + std::to_string(row) + ": incomplete query (" +
                      std::to_string(row % 8) + " of 8 rows)");
   }
+  if (queries.empty()) throw UsageError(path + ": holds no query");
   return queries;
 }
 #else
@@ -283,12 +289,9 @@ void add_ccd_commands(CLI::App& app, int& code) {
                   "Report contact within this distance (>= 0)")
       ->check(non_negative_finite());
   cmd->add_option("--time-tolerance", q->time_tolerance, "Time tolerance (> 0)")
-      ->check(non_negative_finite());
+      ->check(positive_finite());
   cmd->add_flag("--json", q->json, "Print {queries, seconds, results: [{hit, toi}, ...]} as JSON");
-  cmd->callback([q, &code] {
-    if (!(q->time_tolerance > 0)) throw UsageError("--time-tolerance must be > 0");
-    code = run_queries(*q);
-  });
+  cmd->callback([q, &code] { code = run_queries(*q); });
 
   auto o = std::make_shared<SweepOptions>();
   CLI::App* sw = app.add_subcommand(
@@ -302,7 +305,7 @@ void add_ccd_commands(CLI::App& app, int& code) {
   sw->add_option("--min-separation", o->min_separation, "Contact distance (mesh units, >= 0)")
       ->check(non_negative_finite());
   sw->add_option("--time-tolerance", o->time_tolerance, "Time tolerance (> 0)")
-      ->check(non_negative_finite());
+      ->check(positive_finite());
   sw->add_option("--max-iterations", o->max_iterations, "Most distance queries")
       ->check(CLI::Range(1u, 1u << 30));
   sw->add_flag("--json", o->json, "Print the result as JSON");

@@ -230,6 +230,7 @@ void add_demo_command(CLI::App& app, int& code) {
       ->capture_default_str();
   cmd->add_option("--view", opts->view,
                   "Write the scene with the exact and maco results as a browser page here")
+      ->check(writable_file())
       ->capture_default_str();
   cmd->add_flag("--no-view", opts->no_view, "Do not write the browser page");
   cmd->add_flag("--keep", opts->keep, "Keep the generated scene folder and print its path");

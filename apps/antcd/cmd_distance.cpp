@@ -111,19 +111,7 @@ void add_distance_command(CLI::App& app, int& code) {
   cmd->add_option("--pose-b", opts->pose_b, "Pose of B: tx,ty,tz[,qw,qx,qy,qz] (world frame)");
   cmd->add_option("--upper-bound", opts->upper_bound,
                   "Stop once the distance is known to exceed this (mesh units)")
-      ->check(CLI::Validator(
-          [](std::string& s) -> std::string {
-            double v = 0;
-            try {
-              std::size_t used = 0;
-              v = std::stod(s, &used);
-              if (used != s.size()) return "not a number: " + s;
-            } catch (const std::exception&) {
-              return "not a number: " + s;
-            }
-            return v >= 0 ? "" : "must be >= 0 (or inf), got " + s;
-          },
-          "NUMBER >= 0 or inf"));
+      ->check(non_negative_or_infinity());
   cmd->add_option("--abs-tolerance", opts->abs_tolerance,
                   "Accept an answer this much above the minimum (mesh units)")
       ->check(non_negative_finite());

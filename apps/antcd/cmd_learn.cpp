@@ -145,6 +145,7 @@ void add_learn_commands(CLI::App& app, int& code) {
       ->check(CLI::IsMember({"box-dnn", "box-lstm"}));
   train->add_option("--out", o->out, "Model file to write (atomically)")
       ->required()
+      ->check(writable_file())
       ->type_name("MODEL.pt");
   train->add_option("--scenes", o->scenes, "Generated training scenes")
       ->check(CLI::Range(1, 1000))

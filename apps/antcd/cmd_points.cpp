@@ -1,14 +1,12 @@
 // antcd points MESH: inside/outside and signed distance of many points against one posed mesh.
+#include <antcd/csv.hpp>
 #include <antcd/points.hpp>
 
 #include <nlohmann/json.hpp>
 
-#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <memory>
 #include <random>
@@ -30,72 +28,6 @@ struct PointsOptions {
   std::string pose = "0,0,0";
   bool json = false;
 };
-
-/// The longest points-file line read: three doubles in full need far less. A longer line (a binary
-/// file, a file without line breaks) is refused before it is held in memory.
-constexpr std::size_t kMaxPointsLine = 1024;
-
-/// Reads "x,y,z" lines (commas and/or blanks between numbers); blank lines and lines starting with
-/// '#' are skipped, and so is a first line that holds no number (a header). Only a regular file is
-/// read (a FIFO could block forever, a device read without end); memory is that of the points.
-std::vector<Vec3> read_points(const std::string& path) {
-  std::error_code ec;
-  const auto status = std::filesystem::status(path, ec);
-  if (ec || !std::filesystem::exists(status)) {
-    throw UsageError(path + ": cannot open points file (no such file)");
-  }
-  if (!std::filesystem::is_regular_file(status)) {
-    throw UsageError(path + ": points file is not a regular file");
-  }
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw UsageError(path + ": cannot open points file");
-  std::vector<Vec3> points;
-  std::string line;
-  std::size_t number = 0;
-  std::array<char, kMaxPointsLine + 2> buffer{};
-  const auto too_long = [&] {
-    return UsageError(path + ":" + std::to_string(number + 1) + ": line longer than " +
-                      std::to_string(kMaxPointsLine) + " characters");
-  };
-  for (;;) {
-    in.getline(buffer.data(), static_cast<std::streamsize>(buffer.size()));
-    const auto got = static_cast<std::size_t>(in.gcount());
-    if (got == 0) break;                                   // end of file
-    if (in.fail() && !in.eof()) throw too_long();          // no line break within the buffer
-    line.assign(buffer.data(), in.eof() ? got : got - 1);  // NUL bytes kept: they are no number
-    if (line.size() > kMaxPointsLine) throw too_long();
-    ++number;
-    const std::string original = line;
-    for (char& ch : line) {
-      if (ch == ',' || ch == ';' || ch == '\t' || ch == '\r') ch = ' ';
-    }
-    const auto first = line.find_first_not_of(' ');
-    if (first == std::string::npos || line[first] == '#') continue;
-    std::istringstream fields(line);
-    std::string token;
-    std::vector<std::string> tokens;
-    while (fields >> token) tokens.push_back(token);
-    Vec3 p;
-    bool numeric = tokens.size() == 3;
-    for (std::size_t i = 0; numeric && i < 3; ++i) {
-      try {
-        std::size_t used = 0;
-        p[static_cast<int>(i)] = std::stod(tokens[i], &used);
-        numeric = used == tokens[i].size() && std::isfinite(p[static_cast<int>(i)]);
-      } catch (const std::exception&) {
-        numeric = false;
-      }
-    }
-    if (!numeric) {
-      if (points.empty() && number == 1) continue;  // header
-      throw UsageError(path + ":" + std::to_string(number) +
-                       ": expected three finite numbers x,y,z, got '" + original + "'");
-    }
-    points.push_back(p);
-  }
-  if (points.empty()) throw UsageError(path + ": holds no point");
-  return points;
-}
 
 /// `n` points uniform in the world box of the posed mesh grown by 10 % on each side.
 std::vector<Vec3> random_points(const Model& model, const Transform& pose, std::size_t n,
@@ -121,7 +53,7 @@ int run_points(const PointsOptions& o) {
   const Model model = load_model(o.mesh, BuildOptions{});
   warn_degenerate(model);
   const std::vector<Vec3> points =
-      o.random > 0 ? random_points(model, pose, o.random, o.seed) : read_points(o.points_file);
+      o.random > 0 ? random_points(model, pose, o.random, o.seed) : read_points_csv(o.points_file);
   if (!model.is_closed()) {
     std::fprintf(stderr,
                  "warning: %s is not closed and consistently oriented: distances are unsigned, "

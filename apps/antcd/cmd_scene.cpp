@@ -255,9 +255,10 @@ void add_scene_commands(CLI::App& app, int& code) {
          "Random methods: fitness evaluations shared by a frame's candidate pairs (anytime "
          "query; pairs left without a witness are listed as undecided); 0 = off")
       ->check(unsigned_integer());
-  cmd->add_option("--frame-seconds", run->frame_seconds,
-                  "Random methods: wall-time budget of a frame's searches (not deterministic); 0 = off")
-      ->check(CLI::NonNegativeNumber);
+  cmd->add_option(
+         "--frame-seconds", run->frame_seconds,
+         "Random methods: wall-time budget of a frame's searches (not deterministic); 0 = off")
+      ->check(non_negative_finite());
   cmd->add_flag("--no-memory", run->no_memory,
                 "Random methods: search each frame afresh instead of carrying the colonies' "
                 "pheromone and witnesses from frame to frame");
@@ -277,14 +278,17 @@ void add_scene_commands(CLI::App& app, int& code) {
   cmd->add_option("--model", run->model,
                   "box-dnn / box-lstm: the model file written by antcd learn train")
       ->type_name("MODEL.pt");
-  cmd->add_option("--out", run->out, "Write the result JSON here (atomically)");
+  cmd->add_option("--out", run->out, "Write the result JSON here (atomically)")
+      ->check(writable_file());
   cmd->callback([run, &code] { code = run_run(*run); });
 
   auto gen = std::make_shared<GenerateOptions>();
   CLI::App* scene = app.add_subcommand("scene", "Scene tools");
   scene->require_subcommand(1);
   CLI::App* g = scene->add_subcommand("generate", "Write the paper's production-line scene");
-  g->add_option("--out", gen->out, "Output folder (scene.json and meshes/)")->required();
+  g->add_option("--out", gen->out, "Output folder (scene.json and meshes/)")
+      ->required()
+      ->check(writable_folder());
   g->add_option("--objects", gen->objects, "Number of objects")->check(CLI::Range(2, 100000));
   g->add_option("--vertices", gen->vertices, "Average vertices per mesh")
       ->check(CLI::Range(8, 1000000));

@@ -71,7 +71,8 @@ void add_view_command(CLI::App& app, int& code) {
                   "Exact contact points drawn per reported pair and frame, at most (0: none)")
       ->check(CLI::Range(0, 100000))
       ->capture_default_str();
-  cmd->add_option("--out", opts->out, "Write the HTML page here (atomically)");
+  cmd->add_option("--out", opts->out, "Write the HTML page here (atomically)")
+      ->check(writable_file());
   cmd->add_flag("--live", opts->live,
                 "Live page: drag objects with the mouse (or a WebXR controller's squeeze); "
                 "antcd compiled to WebAssembly answers every animation frame");

@@ -49,14 +49,24 @@ int main(int argc, char** argv) {
 #else
   antcd::cli::add_lab_commands(app);
 #endif
-  // CLI11 would only say "A subcommand is required" for a mistyped command: name it.
-  if (argc > 1 && argv[1][0] != '-' &&
-      app.get_subcommands([&](CLI::App* sub) { return sub->check_name(argv[1]); }).empty()) {
+  // CLI11 would only say "A subcommand is required" for a mistyped command (`antcd frobnicate`,
+  // `antcd scene frobnicate`): name it, at every level of subcommands.
+  CLI::App* level = &app;
+  std::string path;
+  for (int i = 1; i < argc && argv[i][0] != '-'; ++i) {
+    const auto subs = level->get_subcommands([](CLI::App*) { return true; });
+    if (subs.empty()) break;  // the command's own arguments from here
+    CLI::App* next = nullptr;
     std::string known;
-    for (const CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) {
+    for (CLI::App* sub : subs) {
+      if (sub->check_name(argv[i])) next = sub;
       known += (known.empty() ? "" : ", ") + sub->get_name();
     }
-    return fail(std::string("unknown command '") + argv[1] + "' (expected one of " + known + ")");
+    if (next == nullptr) {
+      return fail("unknown command '" + path + argv[i] + "' (expected one of " + known + ")");
+    }
+    path += next->get_name() + " ";
+    level = next;
   }
   try {
     app.parse(argc, argv);

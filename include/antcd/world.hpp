@@ -33,6 +33,7 @@
 #pragma once
 
 #include <antcd/collide.hpp>
+#include <antcd/distance.hpp>
 #include <antcd/error.hpp>
 #include <antcd/export.hpp>
 #include <antcd/sweep.hpp>
@@ -110,6 +111,23 @@ struct RayHit {
   Vec3 point = Vec3::Zero();   ///< world frame
   Vec3 normal = Vec3::Zero();  ///< unit geometric normal of the triangle, world frame, facing the
                                ///< ray (normal . direction <= 0)
+};
+
+/// What a nearest query measures between two objects (or an object and a query model).
+struct NearestRequest {
+  /// A pair of two CLOSED models is measured by its signed distance (distance.hpp: minus the
+  /// penetration depth when the solids overlap, nested solids included; FCL's convention, which
+  /// trimesh's manager reports); a pair with an open model by its surface distance. false: the
+  /// surface distance for every pair (never negative).
+  bool signed_distance = false;
+};
+
+/// The answer of a nearest query: the pair and distance() of it, with A = object a's model and
+/// B = object b's (nearest_to: B = the query model, b left default).
+struct NearestPair {
+  ObjectId a;
+  ObjectId b;
+  DistanceResult result;
 };
 
 /// Ray against one posed model: every hit triangle (closed triangles; a ray lying in a triangle's
@@ -197,6 +215,29 @@ class ANTCD_API World {
                                                           const Transform& pose,
                                                           const CollisionRequest& request = {},
                                                           const QueryFilter& filter = {}) const;
+  /// Nearest queries. Each answer is the pair of least (distance, a, b) over the pairs it ranges
+  /// over (exactly what distance() on every such pair, then a sort, would give: ties go to the
+  /// smallest ids), or nothing when there is no pair. Internally a best-first branch and bound
+  /// over the broad-phase tree: node pairs in order of the gap between their boxes (a lower bound
+  /// of the distance of any pair below them), each distance() bounded by the best distance so far
+  /// (DistanceRequest::upper_bound); the search stops when the next gap exceeds it. Runs on the
+  /// calling thread; const and thread-safe like every query.
+  /// The closest admitted pair of distinct objects, a < b.
+  [[nodiscard]] std::optional<NearestPair> nearest_pair(const NearestRequest& request = {}) const;
+  /// The object closest to object `id` among those admitted with it (a = id, b = the other).
+  [[nodiscard]] std::optional<NearestPair> nearest_object(ObjectId id,
+                                                          const NearestRequest& request = {}) const;
+  /// The object closest to `model` at `pose` among those `filter` admits (a = that object; the
+  /// result's A is the object's model, B the query model). A non-finite pose is an ArgumentError.
+  [[nodiscard]] std::optional<NearestPair> nearest_to(const Model& model, const Transform& pose,
+                                                      const NearestRequest& request = {},
+                                                      const QueryFilter& filter = {}) const;
+  /// The closest pair (a of this world, b of `other`) whose groups and masks admit each other
+  /// (ignored pairs are per world and do not apply across worlds). `other` may be *this: every
+  /// object then also meets itself (distance 0). Not concurrent with mutations of either world.
+  [[nodiscard]] std::optional<NearestPair> nearest_pair(const World& other,
+                                                        const NearestRequest& request = {}) const;
+
   /// The nearest hit over every admitted object (ties: smallest object id, then triangle).
   [[nodiscard]] std::optional<RayHit> raycast(const Ray& ray, const QueryFilter& filter = {}) const;
   /// Every hit, sorted by (distance, object, triangle).

@@ -4,11 +4,14 @@
 #include <antcd/rng.hpp>
 #include <antcd_learned/classifier.hpp>
 
+#include "model_archive.hpp"
+
 #include <torch/torch.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <new>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -303,6 +306,11 @@ Classifier Classifier::load(const std::filesystem::path& path) {
   } catch (const Error& e) {
     throw ModelError(first_line(e.what()));
   }
+  // The zip structure and every entry's CRC-32 are checked before libtorch parses anything
+  // (model_archive.hpp): its parsers are not made for damaged input.
+  if (const std::string problem = detail::model_archive_problem(bytes); !problem.empty()) {
+    throw fail(problem);
+  }
   single_thread();
   auto impl = std::make_unique<Impl>();
   try {
@@ -391,6 +399,13 @@ Classifier Classifier::load(const std::filesystem::path& path) {
     throw;
   } catch (const Error& e) {
     throw fail(first_line(e.what()));
+  } catch (const std::bad_alloc&) {
+    throw;
+  } catch (const std::exception& e) {
+    // libtorch's unpickler and TorchScript importer throw std::runtime_error, std::out_of_range
+    // and torch::jit::ErrorReport on a damaged archive that passed the CRC check (one written
+    // damaged): each is a bad file, never a crash.
+    throw fail("invalid model file (" + first_line(e.what()) + ")");
   }
   return Classifier(std::move(impl));
 }

@@ -13,9 +13,10 @@ distance and, on request, the name(s) of the closest object(s) (a name; a 2-tupl
 order; a (this, other) tuple) and a ``DistanceData`` with the closest point and face index per name.
 
 The objects live in an ``antcd`` World (a dynamic AABB tree over the objects' boxes, exact
-triangle tests behind it); minimum distances (``antcd.distance``: signed for two closed meshes,
-the surface distance otherwise) are searched over object pairs in order of the gap between their
-boxes.
+triangle tests behind it). Collision and minimum-distance queries are the World's: minimum
+distances (``antcd.distance``: signed for two closed meshes, the surface distance otherwise) come
+from a best-first search over the tree's node pairs pruned by the best distance so far (ties: the
+objects added first).
 
 Differences from trimesh/FCL, all documented on the methods: meshes may be ``antcd.Model``s
 (shared, built once), trimesh meshes, or ``(vertices, faces)`` pairs; collision means the surfaces
@@ -124,9 +125,11 @@ class DistanceData:
     """The closest pair of a minimum-distance query: two named objects.
 
     ``names`` is the set of the two names; ``index(name)`` the face index of that object's closest
-    triangle; ``point(name)`` the world-frame closest point on it; ``distance`` the distance
-    between the two points (0 when the surfaces meet, never negative); ``intersecting`` whether
-    the surfaces share a point.
+    triangle; ``point(name)`` the world-frame closest point on it; ``distance`` the query's
+    distance: for two closed meshes the signed distance (minus the penetration depth when the
+    solids overlap, nested ones included; the points are then antcd.penetration's witness points),
+    otherwise the distance between the two surface points (0 when the surfaces meet);
+    ``intersecting`` whether the surfaces share a point.
     """
 
     __slots__ = ("names", "_inds", "_points", "_distance", "_intersecting")
@@ -140,7 +143,8 @@ class DistanceData:
 
     @property
     def distance(self) -> float:
-        """Euclidean distance between the two objects' surfaces."""
+        """The minimum distance: signed for two closed meshes (< 0: they overlap), else the
+        Euclidean distance between the two surfaces."""
         return self._distance
 
     @property
@@ -230,7 +234,7 @@ class CollisionManager:
         # id -> name. Ids are never reused and entries are kept after removal, so a query racing a
         # removal in another thread can still name what it found.
         self._names: dict[int, str] = {}
-        # name -> (model, pose) for queries on one named object (min_distance_internal(name=)).
+        # name -> (model, pose): the other side of each contact reported by in_collision_*.
         self._posed: dict[str, tuple[Model, Any]] = {}
 
     def add_object(self, name: str, mesh: Any, transform: Any = None) -> Model:
@@ -340,21 +344,11 @@ class CollisionManager:
     def _min_distance_named(self, name: str, return_names: bool, return_data: bool) -> Any:
         if name not in self._ids:
             raise ValueError(f"{name} not in collision manager!")
-        model, pose = self._posed[name]
-        best = None
-        for other in sorted(self._ids):
-            if other == name:
-                continue
-            other_model, other_pose = self._posed[other]
-            try:  # signed for two closed meshes; an open one is a ValueError: surface distance
-                result = _antcd.distance(model, pose, other_model, other_pose, signed=True)
-            except ValueError:
-                result = _antcd.distance(model, pose, other_model, other_pose)
-            if best is None or result.distance < best[1].distance:
-                best = (other, result)
-        if best is None:
+        nearest = self._world.distance_object(self._ids[name])
+        if nearest is None:
             return _answer(math.inf, None, None, return_names, return_data)
-        other, result = best
+        _, other_id, result = nearest
+        other = self._names[other_id]
         names = tuple(sorted((name, other)))
         data = DistanceData((name, other), result) if return_data else None
         return _answer(float(result.distance), names, data, return_names, return_data)

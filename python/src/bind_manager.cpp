@@ -33,6 +33,17 @@ py::object to_python(const ManagedWorld::Nearest& n) {
   return py::make_tuple(n.a, n.b, n.result);
 }
 
+// Runs a minimum-distance query without the GIL and converts its answer.
+template <class Query>
+py::object nearest(Query&& query) {
+  ManagedWorld::Nearest n;
+  {
+    py::gil_scoped_release release;
+    n = query();
+  }
+  return to_python(n);
+}
+
 }  // namespace
 
 void bind_manager(py::module_& m) {
@@ -79,13 +90,14 @@ void bind_manager(py::module_& m) {
             return to_python(std::move(hits));
           },
           py::arg("mode"), py::arg("delta") = 0.0,
-          "[(id_a, id_b, CollisionResult, model_a, pose_a 4x4)] for colliding pairs, id_a < id_b; sorted. mode: "
+          "[(id_a, id_b, CollisionResult, model_a, pose_a 4x4)] for colliding pairs, id_a < id_b; "
+          "sorted. mode: "
           "'verdict' or 'pairs' (every pair, first contact each) or "
           "'contacts' (every pair, every contact).")
       .def(
           "collide_single",
-          [](const ManagedWorld& w, const Model& model, const py::handle pose, const std::string& mode,
-             double delta) {
+          [](const ManagedWorld& w, const Model& model, const py::handle pose,
+             const std::string& mode, double delta) {
             const Transform t = to_transform(pose, "transform");
             const auto md = parse_mode(mode);
             const double d = to_non_negative(delta, "delta");
@@ -97,10 +109,12 @@ void bind_manager(py::module_& m) {
             return to_python(std::move(hits));
           },
           py::arg("model"), py::arg("transform"), py::arg("mode"), py::arg("delta") = 0.0,
-          "[(id, 0, CollisionResult, model, pose 4x4)]: objects colliding with the model (A = object, B = model).")
+          "[(id, 0, CollisionResult, model, pose 4x4)]: objects colliding with the model (A = "
+          "object, B = model).")
       .def(
           "collide_other",
-          [](const ManagedWorld& w, const ManagedWorld& other, const std::string& mode, double delta) {
+          [](const ManagedWorld& w, const ManagedWorld& other, const std::string& mode,
+             double delta) {
             const auto md = parse_mode(mode);
             const double d = to_non_negative(delta, "delta");
             std::vector<ManagedWorld::Hit> hits;
@@ -111,29 +125,26 @@ void bind_manager(py::module_& m) {
             return to_python(std::move(hits));
           },
           py::arg("other"), py::arg("mode"), py::arg("delta") = 0.0,
-          "[(id_this, id_other, CollisionResult, model_this, pose_this)] for colliding pairs across two worlds; sorted.")
+          "[(id_this, id_other, CollisionResult, model_this, pose_this)] for colliding pairs "
+          "across two worlds; sorted.")
       .def(
           "distance_internal",
-          [](const ManagedWorld& w) {
-            ManagedWorld::Nearest n;
-            {
-              py::gil_scoped_release release;
-              n = w.distance_internal();
-            }
-            return to_python(n);
-          },
+          [](const ManagedWorld& w) { return nearest([&] { return w.distance_internal(); }); },
           "(id_a, id_b, DistanceResult) of the closest pair of objects (A = id_a), or None with "
           "fewer than two objects.")
+      .def(
+          "distance_object",
+          [](const ManagedWorld& w, ManagedWorld::Id id) {
+            return nearest([&] { return w.distance_object(id); });
+          },
+          py::arg("id"),
+          "(id, id_other, DistanceResult) of the object closest to object id (A = id), or None "
+          "when there is no such object or no other.")
       .def(
           "distance_single",
           [](const ManagedWorld& w, const Model& model, const py::handle pose) {
             const Transform t = to_transform(pose, "transform");
-            ManagedWorld::Nearest n;
-            {
-              py::gil_scoped_release release;
-              n = w.distance_single(model, t);
-            }
-            return to_python(n);
+            return nearest([&] { return w.distance_single(model, t); });
           },
           py::arg("model"), py::arg("transform"),
           "(id, 0, DistanceResult) of the object closest to the model (A = object, B = model), or "
@@ -141,12 +152,7 @@ void bind_manager(py::module_& m) {
       .def(
           "distance_other",
           [](const ManagedWorld& w, const ManagedWorld& other) {
-            ManagedWorld::Nearest n;
-            {
-              py::gil_scoped_release release;
-              n = w.distance_other(other);
-            }
-            return to_python(n);
+            return nearest([&] { return w.distance_other(other); });
           },
           py::arg("other"),
           "(id_this, id_other, DistanceResult) of the closest pair across two worlds (A = this "

@@ -1,6 +1,8 @@
 // python/src/convert.cpp — see convert.hpp.
 #include "convert.hpp"
 
+#include <antcd/tolerances.hpp>
+
 #include <algorithm>
 #include <bit>
 #include <cmath>
@@ -10,8 +12,6 @@
 namespace antcd::python {
 
 namespace {
-
-constexpr double kRigidTolerance = 1e-6;
 
 std::string str(std::string_view s) { return std::string(s); }
 
@@ -62,9 +62,8 @@ Transform rigid(const double* r, std::ptrdiff_t r_row, const double* t, std::str
     for (int j = 0; j < 3; ++j) out.rotation(i, j) = r[i * r_row + j];
     out.translation[i] = t[i];
   }
-  const Mat3 gram = out.rotation.transpose() * out.rotation - Mat3::Identity();
-  const double err = gram.cwiseAbs().maxCoeff();
-  if (!(err <= kRigidTolerance)) {
+  const double err = tolerance::orthonormality_error(out.rotation);
+  if (!(err <= tolerance::kRigid)) {
     throw py::value_error(str(name) + ": rotation is not orthonormal (max |R^T R - I| = " +
                           std::to_string(err) + "): antcd takes rigid motions only, no scale or shear");
   }
@@ -88,20 +87,19 @@ bool acceptable_homogeneous(const double* d) {
   for (int k = 0; k < 16; ++k) {
     if (!std::isfinite(d[k])) return false;
   }
-  if (std::abs(d[12]) > kRigidTolerance || std::abs(d[13]) > kRigidTolerance ||
-      std::abs(d[14]) > kRigidTolerance || std::abs(d[15] - 1) > kRigidTolerance) {
+  if (std::abs(d[12]) > tolerance::kRigid || std::abs(d[13]) > tolerance::kRigid ||
+      std::abs(d[14]) > tolerance::kRigid || std::abs(d[15] - 1) > tolerance::kRigid) {
     return false;
   }
   const Mat3 r = from_homogeneous(d).rotation;
-  return (r.transpose() * r - Mat3::Identity()).cwiseAbs().maxCoeff() <= kRigidTolerance &&
-         r.determinant() >= 0;
+  return tolerance::orthonormality_error(r) <= tolerance::kRigid && r.determinant() >= 0;
 }
 
 /// A row-major 4x4 homogeneous matrix, checked: finite, last row [0, 0, 0, 1], rigid rotation.
 Transform homogeneous(const double* d, std::string_view name) {
   require_finite(d, 16, name);
-  if (std::abs(d[12]) > kRigidTolerance || std::abs(d[13]) > kRigidTolerance ||
-      std::abs(d[14]) > kRigidTolerance || std::abs(d[15] - 1) > kRigidTolerance) {
+  if (std::abs(d[12]) > tolerance::kRigid || std::abs(d[13]) > tolerance::kRigid ||
+      std::abs(d[14]) > tolerance::kRigid || std::abs(d[15] - 1) > tolerance::kRigid) {
     throw py::value_error(str(name) + ": last row must be [0, 0, 0, 1] (no projective part)");
   }
   const double t[3] = {d[3], d[7], d[11]};

@@ -2,12 +2,10 @@
 #include "manager.hpp"
 
 #include <algorithm>
-#include <cmath>
 #include <functional>
-#include <limits>
 #include <mutex>
+#include <optional>
 #include <stdexcept>
-#include <tuple>
 #include <utility>
 
 namespace antcd::python {
@@ -49,77 +47,18 @@ void swap_sides(std::vector<Contact>& contacts) {
   }
 }
 
-// A posed model with its world-frame box (the root OBB's axis-aligned bounds, grown by a rounding
-// allowance so that the box surely contains the posed mesh).
-struct Posed {
-  Id id = 0;
-  const Model* model = nullptr;
-  const Transform* pose = nullptr;
-  Aabb box;
-};
+// Two closed meshes: signed distance (-penetration depth when they overlap, nested included), as
+// FCL's signed distance that trimesh's manager reports; open meshes: the surface distance.
+constexpr NearestRequest kNearest{true};
 
-Aabb world_box(const Model& model, const Transform& pose) {
-  const Obb obb = model.root().obb();
-  const Vec3 center = pose.apply(obb.center);
-  const Vec3 half = (pose.rotation * obb.axes).cwiseAbs() * obb.half_extents;
-  const Scalar allowance = 1e-9 * (center.norm() + half.norm() + model.root().radius) + 1e-300;
-  const Vec3 grow = half.array() + allowance;
-  return Aabb{center - grow, center + grow};
-}
-
-std::vector<Posed> posed_objects(const World& world) {
-  std::vector<Posed> out;
-  for (const ObjectId id : world.objects()) {
-    const Model& model = world.model(id);
-    const Transform& pose = world.pose(id);
-    out.push_back(Posed{pack(id), &model, &pose, world_box(model, pose)});
-  }
+ManagedWorld::Nearest as_nearest(const std::optional<NearestPair>& n, bool pack_b = true) {
+  ManagedWorld::Nearest out;
+  if (!n) return out;
+  out.found = true;
+  out.a = pack(n->a);
+  out.b = pack_b ? pack(n->b) : 0;
+  out.result = n->result;
   return out;
-}
-
-// Euclidean gap between two boxes: a lower bound of the distance between anything inside them.
-Scalar box_gap(const Aabb& p, const Aabb& q) {
-  const Vec3 gap = (p.min - q.max).cwiseMax(q.min - p.max).cwiseMax(Vec3::Zero());
-  return gap.norm();
-}
-
-struct Candidate {
-  Scalar bound;
-  std::size_t left;
-  std::size_t right;
-};
-
-// The closest of the candidate pairs (left[i], right[j]): pairs in order of their lower bound, each
-// distance query bounded by the best distance so far; stops once the next bound exceeds it.
-// Ties keep the first pair found, so the answer is a function of the world's state.
-ManagedWorld::Nearest closest(const std::vector<Posed>& left, const std::vector<Posed>& right,
-                              std::vector<Candidate> candidates) {
-  std::sort(candidates.begin(), candidates.end(), [&](const Candidate& p, const Candidate& q) {
-    return std::tie(p.bound, left[p.left].id, right[p.right].id) <
-           std::tie(q.bound, left[q.left].id, right[q.right].id);
-  });
-  ManagedWorld::Nearest best;
-  DistanceRequest request;
-  for (const Candidate& c : candidates) {
-    // Signed distances (closed pairs) go below 0, so a pair at 0 does not end the search.
-    if (best.found && c.bound > best.result.distance) break;
-    request.upper_bound = best.found ? std::max<Scalar>(0, best.result.distance)
-                                     : std::numeric_limits<Scalar>::infinity();
-    const Posed& a = left[c.left];
-    const Posed& b = right[c.right];
-    // Two solids: signed distance (-penetration depth when they overlap, nested included), as
-    // FCL's signed distance that trimesh's manager reports; open meshes: the surface distance.
-    request.signed_distance = a.model->is_closed() && b.model->is_closed();
-    DistanceResult r = distance(*a.model, *a.pose, *b.model, *b.pose, request);
-    if (r.beyond_upper_bound || !std::isfinite(r.distance)) continue;
-    if (!best.found || r.distance < best.result.distance) {
-      best.found = true;
-      best.a = a.id;
-      best.b = b.id;
-      best.result = r;
-    }
-  }
-  return best;
 }
 
 }  // namespace
@@ -207,42 +146,24 @@ std::vector<ManagedWorld::Hit> ManagedWorld::collide_other(const ManagedWorld& o
 
 ManagedWorld::Nearest ManagedWorld::distance_internal() const {
   std::shared_lock lock(mutex_);
-  const std::vector<Posed> objects = posed_objects(world_);
-  std::vector<Candidate> candidates;
-  candidates.reserve(objects.size() * (objects.size() - (objects.empty() ? 0 : 1)) / 2);
-  for (std::size_t i = 0; i < objects.size(); ++i) {
-    for (std::size_t j = i + 1; j < objects.size(); ++j) {
-      candidates.push_back({box_gap(objects[i].box, objects[j].box), i, j});
-    }
-  }
-  return closest(objects, objects, std::move(candidates));
+  return as_nearest(world_.nearest_pair(kNearest));
+}
+
+ManagedWorld::Nearest ManagedWorld::distance_object(Id id) const {
+  std::shared_lock lock(mutex_);
+  if (!world_.contains(unpack(id))) return {};
+  return as_nearest(world_.nearest_object(unpack(id), kNearest));
 }
 
 ManagedWorld::Nearest ManagedWorld::distance_single(const Model& model,
                                                     const Transform& pose) const {
-  const std::vector<Posed> query{Posed{0, &model, &pose, world_box(model, pose)}};
   std::shared_lock lock(mutex_);
-  const std::vector<Posed> objects = posed_objects(world_);
-  std::vector<Candidate> candidates;
-  candidates.reserve(objects.size());
-  for (std::size_t i = 0; i < objects.size(); ++i)
-    candidates.push_back({box_gap(objects[i].box, query[0].box), i, 0});
-  return closest(objects, query, std::move(candidates));
+  return as_nearest(world_.nearest_to(model, pose, kNearest), false);
 }
 
 ManagedWorld::Nearest ManagedWorld::distance_other(const ManagedWorld& other) const {
-  return with_both_locked(other, [&] {
-    const std::vector<Posed> left = posed_objects(world_);
-    const std::vector<Posed> right = posed_objects(other.world_);
-    std::vector<Candidate> candidates;
-    candidates.reserve(left.size() * right.size());
-    for (std::size_t i = 0; i < left.size(); ++i) {
-      for (std::size_t j = 0; j < right.size(); ++j) {
-        candidates.push_back({box_gap(left[i].box, right[j].box), i, j});
-      }
-    }
-    return closest(left, right, std::move(candidates));
-  });
+  return with_both_locked(other,
+                          [&] { return as_nearest(world_.nearest_pair(other.world_, kNearest)); });
 }
 
 }  // namespace antcd::python

@@ -3,9 +3,8 @@
 //
 // Objects (a shared Model and a pose) are added, moved and removed through the World (its dynamic
 // AABB tree is the broad phase); collision queries are the World's (collide_all, collide_model)
-// with CollisionRequest::volume (a closed object wholly inside another collides),
-// minimum-distance queries run antcd::distance over object pairs in order of a lower bound (the gap
-// between the objects' world boxes), each bounded by the best distance found so far.
+// with CollisionRequest::volume (a closed object wholly inside another collides), and so are the
+// minimum-distance queries (nearest_pair, nearest_object, nearest_to with signed distances).
 //
 // Ids: an ObjectId packed into 64 bits (slot << 32 | generation). The World never hands out the
 // same (slot, generation) twice, so an id is never reused, even after removal.
@@ -74,6 +73,9 @@ class ManagedWorld {
   /// signed_distance: -penetration depth when two closed objects overlap) for closed pairs, the
   /// surface distance otherwise.
   [[nodiscard]] Nearest distance_internal() const;
+  /// The object closest to object `id` (a = id, b = the other); not found when `id` is not an
+  /// object or there is no other.
+  [[nodiscard]] Nearest distance_object(Id id) const;
   /// The object closest to `model` at `pose`.
   [[nodiscard]] Nearest distance_single(const Model& model, const Transform& pose) const;
   /// The closest pair (this world's a, other's b); `other` may be *this.

@@ -153,6 +153,22 @@ def test_min_distance_return_conventions(shapes):
     assert manager.min_distance_other(other, return_names=True)[1] == ("a", "x")
 
 
+def test_min_distance_internal_finds_the_deepest_overlap(shapes):
+    # Two overlapping pairs of solids; the shallow pair holds the objects added first. A search
+    # that stopped at the first negative distance (as the manager's own search once did) would
+    # report -0.1 instead of the deeper pair's -0.3.
+    box = shapes[0]  # half extents (0.5, 0.3, 0.2)
+    manager = antcd.CollisionManager()
+    manager.add_object("shallow1", box)
+    manager.add_object("shallow2", box, (np.eye(3), [0.9, 0, 0]))
+    manager.add_object("deep1", box, (np.eye(3), [10.0, 0, 0]))
+    manager.add_object("deep2", box, (np.eye(3), [10.0, 0, 0.1]))  # overlap 0.3 along z
+    d, names = manager.min_distance_internal(return_names=True)
+    assert names == ("deep1", "deep2") and d == pytest.approx(-0.3)
+    d, names = manager.min_distance_internal(return_names=True, name="shallow2")
+    assert names == ("shallow1", "shallow2") and d == pytest.approx(-0.1)
+
+
 def test_min_distance_errors(shapes):
     manager = antcd.CollisionManager()
     manager.add_object("a", shapes[0])

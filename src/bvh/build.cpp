@@ -7,6 +7,7 @@
 #include "bvh/node_store.hpp"
 #include "bvh/split.hpp"
 #include "geometry/obb_fit.hpp"
+#include "util/check.hpp"
 #include "util/huge_pages.hpp"
 #include "util/parallel.hpp"
 
@@ -202,9 +203,7 @@ Model::Model(Mesh mesh, const BuildOptions& options, std::string source)
       options_(options),
       cache_(std::make_shared<detail::ModelCache>()) {
   const auto start = std::chrono::steady_clock::now();
-  if (options_.leaf_size == 0) {
-    throw antcd::ArgumentError(source_ + ": leaf size must be at least 1");
-  }
+  detail::require_at_least(source_, "options.leaf_size", options_.leaf_size, 1);
   validate_mesh(mesh_, source_);
 
   // Every triangle with its corners, centroid and area; zero-area ones are left out of the tree.

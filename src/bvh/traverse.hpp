@@ -2,6 +2,7 @@
 #pragma once
 
 #include <antcd/bvh.hpp>
+#include <antcd/tolerances.hpp>
 
 #include <array>
 #include <cassert>
@@ -45,7 +46,7 @@ struct PairFrame {
     // being culled by rounding in the box fit or in the separating-axis arithmetic.
     const Scalar scale = a.root().radius + b.root().radius + a.root().center.norm() +
                          b.root().center.norm() + b_to_a.translation.norm();
-    margin = delta + 1e-9 * scale;
+    margin = delta + tolerance::kVolume * scale;
   }
 };
 

@@ -4,13 +4,14 @@
 
 #include <antcd/bvh.hpp>
 #include <antcd/math.hpp>
+#include <antcd/tolerances.hpp>
 
 namespace antcd::ccd {
 
 /// Angle of the rotation from r0 to r1 along the shorter arc (the slerp's total angle), rounded up.
 inline Scalar rotation_angle(const Mat3& r0, const Mat3& r1) {
   const Scalar angle = Quat(r0).angularDistance(Quat(r1));
-  return angle * (1 + 1e-12) + 1e-15;
+  return tolerance::widened(angle) + 1e-15;
 }
 
 /// Radius about the model origin holding every vertex of the model's tree (root sphere).

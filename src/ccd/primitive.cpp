@@ -24,6 +24,8 @@
 #include <limits>
 #include <string>
 
+#include "util/check.hpp"
+
 namespace antcd::ccd {
 namespace {
 
@@ -57,12 +59,8 @@ void check_input(const std::array<Vec3, 4>& at_t0, const std::array<Vec3, 4>& at
                           "] is not finite");
     }
   }
-  if (!(min_separation >= 0) || !std::isfinite(min_separation)) {
-    throw ArgumentError(std::string(function) + ": min_separation must be finite and >= 0");
-  }
-  if (!(time_tolerance > 0) || !std::isfinite(time_tolerance)) {
-    throw ArgumentError(std::string(function) + ": time_tolerance must be finite and > 0");
-  }
+  detail::require_non_negative(function, "min_separation", min_separation);
+  detail::require_positive(function, "time_tolerance", time_tolerance);
 }
 
 /// F at parameters (u, v) from the corner positions p at one time.

@@ -5,6 +5,7 @@
 #include <antcd/error.hpp>
 #include <antcd/geometry.hpp>
 #include <antcd/sweep.hpp>
+#include <antcd/tolerances.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -12,14 +13,12 @@
 #include <string>
 
 #include "ccd/motion.hpp"
+#include "util/check.hpp"
 #include "util/pose_check.hpp"
 
 namespace antcd {
 namespace {
 
-/// Relative slack of the rounding allowance (see sweep.hpp): the poses, the distance and the
-/// time steps are each within a few 1e-16 of the scene's size; 1e-12 leaves ample room.
-constexpr Scalar kAllowance = 1e-12;
 /// The loop's distance queries may stop within this fraction of the distance (the lower bound is
 /// still proven); only the stopping decision needs the exact distance.
 constexpr Scalar kStepRelTolerance = 0.5;
@@ -65,25 +64,22 @@ SweepResult sweep(const Model& a, const Transform& pose_a0, const Transform& pos
   check_pose(pose_b1, "pose_b1");
   const Scalar ms = request.min_separation;
   const Scalar tol = request.time_tolerance;
-  if (!(ms >= 0) || !std::isfinite(ms)) {
-    throw ArgumentError("sweep: min_separation must be finite and >= 0");
-  }
-  if (!(tol > 0) || !std::isfinite(tol)) {
-    throw ArgumentError("sweep: time_tolerance must be finite and > 0");
-  }
-  if (request.max_iterations == 0) throw ArgumentError("sweep: max_iterations must be >= 1");
+  detail::require_non_negative("sweep", "min_separation", ms);
+  detail::require_positive("sweep", "time_tolerance", tol);
+  detail::require_at_least("sweep", "max_iterations", request.max_iterations, 1);
 
   const Scalar ra = ccd::origin_radius(a);
   const Scalar rb = ccd::origin_radius(b);
   const Vec3 relative_move =
       (pose_a1.translation - pose_a0.translation) - (pose_b1.translation - pose_b0.translation);
-  const Scalar mu =
-      (relative_move.norm() + ccd::rotation_angle(pose_a0.rotation, pose_a1.rotation) * ra +
-       ccd::rotation_angle(pose_b0.rotation, pose_b1.rotation) * rb) *
-      (1 + 1e-12);
+  const Scalar mu = tolerance::widened(
+      relative_move.norm() + ccd::rotation_angle(pose_a0.rotation, pose_a1.rotation) * ra +
+      ccd::rotation_angle(pose_b0.rotation, pose_b1.rotation) * rb);
   const Scalar scale = ra + rb + ms + pose_a0.translation.norm() + pose_a1.translation.norm() +
                        pose_b0.translation.norm() + pose_b1.translation.norm();
-  const Scalar allowance = kAllowance * scale;
+  // The poses, the distance and the time steps are each within a few 1e-16 of the scene's size
+  // (see sweep.hpp).
+  const Scalar allowance = tolerance::kArithmetic * scale;
 
   SweepResult result;
   result.motion_bound = mu;

@@ -15,6 +15,7 @@
 
 #include "bvh/traverse.hpp"
 #include "distance/node_bound.hpp"
+#include "util/check.hpp"
 
 #include <algorithm>
 #include <array>
@@ -29,18 +30,9 @@ namespace {
 constexpr Scalar kInf = std::numeric_limits<Scalar>::infinity();
 
 void check_request(const DistanceRequest& r) {
-  if (!(r.upper_bound >= 0)) {
-    throw ArgumentError("distance: upper_bound must be >= 0 (or +inf), got " +
-                        std::to_string(r.upper_bound));
-  }
-  if (!(r.abs_tolerance >= 0) || !std::isfinite(r.abs_tolerance)) {
-    throw ArgumentError("distance: abs_tolerance must be finite and >= 0, got " +
-                        std::to_string(r.abs_tolerance));
-  }
-  if (!(r.rel_tolerance >= 0 && r.rel_tolerance < 1)) {
-    throw ArgumentError("distance: rel_tolerance must be in [0, 1), got " +
-                        std::to_string(r.rel_tolerance));
-  }
+  detail::require_bound("distance", "upper_bound", r.upper_bound);
+  detail::require_non_negative("distance", "abs_tolerance", r.abs_tolerance);
+  detail::require_in_range("distance", "rel_tolerance", r.rel_tolerance, 0, 1, true, "[0, 1)");
 }
 
 // The search state: best pair so far and the pruning rule.

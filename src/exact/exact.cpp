@@ -6,6 +6,7 @@
 #include "exact/manifold.hpp"
 #include "exact/volume.hpp"
 #include "geometry/penetration.hpp"
+#include "util/check.hpp"
 
 #include <array>
 #include <cassert>
@@ -32,14 +33,9 @@ geometry::TrianglePenetration apart(const Vec3& a0, const Vec3& a1, const Vec3& 
 template <class Walk>
 bool collide_walk(const Model& a, const Transform& pose_a, const Model& b, const Transform& pose_b,
                   const CollisionRequest& request, CollisionResult& result, Walk&& walk) {
-  if (!(request.delta >= 0) || !std::isfinite(request.delta)) {
-    throw antcd::ArgumentError("collision threshold delta must be finite and >= 0, got " +
-                               std::to_string(request.delta));
-  }
-  if (!(request.manifold_angle >= 0 && request.manifold_angle <= std::numbers::pi)) {
-    throw antcd::ArgumentError("manifold_angle must be in [0, pi] radians, got " +
-                               std::to_string(request.manifold_angle));
-  }
+  detail::require_non_negative("collide", "request.delta", request.delta);
+  detail::require_in_range("collide", "request.manifold_angle", request.manifold_angle, 0,
+                           std::numbers::pi, false, "[0, pi] radians");
   result.clear();
   const bool normals = request.contact_normals || request.manifold_points > 0;
   const detail::PairFrame frame(a, pose_a, b, pose_b, request.delta);

@@ -1,6 +1,7 @@
 // src/geometry/distance.cpp — distances between points, segments and triangles, and the
 // within-δ test (see antcd/geometry.hpp).
 #include <antcd/geometry.hpp>
+#include <antcd/tolerances.hpp>
 
 #include "geometry/intersection.hpp"
 #include "geometry/predicates.hpp"
@@ -247,7 +248,7 @@ bool triangles_within(const Vec3& a0, const Vec3& a1, const Vec3& a2, const Vec3
   const Scalar scale =
       std::max({a0.cwiseAbs().maxCoeff(), a1.cwiseAbs().maxCoeff(), a2.cwiseAbs().maxCoeff(),
                 b0.cwiseAbs().maxCoeff(), b1.cwiseAbs().maxCoeff(), b2.cwiseAbs().maxCoeff()});
-  const Scalar slack = delta * (1 + 1e-12) + 1e-13 * scale;
+  const Scalar slack = tolerance::widened(delta) + 1e-13 * scale;
   auto beyond_delta = [&](const Plane& pl, const SideValue(&sv)[3]) {
     const Scalar nlen = pl.n.norm();
     const Scalar reach = (nlen * (1 + 8 * kEps) + 8 * kEps * pl.nperm.sum()) * slack;

@@ -15,29 +15,17 @@
 #include <unordered_map>
 #include <utility>
 
-#include "util/number_text.hpp"
+#include "util/check.hpp"
 
 namespace antcd {
 namespace {
 
-std::string number(double x) {
-  std::string text;
-  detail::append_double(text, x);
-  return text.empty() ? std::string("?") : text;
-}
-
 void require_length(const char* function, const char* name, Scalar value) {
-  if (!std::isfinite(value) || !(value > 0)) {
-    throw antcd::ArgumentError(std::string("antcd::") + function + ": " + name +
-                               " must be finite and > 0, got " + number(value));
-  }
+  detail::require_positive(std::string("antcd::") + function, name, value);
 }
 
 void require_count(const char* function, const char* name, int value, int minimum) {
-  if (value < minimum) {
-    throw antcd::ArgumentError(std::string("antcd::") + function + ": " + name + " must be >= " +
-                               std::to_string(minimum) + ", got " + std::to_string(value));
-  }
+  detail::require_at_least(std::string("antcd::") + function, name, value, minimum);
 }
 
 /// Rejects tessellations whose vertex count would not fit 32-bit indices.
@@ -225,8 +213,9 @@ Mesh make_torus(Scalar major, Scalar minor, int major_segments, int minor_segmen
   require_length("make_torus", "minor", minor);
   if (!(minor < major)) {
     // With minor >= major the tube reaches the axis: the inner ring collapses or self-intersects.
-    throw antcd::ArgumentError("antcd::make_torus: minor radius (" + number(minor) +
-                               ") must be smaller than major radius (" + number(major) + ")");
+    throw antcd::ArgumentError("antcd::make_torus: minor radius (" + detail::format_number(minor) +
+                               ") must be smaller than major radius (" +
+                               detail::format_number(major) + ")");
   }
   require_count("make_torus", "major_segments", major_segments, 3);
   require_count("make_torus", "minor_segments", minor_segments, 3);

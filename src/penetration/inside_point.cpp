@@ -12,6 +12,7 @@
 
 #include <antcd/collide.hpp>
 #include <antcd/points.hpp>
+#include <antcd/tolerances.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -52,7 +53,7 @@ DepthProbe::DepthProbe(const Model& a, const Transform& pose_a, const Model& b,
     : a_(a), b_(b), pose_a_(pose_a), pose_b_(pose_b) {
   scale_ = pose_a.translation.norm() + pose_b.translation.norm() + a.root().center.norm() +
            b.root().center.norm() + a.root().radius + b.root().radius;
-  allowance_ = 1e-10 * scale_;
+  allowance_ = tolerance::kPoint * scale_;
 }
 
 std::vector<DepthPoint> DepthProbe::evaluate(std::span<const Vec3> points) const {

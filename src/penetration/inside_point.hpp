@@ -29,7 +29,7 @@ class DepthProbe {
 
   /// Evaluates every point (two batched point queries).
   [[nodiscard]] std::vector<DepthPoint> evaluate(std::span<const Vec3> points) const;
-  /// 1e-10 of the coordinates' scale: far above the rounding of a point query.
+  /// tolerance::kPoint (1e-10) of the coordinates' scale: far above the rounding of a point query.
   [[nodiscard]] Scalar allowance() const { return allowance_; }
   /// Size of the scene: the coordinates' magnitude plus both models' extents.
   [[nodiscard]] Scalar scale() const { return scale_; }

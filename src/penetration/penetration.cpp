@@ -15,6 +15,7 @@
 
 #include "penetration/convex.hpp"
 #include "penetration/inside_point.hpp"
+#include "util/check.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -37,23 +38,14 @@ void check_request(const Model& a, const Model& b, const PenetrationRequest& r) 
                           "' is not closed (no solid; penetration depth needs closed models)");
     }
   }
-  if (!(r.abs_tolerance >= 0) || !std::isfinite(r.abs_tolerance)) {
-    throw ArgumentError("penetration: abs_tolerance must be finite and >= 0, got " +
-                        std::to_string(r.abs_tolerance));
-  }
-  if (!(r.rel_tolerance >= 0 && r.rel_tolerance < 1)) {
-    throw ArgumentError("penetration: rel_tolerance must be in [0, 1), got " +
-                        std::to_string(r.rel_tolerance));
-  }
+  detail::require_non_negative("penetration", "abs_tolerance", r.abs_tolerance);
+  detail::require_in_range("penetration", "rel_tolerance", r.rel_tolerance, 0, 1, true, "[0, 1)");
   if (r.abs_tolerance == 0 && r.rel_tolerance == 0) {
     throw ArgumentError(
         "penetration: abs_tolerance and rel_tolerance are both 0 (no stopping rule)");
   }
-  if (r.max_evaluations == 0) throw ArgumentError("penetration: max_evaluations must be >= 1");
-  if (!(r.max_seconds >= 0)) {
-    throw ArgumentError("penetration: max_seconds must be >= 0, got " +
-                        std::to_string(r.max_seconds));
-  }
+  detail::require_at_least("penetration", "max_evaluations", r.max_evaluations, 1);
+  detail::require_bound("penetration", "max_seconds", r.max_seconds);
 }
 
 // Collide calls at translated poses of A, within the budget.

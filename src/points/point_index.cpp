@@ -2,6 +2,8 @@
 // hierarchy (boundary fans), pseudo-normal sign of the closest feature.
 #include "points/point_index.hpp"
 
+#include <antcd/tolerances.hpp>
+
 #include "bvh/model_cache.hpp"
 
 #include <algorithm>
@@ -42,7 +44,7 @@ void reduce_boundary(std::vector<Edge>& edges) {
 bool outside_box(const BvhNode& node, const Vec3& p) {
   const Vec3 local = node.axes().transpose() * (p - node.center);
   const Vec3 half = node.half_extents();
-  const Scalar margin = 1e-10 * (node.center.cwiseAbs().maxCoeff() + half.maxCoeff());
+  const Scalar margin = tolerance::kPoint * (node.center.cwiseAbs().maxCoeff() + half.maxCoeff());
   return ((local.cwiseAbs() - half).array() > margin).any();
 }
 
@@ -235,7 +237,7 @@ bool inside_from_closest(const Model& model, const PointIndex& index, const Vec3
   for (int i = 0; i < 3; ++i) {
     scale = std::max({scale, (v[(i + 1) % 3] - v[i]).norm(), v[i].cwiseAbs().maxCoeff()});
   }
-  const Scalar tol = 1e-10 * scale;
+  const Scalar tol = tolerance::kPoint * scale;
   bool on_edge[3];
   int edges = 0;
   for (int i = 0; i < 3; ++i) {

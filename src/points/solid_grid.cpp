@@ -2,6 +2,8 @@
 // classified per face-connected component by one winding number each.
 #include "points/solid_grid.hpp"
 
+#include <antcd/tolerances.hpp>
+
 #include <algorithm>
 #include <cmath>
 
@@ -37,7 +39,8 @@ SolidGrid::SolidGrid(const Model& model, const std::function<int(const Vec3&)>& 
   origin_ = box.min - Vec3::Constant(cell);
   inverse_cell_ = 1 / cell;
   // Far above the rounding of the coordinates and of the cell arithmetic.
-  const Scalar eps = 1e-9 * (box.min.cwiseAbs().cwiseMax(box.max.cwiseAbs()).maxCoeff() + largest);
+  const Scalar eps =
+      tolerance::kVolume * (box.min.cwiseAbs().cwiseMax(box.max.cwiseAbs()).maxCoeff() + largest);
   const std::size_t total = static_cast<std::size_t>(dims_[0] * dims_[1] * dims_[2]);
   cells_.assign(total, kOutside);
 

@@ -1,5 +1,6 @@
 // random_detect(): the section-4 query of one model pair (detect.hpp), run in one step.
 #include "random/detect.hpp"
+#include "util/check.hpp"
 
 #include <antcd/error.hpp>
 
@@ -13,12 +14,8 @@ namespace antcd::detail {
 
 void validate_detect(const DetectRequest& request, const char* caller) {
   validate_search(request.search, caller);
-  if (!(request.delta >= 0) || !std::isfinite(request.delta)) {
-    throw ArgumentError(std::string(caller) + ": delta must be finite and >= 0");
-  }
-  if (request.samples_per_side == 0) {
-    throw ArgumentError(std::string(caller) + ": samples_per_side must be >= 1");
-  }
+  detail::require_non_negative(caller, "delta", request.delta);
+  detail::require_at_least(caller, "samples_per_side", request.samples_per_side, 1);
 }
 
 PairDetection::PairDetection(const Model& a, const Transform& pose_a, const Model& b,

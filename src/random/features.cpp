@@ -5,6 +5,7 @@
 
 #include "bvh/traverse.hpp"
 #include "random/engines.hpp"
+#include "util/check.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -205,15 +206,10 @@ FeatureSide make_side(const Model& model, const Transform& pose, const Transform
 FeatureSpace build_feature_space(const Model& a, const Transform& pose_a, const Model& b,
                                  const Transform& pose_b, const SamplingOptions& options,
                                  std::uint64_t seed) {
-  if (options.samples_per_side == 0) {
-    throw ArgumentError("build_feature_space: samples_per_side must be >= 1");
-  }
-  if (!(options.delta >= 0) || !std::isfinite(options.delta)) {
-    throw ArgumentError("build_feature_space: delta must be finite and >= 0");
-  }
-  if (options.centroid_delta &&
-      !(*options.centroid_delta > 0 && std::isfinite(*options.centroid_delta))) {
-    throw ArgumentError("build_feature_space: centroid_delta must be finite and > 0 (or unset)");
+  detail::require_at_least("build_feature_space", "samples_per_side", options.samples_per_side, 1);
+  detail::require_non_negative("build_feature_space", "delta", options.delta);
+  if (options.centroid_delta) {
+    detail::require_positive("build_feature_space", "centroid_delta", *options.centroid_delta);
   }
   FeatureSpace space;
   space.delta = options.delta;
@@ -299,9 +295,7 @@ bool witness_test(const FeatureSpace& space, std::uint32_t i, std::uint32_t j) {
 
 Thresholds thresholds(const FeatureSpace& space, Verdict verdict,
                       std::optional<Scalar> centroid_delta, const char* caller) {
-  if (centroid_delta && !(*centroid_delta > 0 && std::isfinite(*centroid_delta))) {
-    throw ArgumentError(std::string(caller) + ": centroid_delta must be finite and > 0 (or unset)");
-  }
+  if (centroid_delta) detail::require_positive(caller, "centroid_delta", *centroid_delta);
   Thresholds t;
   t.verdict = verdict;
   t.delta = round_up(space.delta, 1e-6);

@@ -9,63 +9,67 @@
 
 #include "bvh/traverse.hpp"
 #include "random/engines.hpp"
+#include "util/check.hpp"
 
 namespace antcd {
 namespace {
 
-void require(bool ok, const char* caller, const char* what) {
-  if (!ok) throw ArgumentError(std::string(caller) + ": " + what);
+// A condition the helpers of util/check.hpp do not cover; the same message format.
+void require(bool ok, const char* caller, const char* argument, const char* requirement) {
+  if (!ok) detail::argument_error(caller, argument, requirement, "another value");
 }
 
 }  // namespace
 
 void detail::validate_search(const SearchRequest& r, const char* caller) {
-  require(!r.centroid_delta || (*r.centroid_delta > 0 && std::isfinite(*r.centroid_delta)), caller,
-          "centroid_delta must be finite and > 0 (or unset)");
-  require(r.iterations >= 1, caller, "iterations must be >= 1");
-  require(r.verdict == Verdict::Witness || r.verdict == Verdict::PaperCentroid, caller,
-          "unknown verdict");
+  if (r.centroid_delta) detail::require_positive(caller, "centroid_delta", *r.centroid_delta);
+  detail::require_at_least(caller, "iterations", r.iterations, 1);
+  require(r.verdict == Verdict::Witness || r.verdict == Verdict::PaperCentroid, caller, "verdict",
+          "Witness or PaperCentroid");
   const StopCriteria& s = r.stop;
-  require(s.target_share >= 0 && s.target_share <= 1, caller,
-          "stop.target_share must be in [0, 1]");
-  require(s.max_seconds >= 0 && !std::isnan(s.max_seconds), caller,
-          "stop.max_seconds must be >= 0");
+  detail::require_in_range(caller, "stop.target_share", s.target_share, 0, 1, false, "[0, 1]");
+  detail::require_bound(caller, "stop.max_seconds", s.max_seconds);
   for (const double mark : r.progress_marks) {
-    require(mark > 0 && mark <= 1, caller, "progress_marks must be in (0, 1]");
+    if (!(mark > 0 && mark <= 1)) {
+      detail::argument_error(caller, "progress_marks", "in (0, 1]", detail::format_number(mark));
+    }
   }
   switch (r.method) {
     case Method::Aco:
     case Method::Maco: {
       const AntParams& p = r.ant;
-      require(p.ants >= 1, caller, "ant.ants must be >= 1");
-      require(p.alpha >= 0 && p.beta >= 0 && std::isfinite(p.alpha) && std::isfinite(p.beta),
-              caller, "ant.alpha and ant.beta must be finite and >= 0");
-      require(p.rho >= 0 && p.rho <= 1, caller, "ant.rho must be in [0, 1]");
-      require(p.q > 0 && std::isfinite(p.q), caller, "ant.q must be > 0");
-      require(p.tau0 > 0 && std::isfinite(p.tau0), caller, "ant.tau0 must be > 0");
-      require(p.n > 0 && std::isfinite(p.n), caller, "ant.n must be > 0");
-      require(std::isfinite(p.theta) && std::isfinite(p.mu), caller,
-              "ant.theta and ant.mu must be finite");
-      require(p.pheromone_resolution >= 1, caller, "ant.pheromone_resolution must be >= 1");
-      require(p.start == AntStart::LeafPairs || p.start == AntStart::Uniform, caller,
-              "unknown ant.start");
+      detail::require_at_least(caller, "ant.ants", p.ants, 1);
+      detail::require_non_negative(caller, "ant.alpha", p.alpha);
+      detail::require_non_negative(caller, "ant.beta", p.beta);
+      detail::require_in_range(caller, "ant.rho", p.rho, 0, 1, false, "[0, 1]");
+      detail::require_positive(caller, "ant.q", p.q);
+      detail::require_positive(caller, "ant.tau0", p.tau0);
+      detail::require_positive(caller, "ant.n", p.n);
+      detail::require_finite(caller, "ant.theta", p.theta);
+      detail::require_finite(caller, "ant.mu", p.mu);
+      detail::require_at_least(caller, "ant.pheromone_resolution", p.pheromone_resolution, 1);
+      require(p.start == AntStart::LeafPairs || p.start == AntStart::Uniform, caller, "ant.start",
+              "LeafPairs or Uniform");
       break;
     }
     case Method::Pso: {
       const PsoParams& p = r.pso;
-      require(p.particles >= 1, caller, "pso.particles must be >= 1");
-      require(std::isfinite(p.inertia) && std::isfinite(p.cognitive) && std::isfinite(p.social),
-              caller, "pso coefficients must be finite");
-      require(p.max_velocity > 0 && std::isfinite(p.max_velocity), caller,
-              "pso.max_velocity must be > 0");
+      detail::require_at_least(caller, "pso.particles", p.particles, 1);
+      detail::require_finite(caller, "pso.inertia", p.inertia);
+      detail::require_finite(caller, "pso.cognitive", p.cognitive);
+      detail::require_finite(caller, "pso.social", p.social);
+      detail::require_positive(caller, "pso.max_velocity", p.max_velocity);
       break;
     }
     case Method::Ga: {
       const GaParams& p = r.ga;
-      require(p.population >= 2, caller, "ga.population must be >= 2");
-      require(p.tournament >= 1, caller, "ga.tournament must be >= 1");
-      require(p.crossover >= 0 && p.crossover <= 1, caller, "ga.crossover must be in [0, 1]");
-      require(!std::isnan(p.mutation) && p.mutation <= 1, caller, "ga.mutation must be <= 1");
+      detail::require_at_least(caller, "ga.population", p.population, 2);
+      detail::require_at_least(caller, "ga.tournament", p.tournament, 1);
+      detail::require_in_range(caller, "ga.crossover", p.crossover, 0, 1, false, "[0, 1]");
+      if (!(p.mutation <= 1)) {
+        detail::argument_error(caller, "ga.mutation", "<= 1 (negative: automatic)",
+                               detail::format_number(p.mutation));
+      }
       break;
     }
     case Method::Exhaustive:
@@ -225,9 +229,7 @@ SearchResult search(const FeatureSpace& space, const SearchRequest& request, Col
 WitnessCheck confirm_witnesses(const Model& a, const Transform& pose_a, const Model& b,
                                const Transform& pose_b, Scalar delta, ColonyMemory& memory,
                                bool stop_at_first, std::uint32_t neighbourhood) {
-  if (!(delta >= 0) || !std::isfinite(delta)) {
-    throw ArgumentError("confirm_witnesses: delta must be finite and >= 0");
-  }
+  detail::require_non_negative("confirm_witnesses", "delta", delta);
   WitnessCheck check;
   auto& w = memory.witnesses;
   const auto na = static_cast<std::uint32_t>(a.leaf_triangles().size());

@@ -18,6 +18,7 @@
 #include "exact/coherent.hpp"
 #include "random/detect.hpp"
 #include "scene/pair_query.hpp"
+#include "util/check.hpp"
 #include "util/parallel.hpp"
 
 namespace antcd {
@@ -102,7 +103,7 @@ void check_frame(std::size_t frame, std::size_t frames, Scalar delta) {
     throw ArgumentError("frame " + std::to_string(frame) + " out of range (scene has " +
                         std::to_string(frames) + " frames)");
   }
-  if (!(delta >= 0) || !std::isfinite(delta)) throw ArgumentError("delta must be finite and >= 0");
+  detail::require_non_negative("scene query", "delta", delta);
 }
 
 }  // namespace
@@ -167,7 +168,7 @@ std::vector<std::pair<std::uint32_t, std::uint32_t>> Scene::broad_phase(std::siz
 FrameResult Scene::run_frame(std::size_t frame, const SceneQuery& query,
                              SceneMemory* memory) const {
   check_frame(frame, description_.frames, query.delta);
-  if (query.threads < 1) throw ArgumentError("threads must be at least 1");
+  detail::require_at_least("scene query", "threads", query.threads, 1);
   if (query.volume && query.method != Method::Exact) {
     throw ArgumentError("volume queries are for the exact method, not " +
                         std::string(method_name(query.method)));
@@ -184,9 +185,7 @@ FrameResult Scene::run_frame(std::size_t frame, const SceneQuery& query,
     request.delta = query.delta;
     request.search.method = query.method;
     detail::validate_detect(request, "scene query");
-    if (!(query.frame_seconds >= 0) || !std::isfinite(query.frame_seconds)) {
-      throw ArgumentError("frame seconds must be finite and >= 0");
-    }
+    detail::require_non_negative("scene query", "frame_seconds", query.frame_seconds);
   }
   const auto start = std::chrono::steady_clock::now();
   FrameResult result;

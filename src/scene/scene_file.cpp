@@ -164,6 +164,8 @@ class Parser {
         fail(where, "missing or empty 'mesh'");
       }
       obj.mesh_text = o["mesh"].get<std::string>();
+      // "a.obj\u0000b" is valid JSON; the file system would open "a.obj", another file.
+      if (obj.mesh_text.find('\0') != std::string::npos) fail(where, "'mesh' holds a NUL byte");
       const std::filesystem::path mesh_path(obj.mesh_text);
       obj.mesh = mesh_path.is_absolute() ? mesh_path : base_dir / mesh_path;
       if (o.contains("scale")) {

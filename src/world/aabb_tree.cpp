@@ -8,6 +8,8 @@
 // the insertion order. Rebuilds and refits: aabb_tree.hpp.
 #include "world/aabb_tree.hpp"
 
+#include <antcd/tolerances.hpp>
+
 #include "util/parallel.hpp"
 
 #include <algorithm>
@@ -96,8 +98,9 @@ bool AabbTree::ray_hits_box(const Aabb& b, const Vec3& o, const Vec3& inv, Scala
   Scalar lo = 0;
   Scalar hi = s_max;
   for (int k = 0; k < 3; ++k) {
-    const Scalar slack = 1e-12 * (std::abs(b.min[k]) + std::abs(b.max[k]) + std::abs(o[k])) +
-                         1e-300;
+    const Scalar slack =
+        tolerance::kArithmetic * (std::abs(b.min[k]) + std::abs(b.max[k]) + std::abs(o[k])) +
+        tolerance::kFloor;
     const Scalar bmin = b.min[k] - slack;
     const Scalar bmax = b.max[k] + slack;
     if (std::isinf(inv[k])) {
@@ -108,8 +111,8 @@ bool AabbTree::ray_hits_box(const Aabb& b, const Vec3& o, const Vec3& inv, Scala
     Scalar t1 = (bmax - o[k]) * inv[k];
     if (t0 > t1) std::swap(t0, t1);
     // Relative widening of the parameter interval against rounding of the products.
-    t0 -= 1e-12 * std::abs(t0);
-    t1 += 1e-12 * std::abs(t1);
+    t0 -= tolerance::kArithmetic * std::abs(t0);
+    t1 += tolerance::kArithmetic * std::abs(t1);
     lo = std::max(lo, t0);
     hi = std::min(hi, t1);
     if (lo > hi) return false;

@@ -101,6 +101,18 @@ class AabbTree {
   /// internal nodes a small random query box inside the root visits (the SAH cost; tree quality).
   [[nodiscard]] Scalar relative_area() const;
 
+  // Read-only node access for traversals outside this class (world/nearest.cpp): node indices
+  // from root() (kNull: empty tree) down through child(node, 0 or 1); a leaf's object is object().
+  [[nodiscard]] std::int32_t root() const { return root_; }
+  [[nodiscard]] bool is_leaf(std::int32_t node) const { return nodes_[node].child1 == kNull; }
+  [[nodiscard]] std::int32_t child(std::int32_t node, int k) const {
+    return k == 0 ? nodes_[node].child1 : nodes_[node].child2;
+  }
+  [[nodiscard]] std::uint32_t object(std::int32_t leaf) const {
+    return static_cast<std::uint32_t>(nodes_[leaf].child2);
+  }
+  [[nodiscard]] Aabb node_box(std::int32_t node) const { return to_aabb(nodes_[node]); }
+
   /// Calls visit(object) for every leaf whose box overlaps `box`. Reentrant (read only).
   template <class Visit>
   void query(const Aabb& box, Visit&& visit) const {

@@ -3,6 +3,7 @@
 #include <antcd/ccd.hpp>
 #include <antcd/error.hpp>
 #include <antcd/sweep.hpp>
+#include <antcd/tolerances.hpp>
 #include <antcd/world.hpp>
 
 #include <algorithm>
@@ -12,6 +13,7 @@
 #include <vector>
 
 #include "ccd/motion.hpp"
+#include "util/check.hpp"
 #include "util/parallel.hpp"
 #include "util/pose_check.hpp"
 #include "world/world_impl.hpp"
@@ -67,8 +69,9 @@ Aabb swept_box(const Model& model, const Transform& from, const Aabb& box_from,
   box.max = box_from.max.cwiseMax(box_to.max);
   const Scalar r = ccd::origin_radius(model);
   const Scalar theta = ccd::rotation_angle(from.rotation, to.rotation);
-  const Scalar rounding = 1e-9 * (r + from.translation.norm() + to.translation.norm());
-  return grown(box, r * theta * theta / 8 * (1 + 1e-12) + rounding);
+  const Scalar rounding =
+      tolerance::kVolume * (r + from.translation.norm() + to.translation.norm());
+  return grown(box, tolerance::widened(r * theta * theta / 8) + rounding);
 }
 
 /// The admitted pairs (i < j, slots, sorted) whose swept boxes come within min_separation.
@@ -83,27 +86,20 @@ std::vector<SlotPair> swept_pairs(const World::Impl& w, const std::vector<std::s
   }
   tree.rebuild();
   std::vector<SlotPair> out;
-  tree.pairs(tree.all_pairs(), min_separation * (1 + 1e-12), [&](std::uint32_t a, std::uint32_t b) {
-    const std::uint32_t i = std::min(a, b);
-    const std::uint32_t j = std::max(a, b);
-    if (w.admits(i, j)) out.emplace_back(i, j);
-  });
+  tree.pairs(tree.all_pairs(), tolerance::widened(min_separation),
+             [&](std::uint32_t a, std::uint32_t b) {
+               const std::uint32_t i = std::min(a, b);
+               const std::uint32_t j = std::max(a, b);
+               if (w.admits(i, j)) out.emplace_back(i, j);
+             });
   std::sort(out.begin(), out.end());
   return out;
 }
 
 void check_request(const SweepRequest& request, const char* function) {
-  if (!(request.min_separation >= 0) || !std::isfinite(request.min_separation)) {
-    throw ArgumentError(std::string(function) +
-                        ": request.min_separation must be finite and >= 0, got " +
-                        std::to_string(request.min_separation));
-  }
-  if (!(request.time_tolerance > 0) || !std::isfinite(request.time_tolerance)) {
-    throw ArgumentError(std::string(function) + ": request.time_tolerance must be finite and > 0");
-  }
-  if (request.max_iterations == 0) {
-    throw ArgumentError(std::string(function) + ": request.max_iterations must be >= 1");
-  }
+  detail::require_non_negative(function, "request.min_separation", request.min_separation);
+  detail::require_positive(function, "request.time_tolerance", request.time_tolerance);
+  detail::require_at_least(function, "request.max_iterations", request.max_iterations, 1);
 }
 
 }  // namespace
@@ -112,10 +108,7 @@ std::vector<ObjectPair> World::swept_candidate_pairs(std::span<const ObjectId> i
                                                      std::span<const Transform> new_poses,
                                                      Scalar min_separation) const {
   const char* function = "World::swept_candidate_pairs";
-  if (!(min_separation >= 0) || !std::isfinite(min_separation)) {
-    throw ArgumentError(std::string(function) + ": min_separation must be finite and >= 0, got " +
-                        std::to_string(min_separation));
-  }
+  detail::require_non_negative(function, "min_separation", min_separation);
   const Impl& w = *impl_;
   const std::vector<std::size_t> index = motion_index(w, ids, new_poses, function);
   std::vector<ObjectPair> out;

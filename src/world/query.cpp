@@ -1,6 +1,7 @@
 // The World's queries: pairs from the broad-phase tree, exact narrow phase on each pair (spread
 // over oneTBB workers, results in a fixed order), and ray casts.
 #include <antcd/error.hpp>
+#include <antcd/tolerances.hpp>
 #include <antcd/world.hpp>
 
 #include <algorithm>
@@ -10,6 +11,7 @@
 #include <string>
 #include <utility>
 
+#include "util/check.hpp"
 #include "util/parallel.hpp"
 #include "util/portable.hpp"
 #include "world/ray_check.hpp"
@@ -30,13 +32,6 @@ constexpr std::size_t kParallelPairs = 64;
 // Broad-phase tasks per query: enough to balance a few threads, each still thousands of node visits
 // on a large world.
 constexpr std::size_t kPairTasks = 256;
-
-void check_delta(Scalar delta, const char* function, const char* argument) {
-  if (!(delta >= 0) || !std::isfinite(delta)) {
-    throw ArgumentError(std::string(function) + ": " + argument +
-                                " must be finite and >= 0, got " + std::to_string(delta));
-  }
-}
 
 // Sorts pairs of slots below `slots` by (i, j), as std::sort would: a least-significant-digit
 // radix sort of the packed keys (i, j), 11 bits a pass; perf showed std::sort at ~2 % of a large
@@ -126,11 +121,14 @@ void for_each_pair(std::size_t m, Test&& test) {
 
 // The box grown for an exact query at distance delta: every point within delta of the object's
 // mesh lies inside (boxes contain their meshes with a rounding allowance).
-Scalar exact_growth(const Bounds& b, Scalar delta) { return delta * (1 + 1e-12) + b.tolerance; }
+Scalar exact_growth(const Bounds& b, Scalar delta) {
+  return tolerance::widened(delta) + b.tolerance;
+}
 
-// Whether the posed root spheres are farther apart than delta by more than collide()'s own
-// rounding allowance (bvh/traverse.hpp: 1e-9 of a scale these magnitudes bound): collide() would
-// then reject the pair at its first test, so skipping it changes no answer. Most pairs whose boxes
+// Whether the posed root spheres are farther apart than delta by more than ten times collide()'s
+// own rounding allowance (bvh/traverse.hpp: tolerance::kVolume of a scale that this `scale`
+// bounds: |b_to_a.translation| <= |ca| + |cb| + |sa.center| + |sb.center|): collide() would then
+// reject the pair at its first test, so skipping it changes no answer. Most pairs whose boxes
 // overlap on a large world are rejected here, before collide() sets up the pair.
 bool spheres_apart(const Object& a, const Object& b, Scalar delta) {
   const Sphere sa = a.model->root().sphere();
@@ -139,24 +137,24 @@ bool spheres_apart(const Object& a, const Object& b, Scalar delta) {
   const Vec3 cb = b.pose.apply(sb.center);
   const Scalar scale = sa.radius + sb.radius + 2 * (sa.center.norm() + sb.center.norm()) +
                        ca.norm() + cb.norm();
-  const Scalar reach = sa.radius + sb.radius + delta + 1e-8 * scale;
+  const Scalar reach = sa.radius + sb.radius + delta + 10 * tolerance::kVolume * scale;
   return (ca - cb).squaredNorm() > reach * reach;
 }
 
 }  // namespace
 
 std::vector<ObjectPair> World::candidate_pairs(Scalar delta) const {
-  check_delta(delta, "World::candidate_pairs", "delta");
+  detail::require_non_negative("World::candidate_pairs", "delta", delta);
   const Impl& w = *impl_;
   // The tree boxes contain the root boxes grown by twice their rounding allowance. A pair whose
   // root spheres and root boxes pass the tests below has root boxes whose axis-aligned bounds are
   // within sqrt(3) times the box margin, so growing one of them by twice that (and the other by its
   // allowance) loses none of them; the tree's boxes are then within 2 * delta of each other.
-  const Scalar gap = 2 * delta * (1 + 1e-12);
+  const Scalar gap = 2 * tolerance::widened(delta);
   const auto accept = [&](std::uint32_t i, std::uint32_t j) {
     const Bounds& ba = w.bounds[i];
     const Bounds& bb = w.bounds[j];
-    const Aabb query = grown(ba.box, 2 * (delta * (1 + 1e-12) + ba.tolerance));
+    const Aabb query = grown(ba.box, 2 * (tolerance::widened(delta) + ba.tolerance));
     if (!detail::boxes_overlap(query, grown(bb.box, bb.tolerance))) return false;
     // The posed root spheres (centred on the posed root boxes), then the posed root boxes.
     const World::Impl::Root& ra = w.roots[i];
@@ -173,7 +171,7 @@ std::vector<ObjectPair> World::candidate_pairs(Scalar delta) const {
     const Scalar inner = ra.box.half_extents.minCoeff() + rb.box.half_extents.minCoeff();
     if (d2 < inner * inner) return true;
     // Rounding allowance of the box fit and of the separating-axis arithmetic.
-    const Scalar margin = delta + 1e-9 * (reach + std::max(ca.norm(), cb.norm()));
+    const Scalar margin = delta + tolerance::kVolume * (reach + std::max(ca.norm(), cb.norm()));
     return geometry::obb_overlap(ra.box, rb.box, margin);
   };
   const std::vector<SlotPair> pairs = self_pairs(w, gap);
@@ -186,12 +184,12 @@ std::vector<ObjectPair> World::candidate_pairs(Scalar delta) const {
 }
 
 std::vector<PairContacts> World::collide_all(const CollisionRequest& request) const {
-  check_delta(request.delta, "World::collide_all", "request.delta");
+  detail::require_non_negative("World::collide_all", "request.delta", request.delta);
   const Impl& w = *impl_;
   const Scalar delta = request.delta;
   // Tree boxes contain the objects' boxes grown by their rounding allowances, so every pair whose
   // boxes pass the box test below has tree boxes within delta of each other.
-  const std::vector<SlotPair> candidates = self_pairs(w, delta * (1 + 1e-12));
+  const std::vector<SlotPair> candidates = self_pairs(w, tolerance::widened(delta));
   std::vector<PairContacts> results(candidates.size());
   std::vector<char> hit(candidates.size(), 0);
   for_each_pair(candidates.size(), [&](std::size_t k) {
@@ -227,7 +225,7 @@ std::vector<PairContacts> World::collide_all(const CollisionRequest& request) co
 }
 
 std::vector<ObjectPair> World::pairs_within(Scalar distance) const {
-  check_delta(distance, "World::pairs_within", "distance");
+  detail::require_non_negative("World::pairs_within", "distance", distance);
   CollisionRequest request;
   request.delta = distance;
   std::vector<ObjectPair> out;
@@ -273,7 +271,7 @@ std::vector<ObjectContacts> World::collide_object(ObjectId id,
                                                   const CollisionRequest& request) const {
   const Impl& w = *impl_;
   const Object& o = w.get(id, "World::collide_object", "id");
-  check_delta(request.delta, "World::collide_object", "request.delta");
+  detail::require_non_negative("World::collide_object", "request.delta", request.delta);
   const Aabb query = grown(w.bounds[id.slot].box, exact_growth(w.bounds[id.slot], request.delta));
   return against_world(w, *o.model, o.pose, query, request, [&](std::uint32_t j) {
     return j != id.slot && w.admits(id.slot, j);
@@ -283,10 +281,8 @@ std::vector<ObjectContacts> World::collide_object(ObjectId id,
 std::vector<ObjectContacts> World::collide_model(const Model& model, const Transform& pose,
                                                  const CollisionRequest& request,
                                                  const QueryFilter& filter) const {
-  check_delta(request.delta, "World::collide_model", "request.delta");
-  if (!pose.rotation.allFinite() || !pose.translation.allFinite()) {
-    throw ArgumentError("World::collide_model: pose is not finite (NaN or infinity)");
-  }
+  detail::require_non_negative("World::collide_model", "request.delta", request.delta);
+  require_finite_pose(pose, "World::collide_model");
   Bounds probe;
   probe.box = posed_box(model, pose, probe.tolerance);
   const Aabb query = grown(probe.box, exact_growth(probe, request.delta));

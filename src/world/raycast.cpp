@@ -4,11 +4,13 @@
 #include <antcd/world.hpp>
 
 #include <algorithm>
+#include <antcd/error.hpp>
+#include <antcd/tolerances.hpp>
 #include <array>
 #include <cmath>
-#include <antcd/error.hpp>
 #include <string>
 
+#include "util/check.hpp"
 #include "world/ray_check.hpp"
 
 namespace antcd {
@@ -79,7 +81,7 @@ void walk(const Model& model, const LocalRay& r, const Scalar* s_max, OnHit&& on
   const BvhNode& root = model.root();
   // Rounding allowance for the node tests: relative to the model's size and the ray's distance.
   const Scalar slack =
-      1e-9 * (root.radius + root.center.norm() + r.origin.norm()) + 1e-300;
+      tolerance::volume_allowance(root.radius + root.center.norm() + r.origin.norm());
   std::array<std::uint32_t, 256> stack;
   std::size_t top = 0;
   stack[top++] = 0;
@@ -130,11 +132,13 @@ Vec3 checked_ray_direction(const Ray& ray, const char* function) {
     throw ArgumentError(fn + ": ray.origin is not finite");
   }
   if (!ray.direction.allFinite() || ray.direction.squaredNorm() == 0) {
-    throw ArgumentError(fn + ": ray.direction must be finite and non-zero");
+    const Vec3& d = ray.direction;
+    detail::argument_error(fn, "ray.direction", "finite and non-zero",
+                           "(" + detail::format_number(d.x()) + ", " +
+                               detail::format_number(d.y()) + ", " + detail::format_number(d.z()) +
+                               ")");
   }
-  if (std::isnan(ray.max_distance) || ray.max_distance < 0) {
-    throw ArgumentError(fn + ": ray.max_distance must be >= 0 (may be infinite)");
-  }
+  detail::require_bound(fn, "ray.max_distance", ray.max_distance);
   return ray.direction.normalized();
 }
 

@@ -2,12 +2,14 @@
 // kept up to date (a leaf changes only when its object leaves its box; see set_poses).
 #include <antcd/world.hpp>
 
+#include <antcd/error.hpp>
+
 #include <algorithm>
 #include <cmath>
 #include <sstream>
-#include <antcd/error.hpp>
 #include <string>
 
+#include "util/check.hpp"
 #include "util/parallel.hpp"
 #include "util/pose_check.hpp"
 #include "world/world_impl.hpp"
@@ -54,13 +56,19 @@ Aabb posed_box(const Model& model, const Transform& pose, Scalar& tolerance,
   // Magnitudes by their 1-norms (bounds on the 2-norms, no square roots: this runs for every object
   // of every frame).
   const Scalar sphere_reach = root.radius + c.lpNorm<1>();
-  // Relative allowance for the box fit and for rounding in the pose applied here; at least the
-  // scale of the hierarchy traversal's (bvh/traverse.hpp).
-  tolerance = 1e-9 * (sphere_reach + c.lpNorm<1>() + ext.lpNorm<1>()) + 1e-300;
+  // Relative allowance for the box fit and for rounding in the pose applied here, on a scale at
+  // least the hierarchy traversal's (bvh/traverse.hpp).
+  tolerance = tolerance::volume_allowance(sphere_reach + c.lpNorm<1>() + ext.lpNorm<1>());
   Aabb box;
   box.min = c - ext;
   box.max = c + ext;
   return grown(box, tolerance);
+}
+
+void require_finite_pose(const Transform& pose, const char* function) {
+  if (!pose.rotation.allFinite() || !pose.translation.allFinite()) {
+    throw ArgumentError(std::string(function) + ": pose is not finite (NaN or infinity)");
+  }
 }
 
 const World::Impl::Object& World::Impl::get(ObjectId id, const char* function,
@@ -79,9 +87,7 @@ Aabb World::Impl::fattened(std::uint32_t slot) const {
 }
 
 World::World(const WorldOptions& options) : impl_(std::make_unique<Impl>()) {
-  if (!(options.fat_fraction >= 0) || !std::isfinite(options.fat_fraction)) {
-    throw ArgumentError("World: options.fat_fraction must be finite and >= 0");
-  }
+  detail::require_non_negative("World", "options.fat_fraction", options.fat_fraction);
   impl_->settings = options;
 }
 World::World(World&&) noexcept = default;

@@ -103,6 +103,10 @@ inline Aabb posed_box(const Model& model, const Transform& pose, Scalar& toleran
   return posed_box(model, pose, tolerance, root);
 }
 
+/// Throws ArgumentError naming `function` unless `pose` is finite (queries about a model outside
+/// the world; the world's own poses are checked, rigidity included, when they are set).
+void require_finite_pose(const Transform& pose, const char* function);
+
 /// `box` grown by `by` on every side.
 inline Aabb grown(Aabb box, Scalar by) {
   box.min.array() -= by;

@@ -212,6 +212,47 @@ TEST(LearnedModelFile, BadFilesAreRefusedWithOneLineNamingTheFile) {
   expect_refused(dir / "bit.pt", "");
 }
 
+TEST(LearnedModelFile, DamagedCopiesAreRefusedNeverACrash) {
+  // libtorch's parsers threw std::runtime_error, std::out_of_range and torch::jit::ErrorReport on
+  // such copies, past the loader's c10::Error handler: `antcd-lab run --model` died of SIGABRT.
+  const fs::path dir = test::fresh_temp_dir("learned_damaged_models");
+  const std::string good = one_model_bytes(dir);
+  std::mt19937_64 rng(28);
+  int refused = 0;
+  for (int k = 0; k < 150; ++k) {
+    std::string copy = good;
+    const int flips = k % 3 == 0 ? 1 : 1 + k % 17;
+    for (int f = 0; f < flips; ++f) copy[rng() % copy.size()] = static_cast<char>(rng());
+    if (k % 10 == 9) copy.resize(rng() % copy.size());  // and some truncated
+    const fs::path file = dir / ("damaged" + std::to_string(k) + ".pt");
+    test::write_file(file, copy);
+    try {
+      (void)Classifier::load(file);  // a flip in a field nobody reads may leave a valid model
+    } catch (const ModelError& e) {
+      ++refused;
+      const std::string what = e.what();
+      EXPECT_EQ(what.find('\n'), std::string::npos) << what;
+      EXPECT_EQ(what.rfind(file.string(), 0), 0U) << what;
+    } catch (const std::exception& e) {
+      ADD_FAILURE() << file << ": not a ModelError: " << e.what();
+    }
+  }
+  EXPECT_GT(refused, 140);
+  // Foreign zip archives: a zip64 end record, an unknown compression method.
+  std::string zip64 = good;
+  const auto end = zip64.rfind(std::string("PK\x05\x06", 4));
+  ASSERT_NE(end, std::string::npos);
+  zip64[end + 10] = zip64[end + 11] = zip64[end + 8] = zip64[end + 9] = '\xff';
+  test::write_file(dir / "zip64.pt", zip64);
+  expect_refused(dir / "zip64.pt", "zip64");
+  std::string method = good;
+  const auto central = method.find(std::string("PK\x01\x02", 4));
+  ASSERT_NE(central, std::string::npos);
+  method[central + 10] = 14;  // LZMA
+  test::write_file(dir / "lzma.pt", method);
+  expect_refused(dir / "lzma.pt", "compression method 14");
+}
+
 // ---- CLI ----
 
 #ifdef ANTCD_CLI

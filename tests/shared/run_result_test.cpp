@@ -8,8 +8,13 @@
 
 #include <gtest/gtest.h>
 
+#include <antcd/error.hpp>
+
 #include <cstdint>
 #include <set>
+#include <string>
+#include <utility>
+#include <vector>
 
 namespace antcd::shared {
 namespace {
@@ -117,6 +122,65 @@ TEST(RunScene, LeafScanDecidesEveryPairAndTheJsonSaysSo) {
   }
   EXPECT_TRUE(parse_run_result(to_json(scanned), "scanned").leaf_scan);
   EXPECT_FALSE(parse_run_result(to_json(colony), "colony").leaf_scan);
+}
+
+/// The message of the antcd::Error parse_run_result throws on `text` ("" if none).
+std::string refusal(const std::string& text) {
+  try {
+    (void)parse_run_result(text, "r.json");
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(ParseRunResult, NestingIsCheckedBeforeTheTreeIsBuilt) {
+  // A few MB of brackets built millions of nested arrays (gigabytes) before the format check.
+  const std::string deep = std::string(4'000'000, '[') + std::string(4'000'000, ']');
+  EXPECT_EQ(refusal(deep), "r.json: nested deeper than 16 levels");
+  const std::string frames = R"({"method":"exact","build_ms":0,"total_ms":0,"frames":)";
+  EXPECT_EQ(refusal(frames + std::string(17, '[') + std::string(17, ']') + "}"),
+            "r.json: nested deeper than 16 levels");
+  // Brackets inside strings are text, not nesting.
+  // (append(): GCC 12 reports a false -Wrestrict on chained operator+ here.)
+  const std::string name = std::string("a").append(100, '[');
+  std::string quoted = frames;
+  quoted.append(R"([{"frame":0,"pairs":[[")").append(name).append(R"(","b"]],"time_ms":1}]})");
+  EXPECT_EQ(refusal(quoted), "");
+  EXPECT_EQ(parse_run_result(quoted, "r.json").frames.at(0).pairs.at(0).first, name);
+}
+
+TEST(ParseRunResult, ValueCountIsCheckedBeforeTheTreeIsBuilt) {
+  // 2^24 + 1 values in a 32 MB text: refused by the pre-scan, not parsed into ~1 GB of tree.
+  std::string many = R"({"method":"exact","build_ms":0,"total_ms":0,"frames":[0)";
+  many.reserve(many.size() + 2 * (std::size_t{1} << 24) + 8);
+  for (std::size_t i = 0; i < (std::size_t{1} << 24); ++i) many += ",0";
+  many += "]}";
+  EXPECT_EQ(refusal(many), "r.json: more than 16777216 values");
+}
+
+TEST(ParseRunResult, BadFieldsAreRefusedWithOneLine) {
+  const std::vector<std::pair<std::string, std::string>> table = {
+      {"", "not valid JSON"},
+      {"[]", "expected a JSON object"},
+      {R"({"method":1})", "missing 'method'"},
+      {R"({"method":"exact","build_ms":0,"total_ms":0})", "missing 'frames'"},
+      {R"({"method":"exact","build_ms":0,"total_ms":0,"frames":[1]})", "must be an object"},
+      {R"({"method":"exact","build_ms":0,"total_ms":0,"frames":[{"frame":-1}]})", "'frame' index"},
+      {R"({"method":"exact","build_ms":0,"total_ms":0,"frames":[{"frame":0,"pairs":[["a"]],)"
+       R"("time_ms":0}]})",
+       "pairs of names"},
+      {R"({"method":"exact","build_ms":1e999,"total_ms":0,"frames":[]})", "not valid JSON"},
+      {R"({"method":"exact","build_ms":0,"total_ms":0,"frames":[{"frame":0,"pairs":[],)"
+       R"("time_ms":0,"distances":[1]}]})",
+       "one number per pair"},
+  };
+  for (const auto& [text, problem] : table) {
+    const std::string what = refusal(text);
+    EXPECT_NE(what.find(problem), std::string::npos) << text << " -> " << what;
+    EXPECT_EQ(what.rfind("r.json: ", 0), 0U) << what;
+    EXPECT_EQ(what.find('\n'), std::string::npos) << what;
+  }
 }
 
 }  // namespace

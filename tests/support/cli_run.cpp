@@ -7,6 +7,9 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <antcd/io.hpp>
+
+#include <algorithm>
 #include <cerrno>
 #include <chrono>
 #include <cstring>
@@ -17,6 +20,26 @@
 namespace antcd::test {
 
 namespace fs = std::filesystem;
+
+void expect_clean_refusal(const CliRun& r, const std::string& named) {
+  EXPECT_FALSE(r.timed_out) << "hung";
+  EXPECT_EQ(r.signal, 0) << "killed by signal " << r.signal << "; stderr: " << r.err;
+  EXPECT_EQ(r.exit_code, 2) << "stderr: " << r.err;
+  EXPECT_EQ(r.err.rfind("error: ", 0), 0U) << "stderr: " << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << "stderr: " << r.err;
+  EXPECT_TRUE(!r.err.empty() && r.err.back() == '\n') << "stderr: " << r.err;
+  // Printable (no escape sequence, bell or binary reaches the terminal) and bounded.
+  EXPECT_TRUE(std::all_of(r.err.begin(), r.err.end() - (r.err.empty() ? 0 : 1),
+                          [](char c) {
+                            const auto u = static_cast<unsigned char>(c);
+                            return u >= 0x20 && u != 0x7F;
+                          }))
+      << "stderr: " << printable_line(r.err);
+  EXPECT_LE(r.err.size(), kPrintableLineLength + 64) << "stderr: " << r.err.substr(0, 200);
+  EXPECT_NE(r.err.find(named), std::string::npos)
+      << "stderr does not name " << named << ": " << r.err;
+  EXPECT_EQ(r.out, "") << "stdout: " << r.out;
+}
 
 CliRun run_program(const std::string& program, const std::vector<std::string>& args,
                    const fs::path& cwd, double timeout_s) {

@@ -20,4 +20,9 @@ struct CliRun {
 CliRun run_program(const std::string& program, const std::vector<std::string>& args,
                    const std::filesystem::path& cwd, double timeout_s = 120);
 
+/// The CLI's refusal contract (issue 28), as GoogleTest expectations: no hang, no signal, exit
+/// code 2, nothing on stdout, and exactly one stderr line "error: ..." that is printable (no
+/// control byte), bounded (antcd::kPrintableLineLength) and holds `named`.
+void expect_clean_refusal(const CliRun& r, const std::string& named);
+
 }  // namespace antcd::test

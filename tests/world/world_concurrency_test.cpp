@@ -28,6 +28,7 @@ struct Answers {
   std::vector<ObjectId> touching_first;
   std::vector<ObjectId> touching_probe;
   std::vector<std::pair<ObjectId, std::uint32_t>> ray_hits;
+  std::vector<std::pair<ObjectPair, Scalar>> nearest;  // nearest_pair, _object, _to (signed)
   std::size_t contacts = 0;
 
   bool operator==(const Answers&) const = default;
@@ -57,6 +58,12 @@ Answers ask(const World& world, const Model& probe, const Transform& probe_pose)
       a.ray_hits.emplace_back(h->object, h->triangle);
     }
   }
+  const auto keep = [&a](const std::optional<NearestPair>& n) {
+    if (n) a.nearest.push_back({{n->a, n->b}, n->result.distance});
+  };
+  keep(world.nearest_pair());
+  keep(world.nearest_object(ids.front(), NearestRequest{true}));
+  keep(world.nearest_to(probe, probe_pose, NearestRequest{true}));
   return a;
 }
 

@@ -1,0 +1,101 @@
+// The argument check of util/check.hpp and the named tolerances of antcd/tolerances.hpp: one
+// message format ("<function>: <argument> must be <requirement>, got <value>") from the helpers
+// and from the library calls that use them, and the tolerance functions' definitions.
+#include <antcd/collide.hpp>
+#include <antcd/distance.hpp>
+#include <antcd/penetration.hpp>
+#include <antcd/tolerances.hpp>
+#include <antcd/world.hpp>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <memory>
+#include <string>
+
+#include "util/check.hpp"
+
+namespace antcd {
+namespace {
+
+std::string message(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const ArgumentError& e) {
+    return e.what();
+  }
+  return "(no ArgumentError)";
+}
+
+constexpr Scalar kNaN = std::numeric_limits<Scalar>::quiet_NaN();
+constexpr Scalar kInf = std::numeric_limits<Scalar>::infinity();
+
+TEST(ArgumentCheck, OneFormatPerRequirement) {
+  using namespace detail;
+  EXPECT_EQ(message([] { require_non_negative("f", "x", -0.5); }),
+            "f: x must be finite and >= 0, got -0.5");
+  EXPECT_EQ(message([] { require_non_negative("f", "x", kInf); }),
+            "f: x must be finite and >= 0, got inf");
+  EXPECT_EQ(message([] { require_positive("f", "x", 0); }), "f: x must be finite and > 0, got 0");
+  EXPECT_EQ(message([] { require_finite("f", "x", kNaN); }), "f: x must be finite, got nan");
+  EXPECT_EQ(message([] { require_bound("f", "x", -1); }), "f: x must be >= 0 (or +inf), got -1");
+  EXPECT_EQ(message([] { require_in_range("f", "x", 1, 0, 1, true, "[0, 1)"); }),
+            "f: x must be in [0, 1), got 1");
+  EXPECT_EQ(message([] { require_at_least("f", "n", 0U, 1); }), "f: n must be >= 1, got 0");
+  // Accepted values, boundaries included.
+  EXPECT_EQ(message([] {
+              require_non_negative("f", "x", 0);
+              require_positive("f", "x", 1e-300);
+              require_bound("f", "x", kInf);
+              require_in_range("f", "x", 1, 0, 1, false, "[0, 1]");
+              require_at_least("f", "n", std::uint64_t{1}, 1);
+            }),
+            "(no ArgumentError)");
+}
+
+TEST(ArgumentCheck, LibraryCallsUseIt) {
+  const auto ball = std::make_shared<const Model>(make_sphere(1, 8, 4));
+  const Transform id = Transform::identity();
+  EXPECT_EQ(message([] { World w(WorldOptions{-1}); }),
+            "World: options.fat_fraction must be finite and >= 0, got -1");
+  EXPECT_EQ(message([&] {
+              DistanceRequest r;
+              r.rel_tolerance = 1.5;
+              (void)distance(*ball, id, *ball, id, r);
+            }),
+            "distance: rel_tolerance must be in [0, 1), got 1.5");
+  EXPECT_EQ(message([&] {
+              CollisionRequest r;
+              r.delta = kNaN;
+              (void)collide(*ball, id, *ball, id, r);
+            }),
+            "collide: request.delta must be finite and >= 0, got nan");
+  EXPECT_EQ(message([&] {
+              PenetrationRequest r;
+              r.max_evaluations = 0;
+              (void)penetration(*ball, id, *ball, id, r);
+            }),
+            "penetration: max_evaluations must be >= 1, got 0");
+  EXPECT_EQ(message([] { (void)World().pairs_within(-2); }),
+            "World::pairs_within: distance must be finite and >= 0, got -2");
+}
+
+TEST(Tolerances, Definitions) {
+  EXPECT_EQ(tolerance::volume_allowance(0), tolerance::kFloor);
+  EXPECT_GT(tolerance::volume_allowance(0), 0);
+  EXPECT_EQ(tolerance::volume_allowance(2), 2 * tolerance::kVolume + tolerance::kFloor);
+  EXPECT_GT(tolerance::widened(1), 1);
+  EXPECT_EQ(tolerance::widened(0), 0);
+  const Mat3 turn = Eigen::AngleAxis<Scalar>(0.7, Vec3(1, 2, 3).normalized()).toRotationMatrix();
+  EXPECT_LT(tolerance::orthonormality_error(turn), 1e-15);
+  EXPECT_TRUE(tolerance::is_rotation(turn));
+  EXPECT_FALSE(tolerance::is_rotation(-turn));                               // a reflection
+  EXPECT_FALSE(tolerance::is_rotation(turn * (1 + 2 * tolerance::kRigid)));  // a scale
+  EXPECT_TRUE(tolerance::is_rotation(turn * (1 + 0.25 * tolerance::kRigid)));
+  EXPECT_FALSE(tolerance::is_rotation(Mat3::Constant(kNaN)));
+}
+
+}  // namespace
+}  // namespace antcd
