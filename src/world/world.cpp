@@ -246,8 +246,8 @@ void World::set_poses(std::span<const ObjectId> ids, std::span<const Transform> 
   // costs about a sixteenth of a rebuild, so the refit (and the rebuild it starts when the boxes
   // got loose) costs less. Measured with callgrind, one thread, set_poses + candidate_pairs: the
   // 90-object production line (45 moving, about 6 a frame moving more than their size, few
-  // outside their grandparent) set_poses 66 -> 38 thousand instructions a frame; 200 boxes with
-  // 2 % (20 %) jumping across the world a frame -5 % (-28 %) against reinserting every jump.
+  // outside their grandparent) set_poses 66 -> 33 thousand instructions a frame; 200 boxes with
+  // 2 % (20 %) jumping across the world a frame -4 % (-28 %) against reinserting every jump.
   const bool refit = escaped > w.live / 16;
   if (!refit) {
     for (const ObjectId id : ids) {
