@@ -269,8 +269,10 @@ int run_sweep(const SweepOptions& o) {
   } else {
     std::printf("hit: no (proven; distance at the last step >= %.6g)\n", r.distance);
   }
-  std::printf("query: %.3f ms, %u distance queries, motion bound %.6g per unit time\n", query_ms,
-              r.iterations, r.motion_bound);
+  std::printf(
+      "query: %.3f ms, %u iterations (distance queries and windows), motion bound %.6g per unit "
+      "time\n",
+      query_ms, r.iterations, r.motion_bound);
   return 0;
 }
 
@@ -306,7 +308,8 @@ void add_ccd_commands(CLI::App& app, int& code) {
       ->check(non_negative_finite());
   sw->add_option("--time-tolerance", o->time_tolerance, "Time tolerance (> 0)")
       ->check(positive_finite());
-  sw->add_option("--max-iterations", o->max_iterations, "Most distance queries")
+  sw->add_option("--max-iterations", o->max_iterations,
+                 "Most iterations (distance queries and endgame windows)")
       ->check(CLI::Range(1u, 1u << 30));
   sw->add_flag("--json", o->json, "Print the result as JSON");
   sw->add_option("--leaf-size", o->leaf_size, "Triangles per leaf of the hierarchy")

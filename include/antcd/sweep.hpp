@@ -15,6 +15,11 @@
 // than min_separation apart until t + (L - min_separation) / mu and the search advances there.
 // A rounding allowance (1e-12 of the scene's size: coordinates, radii, translations) is taken off
 // every L, covering the rounding of the interpolated poses, of the distance and of t.
+// Endgame (fine meshes, where a hierarchy query near contact opens hundreds of node pairs): over a
+// window [t, t + h] only triangle pairs within min_separation + mu h of each other at t can touch;
+// collide() with that delta lists them, and the advancement runs on their exact triangle distances
+// (each a lower bound that falls by at most mu per unit time) until the window is clear or a pair
+// is within the tolerance, where the whole-mesh query decides as above.
 //
 // Guarantees
 // - Conservative: if the surfaces come within min_separation at some t in [0, 1], the result is a
@@ -24,7 +29,8 @@
 //   allowance. Otherwise the surfaces are at toi within min_separation + mu * time_tolerance +
 //   allowance (result.distance is a pair's distance there): the search stops only that close, and
 //   a step from any farther reaches at least time_tolerance / 2 ahead.
-// - After max_iterations distance queries the search stops with a hit at the time reached
+// - After max_iterations iterations (distance queries and windows) the search stops with a hit at
+// the time reached
 //   (tolerance_decided and budget_exhausted set): still toi <= t*.
 // - contact: a triangle pair at toi whose distance is within mu * time_tolerance / 2 of the
 //   minimum (an intersecting pair when the surfaces intersect), world frame: point is the common
@@ -49,7 +55,7 @@ struct SweepRequest {
   Scalar min_separation = 0;
   /// Time tolerance (> 0), see the guarantees above.
   Scalar time_tolerance = 1e-6;
-  /// Largest number of distance queries (>= 1).
+  /// Largest number of iterations: distance queries and endgame windows (>= 1).
   std::uint32_t max_iterations = 100000;
 };
 
@@ -68,7 +74,7 @@ struct SweepResult {
   Scalar distance = 0;
   /// mu: the bound on the relative speed of the surfaces (mesh units per unit time).
   Scalar motion_bound = 0;
-  /// Distance queries made.
+  /// Iterations made: distance queries and endgame windows.
   std::uint32_t iterations = 0;
 };
 

@@ -50,7 +50,8 @@ void bind_ccd(py::module_& m) {
                     "Distance at toi when hit; else a proven lower bound at the last step.")
       .def_readonly("motion_bound", &SweepResult::motion_bound,
                     "Bound on the surfaces' relative speed (mesh units per unit time).")
-      .def_readonly("iterations", &SweepResult::iterations, "Distance queries made.")
+      .def_readonly("iterations", &SweepResult::iterations,
+                    "Iterations made: distance queries and endgame windows.")
       .def("__bool__", [](const SweepResult& r) { return r.hit; })
       .def("__repr__", [](const SweepResult& r) {
         std::ostringstream s;

@@ -26,6 +26,7 @@ struct PyScene {
 
 struct SceneRun {
   std::string method;
+  bool continuous = false;
   std::vector<FrameResult> frames;
   std::vector<std::string> names;
 };
@@ -50,8 +51,9 @@ py::array_t<std::uint32_t> pair_array(const std::vector<std::pair<std::uint32_t,
 SceneRun run(const PyScene& s, const std::string& method, const py::object& frames_in, double delta,
              std::optional<double> feature_delta, const py::handle samples_per_side,
              const py::handle seed, const py::handle iterations, const py::handle agents,
-             bool search_all, const py::handle threads) {
+             bool search_all, const py::handle threads, bool continuous) {
   SceneQuery query;
+  query.continuous = continuous;
   query.method = parse_method(method);
   query.delta = to_non_negative(delta, "delta");
   if (feature_delta) {
@@ -83,6 +85,7 @@ SceneRun run(const PyScene& s, const std::string& method, const py::object& fram
   }
   SceneRun out;
   out.method = std::string(method_name(query.method));
+  out.continuous = continuous;
   for (const SceneObject& o : s.scene->description().objects) out.names.push_back(o.name);
   out.frames.reserve(frames.size());
   py::gil_scoped_release release;
@@ -93,13 +96,15 @@ SceneRun run(const PyScene& s, const std::string& method, const py::object& fram
 }  // namespace
 
 void bind_scene(py::module_& m) {
-  py::class_<SceneRun>(
-      m, "SceneRun",
-      "Per-frame answers of Scene.run(): colliding object pairs and times.\n\n"
-      "Pairs are object indices (i < j) into object_names, sorted.")
+  py::class_<SceneRun>(m, "SceneRun",
+                       "Per-frame answers of Scene.run(): colliding object pairs and times.\n\n"
+                       "Pairs are object indices (i < j) into object_names, sorted.")
       .def_readonly("method", &SceneRun::method)
+      .def_readonly("continuous", &SceneRun::continuous,
+                    "True when run with continuous=True (pairs touching during each step).")
       .def_readonly("object_names", &SceneRun::names)
-      .def("__len__", [](const SceneRun& r) { return r.frames.size(); }, "Number of frames run.")
+      .def(
+          "__len__", [](const SceneRun& r) { return r.frames.size(); }, "Number of frames run.")
       .def_property_readonly(
           "frames",
           [](const SceneRun& r) {
@@ -138,6 +143,35 @@ void bind_scene(py::module_& m) {
                                               [&](std::size_t i) { return r.frames[i].feature_hits; });
           },
           "uint64[f]: random methods: colliding feature pairs found per frame.")
+      .def_property_readonly(
+          "toi",
+          [](const SceneRun& r) {
+            py::list out;
+            for (const FrameResult& f : r.frames) {
+              out.append(
+                  make_vector<double>(f.toi.size(), [&](std::size_t i) { return f.toi[i]; }));
+            }
+            return out;
+          },
+          "Continuous runs: one float64[k] array per frame, each pair's first time of impact in "
+          "[0, "
+          "1] over the step from the previous frame (0: at frame - 1, 1: at the frame; frame 0: "
+          "0), "
+          "in the order of pairs; never later than the true first contact. Empty arrays otherwise.")
+      .def_property_readonly(
+          "contact_points",
+          [](const SceneRun& r) {
+            py::list out;
+            for (const FrameResult& f : r.frames) {
+              out.append(
+                  make_rows<double>(f.contact_points.size(), 3, [&](std::size_t i, double* o) {
+                    for (int k = 0; k < 3; ++k) o[k] = f.contact_points[i][k];
+                  }));
+            }
+            return out;
+          },
+          "Continuous runs: one float64[k, 3] array per frame, each pair's contact point at its "
+          "toi (world frame), in the order of pairs. Empty arrays otherwise.")
       .def(
           "pair_names",
           [](const SceneRun& r, std::size_t index) {
@@ -146,12 +180,15 @@ void bind_scene(py::module_& m) {
                                     std::to_string(r.frames.size()) + ")");
             }
             py::list out;
-            for (const auto& [i, j] : r.frames[index].pairs) out.append(py::make_tuple(r.names[i], r.names[j]));
+            for (const auto& [i, j] : r.frames[index].pairs)
+              out.append(py::make_tuple(r.names[i], r.names[j]));
             return out;
           },
-          py::arg("index"), "The colliding pairs of the index-th frame run, as (name, name) tuples.")
+          py::arg("index"),
+          "The colliding pairs of the index-th frame run, as (name, name) tuples.")
       .def("__repr__", [](const SceneRun& r) {
-        return "<antcd.SceneRun method=" + r.method + " frames=" + std::to_string(r.frames.size()) + ">";
+        return "<antcd.SceneRun method=" + r.method + (r.continuous ? " continuous" : "") +
+               " frames=" + std::to_string(r.frames.size()) + ">";
       });
 
   py::class_<PyScene>(
@@ -203,6 +240,7 @@ void bind_scene(py::module_& m) {
            py::arg("delta") = 0.0, py::arg("feature_delta") = py::none(),
            py::arg("samples_per_side") = 1000, py::arg("seed") = 1, py::arg("iterations") = 100,
            py::arg("agents") = 60, py::arg("search_all") = false, py::arg("threads") = 1,
+           py::arg("continuous") = false,
            "Runs frames (None: all; an int; or an iterable of ints) with a method: 'exact' "
            "(default, ground truth), 'sphere-obb', 'aco', 'maco', 'pso', 'ga' or 'exhaustive'.\n"
            "delta: exact/sphere-obb threshold; feature_delta: random methods' centroid threshold "
@@ -210,6 +248,11 @@ void bind_scene(py::module_& m) {
            "random "
            "methods; search_all: random methods search every pair for N iterations instead of "
            "stopping at the first hit; threads: narrow-phase workers (same answer at any count).\n"
+           "continuous: exact method only (ValueError otherwise): each frame reports the pairs "
+           "whose "
+           "surfaces come within delta during the step from the previous frame (conservative "
+           "sweeps, "
+           "never a missed contact), with toi and contact_points per pair.\n"
            "The GIL is released while frames run.")
       .def("__repr__", [](const PyScene& s) {
         return "<antcd.Scene '" + s.path + "': " + std::to_string(s.scene->object_count()) +
@@ -221,15 +264,16 @@ void bind_scene(py::module_& m) {
       [](const py::object& path, const std::string& method, const py::object& frames, double delta,
          std::optional<double> feature_delta, const py::handle samples_per_side,
          const py::handle seed, const py::handle iterations, const py::handle agents,
-         bool search_all, const py::handle threads) {
+         bool search_all, const py::handle threads, bool continuous) {
         const PyScene s = open_scene(path, py::int_(4), "area");
-        return run(s, method, frames, delta, feature_delta, samples_per_side, seed, iterations, agents,
-                   search_all, threads);
+        return run(s, method, frames, delta, feature_delta, samples_per_side, seed, iterations,
+                   agents, search_all, threads, continuous);
       },
       py::arg("path"), py::kw_only(), py::arg("method") = "exact", py::arg("frames") = py::none(),
       py::arg("delta") = 0.0, py::arg("feature_delta") = py::none(),
       py::arg("samples_per_side") = 1000, py::arg("seed") = 1, py::arg("iterations") = 100,
       py::arg("agents") = 60, py::arg("search_all") = false, py::arg("threads") = 1,
+      py::arg("continuous") = false,
       "Scene(path).run(...): loads a scene file and runs its frames with a method. See Scene.run.");
 }
 

@@ -77,3 +77,64 @@ def test_scene_file_errors(tmp_path):
                             '{"name": "a", "mesh": "no.obj", "poses": [{"translation": [0,0,0]}]}]}')
     with pytest.raises(ValueError, match="no.obj"):
         antcd.Scene(missing_mesh)
+
+
+
+@pytest.fixture(scope="module")
+def tunnel_path(tmp_path_factory):
+    """Sheet b (0.01 thick) falls 1.0 per frame through sheet a between frames 1 and 2 (discrete
+    checks at the frames never see them touch); c stays far away."""
+    out = tmp_path_factory.mktemp("tunnel")
+    corners = [(x, y, z) for x in (-0.5, 0.5) for y in (-0.5, 0.5) for z in (-0.005, 0.005)]
+    faces = [(1, 2, 4), (1, 4, 3), (5, 7, 8), (5, 8, 6), (1, 5, 6), (1, 6, 2), (3, 4, 8), (3, 8, 7),
+             (1, 3, 7), (1, 7, 5), (2, 6, 8), (2, 8, 4)]
+    (out / "sheet.obj").write_text("".join(f"v {x} {y} {z}\n" for x, y, z in corners) +
+                                   "".join(f"f {a} {b} {c}\n" for a, b, c in faces))
+
+    def track(zs, x=0.0):
+        return [{"rotation_wxyz": [1, 0, 0, 0], "translation": [x, 0, z]} for z in zs]
+
+    scene = {"format": "antcd-scene/1", "frames": 4, "objects": [
+        {"name": "a", "mesh": "sheet.obj", "poses": track([0, 0, 0, 0])},
+        {"name": "b", "mesh": "sheet.obj", "poses": track([1.5, 0.5, -0.5, -1.5])},
+        {"name": "c", "mesh": "sheet.obj", "poses": track([0, 0, 0, 0], x=5.0)}]}
+    (out / "scene.json").write_text(json.dumps(scene))
+    return out / "scene.json"
+
+
+def test_continuous_catches_the_tunnelling_sheet_like_the_cli(cli, tunnel_path, tmp_path):
+    scene = antcd.Scene(tunnel_path)
+    mine = scene.run(continuous=True)
+    discrete = scene.run()
+    assert mine.continuous and not discrete.continuous and "continuous" in repr(mine)
+    assert all(len(p) == 0 for p in discrete.pairs)  # tunnels at the frames
+    assert [mine.pair_names(k) for k in range(4)] == [[], [], [("a", "b")], []]
+    # b's lower face meets a's upper face when b's centre is at z = 0.01: t* = 0.49 of the step.
+    toi = mine.toi[2][0]
+    assert 0.49 - 1e-5 <= toi <= 0.49
+    np.testing.assert_allclose(mine.contact_points[2][0][2], 0.005, atol=1e-4)
+    assert all(t.shape == (0,) for t in discrete.toi)
+    assert all(c.shape == (0, 3) for c in discrete.contact_points)
+    theirs = _cli_run(cli, tunnel_path, tmp_path, "--continuous")
+    assert theirs["continuous"] is True
+    for k, frame in enumerate(theirs["frames"]):
+        assert mine.pair_names(k) == [tuple(p) for p in frame["pairs"]]
+        np.testing.assert_allclose(mine.toi[k], frame["toi"], rtol=0, atol=1e-15)
+        np.testing.assert_allclose(mine.contact_points[k].reshape(-1, 3),
+                                   np.reshape(frame["contact_points"], (-1, 3)), rtol=0, atol=1e-15)
+    one = antcd.run_scene(tunnel_path, frames=2, continuous=True)
+    np.testing.assert_array_equal(one.toi[0], mine.toi[2])
+    with pytest.raises(ValueError, match="continuous"):
+        scene.run(method="sphere-obb", continuous=True)
+
+
+def test_continuous_frames_cover_the_discrete_pairs(scene_path):
+    scene = antcd.Scene(scene_path)
+    mine, discrete = scene.run(continuous=True), scene.run()
+    assert sum(len(p) for p in discrete.pairs) > 0
+    for k in range(len(mine)):
+        pairs, toi = mine.pairs[k], mine.toi[k]
+        assert toi.shape == (len(pairs),) and mine.contact_points[k].shape == (len(pairs), 3)
+        assert ((toi >= 0) & (toi <= 1)).all() and (k > 0 or (toi == 0).all())
+        # A pair touching at the frame touches during the step that ends there.
+        assert {tuple(p) for p in discrete.pairs[k]} <= {tuple(p) for p in pairs}

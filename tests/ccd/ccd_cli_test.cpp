@@ -27,7 +27,11 @@ std::vector<test::CcdQuery> only(const std::vector<test::CcdQuery>& all, test::C
 
 class CcdCli : public ::testing::Test {
  protected:
-  void SetUp() override { dir_ = test::fresh_temp_dir("ccd_cli"); }
+  // One directory per test: ctest -j runs this fixture's tests side by side.
+  void SetUp() override {
+    dir_ = test::fresh_temp_dir(std::string("ccd_cli_") +
+                                ::testing::UnitTest::GetInstance()->current_test_info()->name());
+  }
   test::CliRun run(const std::vector<std::string>& args) {
     return test::run_program(ANTCD_CLI, args, dir_);
   }

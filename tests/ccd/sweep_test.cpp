@@ -168,6 +168,48 @@ TEST(Sweep, RandomFastMotionsNeverBeatDenseStepping) {
   EXPECT_GE(hits, motions / 3);
 }
 
+TEST(Sweep, FineMeshesNeverTouchBeforeTheToi) {
+  // Fine meshes (a 10k-triangle torus through a 5k-triangle sphere, as in bench/ccd_bench.cpp):
+  // near contact the hierarchy queries open many node pairs, so the sweep's endgame advances on
+  // the triangle pairs within reach of a window (advance_locally in src/ccd/sweep.cpp). Besides
+  // dense stepping, the last stretch before each toi is stepped finely: nothing may touch there.
+  const Model torus(make_torus(1.0, 0.3, 100, 50), {}, "torus");
+  const Model sphere(make_sphere(0.8, 72, 36), {}, "sphere");
+  std::mt19937_64 rng(124);
+  std::uniform_real_distribution<Scalar> unit(-1, 1);
+  const Scalar reach = torus.root().radius + sphere.root().radius + 0.5;
+  int hits = 0;
+  for (int i = 0; i < 8; ++i) {
+    const Vec3 dir = Vec3(unit(rng), unit(rng), unit(rng)).normalized();
+    const Vec3 side = Vec3(unit(rng), unit(rng), unit(rng)).cross(dir).normalized() * 0.2 * reach;
+    Transform a0 = Transform::from_axis_angle(Vec3(unit(rng), unit(rng), unit(rng)), 3 * unit(rng));
+    Transform a1 =
+        Transform::from_axis_angle(Vec3(unit(rng), unit(rng), unit(rng)), 2.5 * unit(rng)) * a0;
+    a0.translation = -reach * dir + side;
+    a1.translation = reach * dir + side;
+    const Transform b0 = Transform::identity();
+    const Transform b1 = Transform::from_axis_angle(Vec3(unit(rng), unit(rng), unit(rng)), 0.3);
+    SweepRequest req;
+    req.min_separation = i % 2 == 0 ? 0.0 : 0.01;
+    const std::string what = "fine motion " + std::to_string(i);
+    int hit = 0;
+    check_motion(torus, a0, a1, sphere, b0, b1, req, what, &hit);
+    hits += hit;
+    const SweepResult r = sweep(torus, a0, a1, sphere, b0, b1, req);
+    if (!r.hit) continue;
+    CollisionRequest cr;
+    cr.delta = req.min_separation;
+    CollisionResult res;
+    for (int k = 0; k < 400; ++k) {
+      const Scalar t = r.toi * (1 - 0.02 * (1 - k / 400.0));  // [0.98 toi, toi)
+      EXPECT_FALSE(collide(torus, ccd::interpolate_pose(a0, a1, t), sphere,
+                           ccd::interpolate_pose(b0, b1, t), cr, res))
+          << what << ": touches at " << t << " before toi " << r.toi;
+    }
+  }
+  EXPECT_GE(hits, 6);
+}
+
 TEST(Sweep, FastSheetSceneContinuousFindsEveryContactDiscreteMisses) {
   // Twelve nearly horizontal sheets 0.01 thick over each other, each moving 0.1 (10x its thickness)
   // up or down per frame with a slight drift and tilt, for 20 frames. Per frame step and pair:
