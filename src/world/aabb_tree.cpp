@@ -29,20 +29,52 @@ namespace {
 // flush-to-zero): no branch on which way the conversion rounded, which is a coin toss and was
 // mispredicted for every leaf box of a moving world. Beyond the float range: -infinity, or the
 // largest float.
-float down(Scalar x) {
+[[maybe_unused]] float down(Scalar x) {
   constexpr Scalar kMax = std::numeric_limits<float>::max();
   const auto f = static_cast<float>(std::min(std::max(x, -kMax), kMax));
   return f - (std::abs(f) * 0x1p-23F + std::numeric_limits<float>::min());
 }
-float up(Scalar x) { return -down(-x); }
+[[maybe_unused]] float up(Scalar x) { return -down(-x); }
 
 }  // namespace
 
 void AabbTree::set_node_box(Node& n, const Aabb& b) {
+#if defined(__SSE2__)
+  // down() on the four lanes (min x, min y, min z, -max x) and on (-max y, -max z): the same IEEE
+  // operations lane by lane, so the same floats (this runs for every moved object of a frame).
+  const __m128d limit = _mm_set1_pd(std::numeric_limits<float>::max());
+  const __m128d sign = _mm_set1_pd(-0.0);
+  const auto to_float = [&](__m128d x) {
+    return _mm_cvtpd_ps(_mm_min_pd(_mm_max_pd(x, _mm_xor_pd(limit, sign)), limit));
+  };
+  const __m128d mxy = _mm_loadu_pd(b.min.data());
+  const __m128d mz_hx =
+      _mm_unpacklo_pd(_mm_load_sd(b.min.data() + 2), _mm_xor_pd(_mm_load_sd(b.max.data()), sign));
+  const __m128d hyz = _mm_xor_pd(_mm_loadu_pd(b.max.data() + 1), sign);
+  const __m128 f1 = _mm_movelh_ps(to_float(mxy), to_float(mz_hx));
+  const __m128 f2 = to_float(hyz);
+  const __m128 abs_mask = _mm_castsi128_ps(_mm_set1_epi32(0x7fffffff));
+  const __m128 ulp = _mm_set1_ps(0x1p-23F);
+  const __m128 tiny = _mm_set1_ps(std::numeric_limits<float>::min());
+  const auto down4 = [&](__m128 f) {
+    return _mm_sub_ps(f, _mm_add_ps(_mm_mul_ps(_mm_and_ps(f, abs_mask), ulp), tiny));
+  };
+  alignas(16) float d1[4];
+  alignas(16) float d2[4];
+  _mm_store_ps(d1, down4(f1));
+  _mm_store_ps(d2, down4(f2));
+  n.lo[0] = d1[0];
+  n.lo[1] = d1[1];
+  n.lo[2] = d1[2];
+  n.hi[0] = -d1[3];
+  n.hi[1] = -d2[0];
+  n.hi[2] = -d2[1];
+#else
   for (int k = 0; k < 3; ++k) {
     n.lo[k] = down(b.min[k]);
     n.hi[k] = up(b.max[k]);
   }
+#endif
 }
 
 void AabbTree::merge_into(Node& n, const Node& a, const Node& b) {
@@ -161,7 +193,25 @@ Scalar AabbTree::refit_subtree(std::int32_t i) {
 
 void AabbTree::refit() {
   if (root_ == kNull) return;
-  const Scalar sum = refit_subtree(root_);
+  Scalar sum = 0;
+  // One backward pass over the nodes in depth-first order (children after their parent), without
+  // recursion, when they are in that order, or when no leaf was inserted or removed since the last
+  // refit (then they are put in that order first, and likely stay so: a world whose objects only
+  // move). A tree changed between refits (jumps reinserted every frame) is refitted recursively:
+  // relaying it out costs more than the recursion saves. Tall trees: in parallel over subtrees.
+  const bool linear = height_[root_] <= kParallelHeight && (ordered_ || stable_);
+  stable_ = true;
+  if (!linear) {
+    sum = refit_subtree(root_);
+  } else {
+    if (!ordered_) relayout();
+    for (std::size_t i = nodes_.size(); i-- > 0;) {
+      Node& n = nodes_[i];
+      if (n.child1 == kNull) continue;
+      merge_into(n, nodes_[n.child1], nodes_[n.child2]);
+      sum += area(n);
+    }
+  }
   const Scalar root_area = area(nodes_[root_]);
   // Loose: the boxes' total area (the expected cost of a query) grew by half since the rebuild.
   if (root_area > 0 && sum / root_area > 1.5 * built_area_ && leaves_ >= 64) rebuild();
@@ -243,7 +293,44 @@ void AabbTree::rebuild() {
   build(build, items.data(), items.data() + items.size(), 0, kNull);
   nodes_ = std::move(next);
   root_ = 0;
+  ordered_ = true;
   built_area_ = relative_area();
+}
+
+void AabbTree::relayout() {
+  struct Item {
+    std::int32_t old;     // the node's index before
+    std::int32_t parent;  // its parent's index after (kNull for the root)
+    bool second;          // whether it is that parent's child2
+  };
+  std::vector<Node> next(2 * leaves_ - 1);
+  std::vector<std::int32_t> parent(next.size(), kNull);
+  std::vector<std::int32_t> height(next.size(), 0);
+  std::int32_t at = 0;
+  Stack<Item> stack;
+  stack.push({root_, kNull, false});
+  while (!stack.empty()) {
+    const Item item = stack.pop();
+    const Node& n = nodes_[item.old];
+    next[at] = n;
+    parent[at] = item.parent;
+    height[at] = height_[item.old];
+    if (item.parent != kNull)
+      (item.second ? next[item.parent].child2 : next[item.parent].child1) = at;
+    if (n.child1 == kNull) {
+      leaf_of_[n.child2] = at;
+    } else {
+      stack.push({n.child2, at, true});  // popped after the whole child1 subtree
+      stack.push({n.child1, at, false});
+    }
+    ++at;
+  }
+  nodes_ = std::move(next);
+  parent_ = std::move(parent);
+  height_ = std::move(height);
+  free_.clear();
+  root_ = 0;
+  ordered_ = true;
 }
 
 Scalar AabbTree::relative_area() const {
@@ -306,6 +393,8 @@ std::vector<AabbTree::PairTask> AabbTree::pair_tasks(Scalar gap, std::size_t tar
 }
 
 void AabbTree::insert_leaf(std::int32_t leaf) {
+  ordered_ = false;
+  stable_ = false;
   if (root_ == kNull) {
     root_ = leaf;
     parent_[leaf] = kNull;
@@ -354,6 +443,8 @@ void AabbTree::insert_leaf(std::int32_t leaf) {
 }
 
 void AabbTree::remove_leaf(std::int32_t leaf) {
+  ordered_ = false;
+  stable_ = false;
   if (leaf == root_) {
     root_ = kNull;
     return;

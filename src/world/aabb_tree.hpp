@@ -5,8 +5,8 @@
 // Layout: 32-byte nodes (single-precision boxes rounded outward, so a node box always contains the
 // double box it was made from; two children or one object), with parents and heights kept apart
 // because only the mutations read them. A leaf is addressed by its object (a small integer, the
-// World's slot), so a rebuild may renumber every node: it lays the tree out in depth-first order,
-// which keeps a subtree in one stretch of memory for the traversals.
+// World's slot), so a rebuild (or the relayout before a refit) may renumber every node: it lays the
+// tree out in depth-first order, which keeps a subtree in one stretch of memory for the traversals.
 //
 // Keeping it tight: greedy insertion and height-only rotations keep the height O(log n) but not the
 // boxes tight (on many objects spread through a volume, internal boxes grow into overlapping
@@ -68,6 +68,20 @@ class AabbTree {
   }
   /// The box stored for `object` (its box rounded outward to single precision).
   [[nodiscard]] Aabb box(std::uint32_t object) const { return to_aabb(nodes_[leaf_of_[object]]); }
+  /// Whether `box` lies inside the box of the leaf's ancestor `levels` above it (the root's box
+  /// when the leaf is not that deep): refitting the leaf to `box` then grows no box above that
+  /// ancestor. Reads only internal nodes: safe beside set_box() calls on other leaves.
+  [[nodiscard]] bool inside_ancestor(std::uint32_t object, const Aabb& box, int levels) const {
+    std::int32_t i = leaf_of_[object];
+    for (int k = 0; k < levels && parent_[i] != kNull; ++k) i = parent_[i];
+    const Node& n = nodes_[i];
+    for (int k = 0; k < 3; ++k) {
+      if (box.min[k] < static_cast<Scalar>(n.lo[k]) || static_cast<Scalar>(n.hi[k]) < box.max[k]) {
+        return false;
+      }
+    }
+    return true;
+  }
   /// Starts loading the leaf of `object` (if any), for a later box() or set_box().
   void prefetch(std::uint32_t object) const {
     if (object < leaf_of_.size() && leaf_of_[object] != kNull) {
@@ -179,26 +193,15 @@ class AabbTree {
     // Pushing an entry starts loading the children it will read when popped (the traversal waits
     // on memory: a large world's tree does not fit the caches).
     Stack<PairTask> stack;
-    const auto push = [&](std::int32_t a, std::int32_t b) {
-      stack.push({a, b});
-      for (const std::int32_t i : {a, b}) {
-        const Node& n = nodes_[i];
-        if (n.child1 != kNull) {
-          ANTCD_PREFETCH(&nodes_[n.child1]);
-          ANTCD_PREFETCH(&nodes_[n.child2]);
-        }
-        if (a == b) break;
-      }
-    };
-    push(task.a, task.b);
+    push_pair(stack, task.a, task.b);
     while (!stack.empty()) {
       const PairTask t = stack.pop();
       const Node& a = nodes_[t.a];
       if (t.a == t.b) {  // pairs within one subtree
         if (a.child1 == kNull) continue;
-        if (nodes_[a.child1].child1 != kNull) push(a.child1, a.child1);
-        if (nodes_[a.child2].child1 != kNull) push(a.child2, a.child2);
-        if (near(nodes_[a.child1], nodes_[a.child2])) push(a.child1, a.child2);
+        if (nodes_[a.child1].child1 != kNull) push_pair(stack, a.child1, a.child1);
+        if (nodes_[a.child2].child1 != kNull) push_pair(stack, a.child2, a.child2);
+        if (near(nodes_[a.child1], nodes_[a.child2])) push_pair(stack, a.child1, a.child2);
         continue;
       }
       const Node& b = nodes_[t.b];
@@ -207,12 +210,27 @@ class AabbTree {
       if (a_leaf && b_leaf) {
         visit(static_cast<std::uint32_t>(a.child2), static_cast<std::uint32_t>(b.child2));
       } else if (b_leaf || (!a_leaf && span(a) >= span(b))) {
-        if (near(nodes_[a.child1], b)) push(a.child1, t.b);
-        if (near(nodes_[a.child2], b)) push(a.child2, t.b);
+        if (near(nodes_[a.child1], b)) push_pair(stack, a.child1, t.b);
+        if (near(nodes_[a.child2], b)) push_pair(stack, a.child2, t.b);
       } else {
-        if (near(a, nodes_[b.child1])) push(t.a, b.child1);
-        if (near(a, nodes_[b.child2])) push(t.a, b.child2);
+        if (near(a, nodes_[b.child1])) push_pair(stack, t.a, b.child1);
+        if (near(a, nodes_[b.child2])) push_pair(stack, t.a, b.child2);
       }
+    }
+  }
+
+  /// Pushes the pair (a, b) of pairs_within() and starts loading the children it will read when
+  /// popped. Inlined by force: called for every node pair the traversal keeps.
+  template <class S>
+  [[gnu::always_inline]] void push_pair(S& stack, std::int32_t a, std::int32_t b) const {
+    stack.push({a, b});
+    for (const std::int32_t i : {a, b}) {
+      const Node& n = nodes_[i];
+      if (n.child1 != kNull) {
+        ANTCD_PREFETCH(&nodes_[n.child1]);
+        ANTCD_PREFETCH(&nodes_[n.child2]);
+      }
+      if (a == b) break;
     }
   }
 
@@ -297,6 +315,8 @@ class AabbTree {
   void remove_leaf(std::int32_t leaf);
   std::int32_t balance(std::int32_t a);
   void refit_upwards(std::int32_t i);
+  /// Renumbers the nodes in depth-first order (the tree unchanged): a parent before its children.
+  void relayout();
   /// Refits the subtree at i; returns the sum of its internal nodes' areas.
   Scalar refit_subtree(std::int32_t i);
 
@@ -312,6 +332,8 @@ class AabbTree {
   std::int32_t root_ = kNull;
   std::size_t leaves_ = 0;
   std::size_t changes_ = 0;        // incremental changes since the last rebuild
+  bool ordered_ = false;           // nodes_ in depth-first order, none free (rebuild, relayout)
+  bool stable_ = false;            // no leaf inserted or removed since the last refit
   Scalar built_area_ = 0;          // relative_area() right after the last rebuild
 };
 

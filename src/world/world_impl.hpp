@@ -35,9 +35,18 @@ struct World::Impl {
     bool has_ignored = false;  ///< whether the object's ignored list is non-empty
   };
 
+  /// An object's root volumes placed by its pose, from the same arithmetic as its box (posed_box):
+  /// candidate_pairs tests them for every pair whose boxes meet, and would otherwise pose them
+  /// again for each such pair.
+  struct Root {
+    Obb box;            ///< the root box in the world frame; its centre is the root sphere's too
+    Scalar radius = 0;  ///< the root sphere's radius
+  };
+
   WorldOptions settings;
   std::vector<Object> objects;
   std::vector<Bounds> bounds;  ///< by slot, like objects
+  std::vector<Root> roots;     ///< by slot, like objects; set with bounds
   /// By slot: generation << 1 | alive. Dense, so that checking a batch of ids is cheap.
   std::vector<std::uint64_t> handles;
   // Scratch of set_poses (a mutation), by slot: the last index of the object in its arguments, and
@@ -84,9 +93,15 @@ struct World::Impl {
   [[nodiscard]] Aabb fattened(std::uint32_t slot) const;
 };
 
-/// World box of a posed model (from its root sphere and root box, whichever is tighter per axis),
-/// widened by a rounding allowance; `tolerance` receives that allowance.
-Aabb posed_box(const Model& model, const Transform& pose, Scalar& tolerance);
+/// World box of a posed model (the axis-aligned bounds of its posed root box), widened by a
+/// rounding allowance; `tolerance` receives that allowance and `root` the posed root volumes.
+Aabb posed_box(const Model& model, const Transform& pose, Scalar& tolerance,
+               World::Impl::Root& root);
+/// The same box, for a pose that is not an object's (its root volumes are not kept).
+inline Aabb posed_box(const Model& model, const Transform& pose, Scalar& tolerance) {
+  World::Impl::Root root;
+  return posed_box(model, pose, tolerance, root);
+}
 
 /// Throws ArgumentError naming `function` unless `pose` is finite (queries about a model outside
 /// the world; the world's own poses are checked, rigidity included, when they are set).

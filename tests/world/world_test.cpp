@@ -2,6 +2,7 @@
 // on worlds of generated and real meshes; after every step each query must equal the answer of
 // collide() run on every admitted object pair (collide() itself is checked against all triangle
 // pairs in the exact tests), with the filters applied by a reference kept here.
+#include <antcd/geometry.hpp>
 #include <antcd/load.hpp>
 #include <antcd/world.hpp>
 
@@ -376,6 +377,103 @@ TEST(World, ManySmallMovesMatchBruteForce) {
     world.set_poses(ids, poses);
     ASSERT_EQ(pairs_of(world.collide_all()), ref.colliding(0)) << "frame " << frame;
   }
+}
+
+// A small world whose objects teleport: many at once on even frames (more than a sixteenth of the
+// objects: they stay in the tree and the refit covers them), a couple on odd frames among small
+// moves (reinserted). Every frame the exact pairs equal the oracle, and the candidate pairs equal
+// those of a world built afresh at the same poses (no box or posed root volume left stale).
+TEST(World, SmallWorldWithManyJumpsMatchesOracleAndAFreshWorld) {
+  const std::vector<ModelPtr> models = generated_models();
+  constexpr int kObjects = 48;
+  constexpr Scalar kExtent = 2.2;
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<Scalar> u(-1, 1);
+  World world;
+  Reference ref;
+  std::vector<ObjectId> ids;
+  for (int i = 0; i < kObjects; ++i) {
+    RefObject r;
+    r.model = models[i % models.size()];
+    r.pose = test::random_pose(rng, kExtent);
+    ids.push_back(world.add(r.model, r.pose));
+    ref.objects[ids.back()] = r;
+  }
+  std::size_t colliding_seen = 0;
+  for (int frame = 0; frame < 24; ++frame) {
+    std::vector<Transform> poses;
+    for (int i = 0; i < kObjects; ++i) {
+      RefObject& r = ref.objects[ids[i]];
+      const bool jump = frame % 2 == 0 ? i % 3 == frame % 3 : i == frame % kObjects || i == 7;
+      if (jump) {
+        r.pose = test::random_pose(rng, kExtent);
+      } else {
+        r.pose.translation += 0.05 * Vec3(u(rng), u(rng), u(rng));
+      }
+      poses.push_back(r.pose);
+    }
+    world.set_poses(ids, poses);
+    const std::vector<ObjectPair> expected = ref.colliding(0);
+    ASSERT_EQ(pairs_of(world.collide_all()), expected) << "frame " << frame;
+    colliding_seen += expected.size();
+    World fresh;
+    for (int i = 0; i < kObjects; ++i) fresh.add(ref.objects[ids[i]].model, poses[i]);
+    // Same slots in the same order: the ids agree.
+    ASSERT_EQ(world.candidate_pairs(0), fresh.candidate_pairs(0)) << "frame " << frame;
+    ASSERT_EQ(world.candidate_pairs(0.1), fresh.candidate_pairs(0.1)) << "frame " << frame;
+  }
+  EXPECT_GT(colliding_seen, 24u);  // the frames test colliding pairs, not only empty answers
+}
+
+// candidate_pairs against its definition, pair by pair: filters admit the pair, the posed root
+// spheres are within delta and geometry::obb_overlap finds the posed root boxes within delta (plus
+// the rounding allowance stated in query.cpp). Objects crowded together, so that many root boxes
+// overlap deeply (the pairs accepted without the separating-axis test) and many nearly touch.
+TEST(World, CandidatePairsEqualTheirDefinitionOnACrowdedWorld) {
+  const std::vector<ModelPtr> models = generated_models();
+  constexpr int kObjects = 40;
+  std::mt19937_64 rng(13);
+  World world;
+  std::vector<ObjectId> ids;
+  std::vector<Transform> poses;
+  for (int i = 0; i < kObjects; ++i) {
+    poses.push_back(test::random_pose(rng, 1.4));
+    ids.push_back(world.add(models[i % models.size()], poses.back()));
+  }
+  const auto posed = [&](int i) {
+    Obb b = models[i % models.size()]->root().obb();
+    b.axes = poses[i].rotation * b.axes;
+    b.center = poses[i].apply(b.center);
+    return b;
+  };
+  std::size_t accepted = 0;
+  std::size_t rejected_by_boxes = 0;
+  for (int frame = 0; frame < 8; ++frame) {
+    for (int i = 0; i < kObjects; ++i) poses[i] = test::random_pose(rng, 1.4);
+    world.set_poses(ids, poses);
+    for (const Scalar delta : {0.0, 0.03}) {
+      std::vector<ObjectPair> expected;
+      for (int i = 0; i < kObjects; ++i) {
+        for (int j = i + 1; j < kObjects; ++j) {
+          const Obb a = posed(i);
+          const Obb b = posed(j);
+          const Scalar reach = models[i % models.size()]->root().radius +
+                               models[j % models.size()]->root().radius + delta;
+          if ((a.center - b.center).squaredNorm() > reach * reach) continue;
+          const Scalar margin = delta + 1e-9 * (reach + std::max(a.center.norm(), b.center.norm()));
+          if (!geometry::obb_overlap(a, b, margin)) {
+            ++rejected_by_boxes;
+            continue;
+          }
+          expected.push_back({ids[i], ids[j]});
+        }
+      }
+      ASSERT_EQ(world.candidate_pairs(delta), expected) << "frame " << frame << " delta " << delta;
+      accepted += expected.size();
+    }
+  }
+  EXPECT_GT(accepted, 200u);
+  EXPECT_GT(rejected_by_boxes, 20u);  // the box test decides some pairs the spheres let through
 }
 
 // A large world (the parallel paths: batches of poses checked, fitted and written by oneTBB tasks,
