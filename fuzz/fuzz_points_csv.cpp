@@ -15,11 +15,12 @@
 #include <sstream>
 #include <string>
 
+#include "finding.hpp"
+
 namespace {
 
 [[noreturn]] void finding(const char* what, const char* detail) {
-  std::fprintf(stderr, "antcd fuzz_points_csv: %s: %s\n", what, detail);
-  std::abort();
+  antcd::fuzz::finding("fuzz_points_csv", what, detail);
 }
 
 }  // namespace

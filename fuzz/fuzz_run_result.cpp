@@ -15,11 +15,12 @@
 #include <string>
 #include <string_view>
 
+#include "finding.hpp"
+
 namespace {
 
 [[noreturn]] void finding(const char* what, const char* detail) {
-  std::fprintf(stderr, "antcd fuzz_run_result: %s: %s\n", what, detail);
-  std::abort();
+  antcd::fuzz::finding("fuzz_run_result", what, detail);
 }
 
 }  // namespace

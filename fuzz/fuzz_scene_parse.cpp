@@ -12,11 +12,12 @@
 #include <string>
 #include <string_view>
 
+#include "finding.hpp"
+
 namespace {
 
 [[noreturn]] void finding(const char* what, const char* detail) {
-  std::fprintf(stderr, "antcd fuzz_scene_parse: %s: %s\n", what, detail);
-  std::abort();
+  antcd::fuzz::finding("fuzz_scene_parse", what, detail);
 }
 
 }  // namespace
