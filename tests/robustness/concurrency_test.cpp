@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "shared/production_line.hpp"
+#include "support/sanitizer.hpp"
 #include "support/test_support.hpp"
 
 namespace antcd {
@@ -32,17 +33,7 @@ constexpr int kThreads = 8;
 // (scene.cpp's per-pair lambda, narrow.cpp), is then reported as a race. Silencing those would
 // also silence real races in antcd, so the oneTBB path is checked by the answers in the other
 // builds (ASan and Release run this test with threads > 1 inside), not by TSan.
-#if defined(__SANITIZE_THREAD__)
-constexpr bool kUnderTsan = true;
-#elif defined(__has_feature)
-#if __has_feature(thread_sanitizer)
-constexpr bool kUnderTsan = true;
-#else
-constexpr bool kUnderTsan = false;
-#endif
-#else
-constexpr bool kUnderTsan = false;
-#endif
+using test::kUnderTsan;
 
 // ---- field-by-field comparisons (times excluded) ------------------------------------------------
 
