@@ -12,6 +12,7 @@
 #include <type_traits>
 #include <utility>
 
+#include "bvh/face_test.hpp"
 #include "geometry/obb_sat.hpp"
 
 namespace antcd::detail {
@@ -37,6 +38,8 @@ inline Transform relative_pose(const Transform& pose_a, const Transform& pose_b)
 struct PairFrame {
   Transform b_to_a;  ///< maps B's model frame into A's model frame
   Scalar margin;     ///< delta plus a rounding allowance; bounding-volume tests only
+  float margin_f;    ///< margin rounded to float, for float_face_separated
+  bool float_faces;  ///< the face-axes box test may run in float (bvh/face_test.hpp)
 
   PairFrame(const Model& a, const Transform& pose_a, const Model& b, const Transform& pose_b,
             Scalar delta)
@@ -47,17 +50,23 @@ struct PairFrame {
     const Scalar scale = a.root().radius + b.root().radius + a.root().center.norm() +
                          b.root().center.norm() + b_to_a.translation.norm();
     margin = delta + tolerance::kVolume * scale;
+    margin_f = static_cast<float>(margin);
+    // Float's range holds every quantity of the box tests of such scenes (bvh/face_test.hpp).
+    float_faces = FloatFaceAxes::kAvailable && scale >= 1e-20 && scale <= 1e30 && margin <= 1e30;
   }
 };
 
 /// B's node box axes mapped into A's model frame by the rotation `rot`: R b0, R b1 and their cross
 /// product as B's third axis, equal to R (b0 x b1) up to rounding (which the margin covers, like
-/// the rest of the separating-axis arithmetic).
+/// the rest of the separating-axis arithmetic); with kFloat, also as float lanes.
+template <bool kFloat>
 struct PosedAxes {
   Vec3 b0 = Vec3::Zero(), b1 = Vec3::Zero(), b2 = Vec3::Zero();
+  FloatFaceAxes f;  ///< with kFloat: b0, b1, b2 and B's half extents in float
   PosedAxes() = default;
   PosedAxes(const BvhNode& b, const Mat3& rot) : b0(rot * b.axis0), b1(rot * b.axis1) {
     b2 = b0.cross(b1);
+    if constexpr (kFloat) f = FloatFaceAxes(b0, b1, b2, b);
   }
 };
 
@@ -73,12 +82,16 @@ enum class BoxTest { full, faces };
 /// Separating-axis test between A's node box (third axis `a2` = a.axis0 x a.axis1) and B's node
 /// box with axes `rb` and centre `cb` in A's model frame: the axes of kBox with the tolerances and
 /// margin of geometry::obb_overlap, inlined into the traversal. True when a separating axis was
-/// found.
-template <BoxTest kBox>
+/// found. The face axes run in float where the frame allows (float_face_separated).
+template <BoxTest kBox, bool kFloat>
 [[gnu::always_inline]] inline bool obb_disjoint(const BvhNode& a, const Vec3& a2, const BvhNode& b,
-                                                const PosedAxes& rb, const Vec3& cb,
-                                                Scalar margin) {
+                                                const PosedAxes<kFloat>& rb, const Vec3& cb,
+                                                const PairFrame& frame) {
   const Vec3 d = cb - a.center;
+  if constexpr (kBox == BoxTest::faces && kFloat) {
+    if (frame.float_faces) return float_face_separated(a, a2, rb.f, d, frame.margin_f);
+  }
+  const Scalar margin = frame.margin;
   Mat3 r;
   r << a.axis0.dot(rb.b0), a.axis0.dot(rb.b1), a.axis0.dot(rb.b2),  //
       a.axis1.dot(rb.b0), a.axis1.dot(rb.b1), a.axis1.dot(rb.b2),   //
@@ -163,7 +176,9 @@ TraversalStats dual_traverse(const Model& a, const Model& b, const PairFrame& fr
   std::uint32_t axes_of = kNone;    // the node of B whose axes rb holds
   std::uint32_t third_of = kNone;   // the node of A whose third axis a2 holds
   Vec3 cb = Vec3::Zero();
-  PosedAxes rb;
+  // The float face test needs B's axes in float lanes too.
+  constexpr bool kFloat = kBox == BoxTest::faces && FloatFaceAxes::kAvailable;
+  PosedAxes<kFloat> rb;
   Vec3 a2 = Vec3::Zero();
   stack[top++] = {0, 0, kAll, kAll};
   while (top > 0) {
@@ -188,13 +203,13 @@ TraversalStats dual_traverse(const Model& a, const Model& b, const PairFrame& fr
     }
     if (item.ib != axes_of) {
       axes_of = item.ib;
-      rb = PosedAxes(nb, rot);
+      rb = PosedAxes<kFloat>(nb, rot);
     }
     if (item.ia != third_of) {
       third_of = item.ia;
       a2 = na.axis0.cross(na.axis1);
     }
-    if (obb_disjoint<kBox>(na, a2, nb, rb, cb, frame.margin)) {
+    if (obb_disjoint<kBox>(na, a2, nb, rb, cb, frame)) {
       ++stats.obb_rejects;
       continue;
     }

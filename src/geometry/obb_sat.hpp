@@ -15,10 +15,8 @@ namespace antcd::geometry::detail {
 // r = a.axes^T * b.axes, t = a.axes^T * (b.center - a.center). abs_r is |r| plus a small epsilon:
 // when two edges are nearly parallel their cross product is nearly zero and rounding could
 // otherwise report a separating axis that is not one.
-inline Mat3 obb_abs_rotation(const Mat3& r) {
-  constexpr Scalar kEps = 1e-12;
-  return r.cwiseAbs().array() + kEps;
-}
+inline constexpr Scalar kAbsRotationEps = 1e-12;
+inline Mat3 obb_abs_rotation(const Mat3& r) { return r.cwiseAbs().array() + kAbsRotationEps; }
 
 /// The six face axes of the 15-axis test below (a's three, then b's three): true when one of them
 /// separates the boxes. Missing the nine edge-edge axes, it reports fewer separations, never one
