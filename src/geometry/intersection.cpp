@@ -139,10 +139,13 @@ bool edge_meets_triangle(const Vec3& p, const Vec3& q, int sp, int sq, const Sid
   if (sp == 0 && sq == 0) {
     return segment_meets_triangle_2d(p, q, pl.t, Projection(dominant_axis(pl.n)), point);
   }
-  // The line pq crosses the plane in one point, which lies on the segment.
-  const int s1 = sign_of(orient3d(p, q, a, b));
-  const int s2 = sign_of(orient3d(p, q, b, c));
-  const int s3 = sign_of(orient3d(p, q, c, a));
+  // The line pq crosses the plane in one point, which lies on the segment. The signs of
+  // orient3d(p, q, a, b), (p, q, b, c), (p, q, c, a), all three negated (which the test below does
+  // not see): orient3d(p, q, x, y) = -orient3d(q, x, y, p), so the differences to p are shared.
+  const Vec3 e = q - p, wa = a - p, wb = b - p, wc = c - p;
+  const int s1 = sign_of(orient3d_with_differences(q, a, b, p, e, wa, wb));
+  const int s2 = sign_of(orient3d_with_differences(q, b, c, p, e, wb, wc));
+  const int s3 = sign_of(orient3d_with_differences(q, c, a, p, e, wc, wa));
   const bool hit = (s1 >= 0 && s2 >= 0 && s3 >= 0) || (s1 <= 0 && s2 <= 0 && s3 <= 0);
   if (hit && point != nullptr) {
     if (sp == 0) {

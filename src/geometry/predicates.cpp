@@ -177,20 +177,7 @@ bool is_degenerate_triangle(const Vec3& a, const Vec3& b, const Vec3& c) {
 }
 
 Scalar orient3d(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
-  const double adx = a.x() - d.x(), ady = a.y() - d.y(), adz = a.z() - d.z();
-  const double bdx = b.x() - d.x(), bdy = b.y() - d.y(), bdz = b.z() - d.z();
-  const double cdx = c.x() - d.x(), cdy = c.y() - d.y(), cdz = c.z() - d.z();
-  const double bdxcdy = bdx * cdy, cdxbdy = cdx * bdy;
-  const double cdxady = cdx * ady, adxcdy = adx * cdy;
-  const double adxbdy = adx * bdy, bdxady = bdx * ady;
-  const double det = adz * (bdxcdy - cdxbdy) + bdz * (cdxady - adxcdy) + cdz * (adxbdy - bdxady);
-  const double perm = (std::abs(bdxcdy) + std::abs(cdxbdy)) * std::abs(adz) +
-                      (std::abs(cdxady) + std::abs(adxcdy)) * std::abs(bdz) +
-                      (std::abs(adxbdy) + std::abs(bdxady)) * std::abs(cdz);
-  const double bound = kOrient3dBound * perm;
-  if (det > bound || -det > bound) return det;
-  if (perm == 0) return 0;  // every product is exactly zero, so is the determinant
-  return orient3d_exact(a, b, c, d);
+  return orient3d_with_differences(a, b, c, d, a - d, b - d, c - d);
 }
 
 }  // namespace antcd::geometry

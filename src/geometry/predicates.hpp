@@ -24,6 +24,26 @@ inline int sign_of(double x) { return (x > 0) - (x < 0); }
 // det[a-d; b-d; c-d] evaluated exactly (returned as a sign-exact approximation).
 double orient3d_exact(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d);
 
+// orient3d(a, b, c, d) (antcd/geometry.hpp), exact-sign, given the differences ad = a - d,
+// bd = b - d, cd = c - d rounded as orient3d rounds them: callers that share a base point d
+// compute them once. The floating-point value when its error bound proves the sign, else the exact
+// value's estimate.
+inline double orient3d_with_differences(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d,
+                                        const Vec3& ad, const Vec3& bd, const Vec3& cd) {
+  const double bdxcdy = bd.x() * cd.y(), cdxbdy = cd.x() * bd.y();
+  const double cdxady = cd.x() * ad.y(), adxcdy = ad.x() * cd.y();
+  const double adxbdy = ad.x() * bd.y(), bdxady = bd.x() * ad.y();
+  const double det =
+      ad.z() * (bdxcdy - cdxbdy) + bd.z() * (cdxady - adxcdy) + cd.z() * (adxbdy - bdxady);
+  const double perm = (std::abs(bdxcdy) + std::abs(cdxbdy)) * std::abs(ad.z()) +
+                      (std::abs(cdxady) + std::abs(adxcdy)) * std::abs(bd.z()) +
+                      (std::abs(adxbdy) + std::abs(bdxady)) * std::abs(cd.z());
+  const double bound = kOrient3dBound * perm;
+  if (det > bound || -det > bound) return det;
+  if (perm == 0) return 0;  // every product is exactly zero, so is the determinant
+  return orient3d_exact(a, b, c, d);
+}
+
 // ---- 2-D orientation in a coordinate plane ------------------------------------------------------
 
 // The plane obtained by dropping coordinate `drop`; (u, v) is a cyclic order of the other two.
