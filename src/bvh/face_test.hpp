@@ -25,6 +25,7 @@
 #include <antcd/bvh.hpp>
 
 #include <cmath>
+#include <cstddef>
 #include <type_traits>
 
 #if defined(__SSE2__)
@@ -35,6 +36,13 @@ namespace antcd::detail {
 
 #if defined(__SSE2__)
 
+/// A node's half extents as lanes (h0, h1, h2, 0).
+inline __m128 half_lanes(const BvhNode& n) {
+  static_assert(offsetof(BvhNode, half) + 16 <= sizeof(BvhNode), "the load stays in the node");
+  const __m128 lanes_012 = _mm_castsi128_ps(_mm_set_epi32(0, -1, -1, -1));
+  return _mm_and_ps(_mm_loadu_ps(n.half.data()), lanes_012);
+}
+
 /// B's node axes (in A's model frame) as float lanes: x = (b0.x, b1.x, b2.x, 0) and so on, and B's
 /// half extents e = (eb0, eb1, eb2, 0). Kept per node of B, like PosedAxes.
 struct FloatFaceAxes {
@@ -43,13 +51,16 @@ struct FloatFaceAxes {
 
   FloatFaceAxes() = default;
   FloatFaceAxes(const Vec3& b0, const Vec3& b1, const Vec3& b2, const BvhNode& b)
-      : x(_mm_set_ps(0, f(b2.x()), f(b1.x()), f(b0.x()))),
-        y(_mm_set_ps(0, f(b2.y()), f(b1.y()), f(b0.y()))),
-        z(_mm_set_ps(0, f(b2.z()), f(b1.z()), f(b0.z()))),
-        e(_mm_set_ps(0, b.half[2], b.half[1], b.half[0])) {}
-
- private:
-  static float f(Scalar v) { return static_cast<float>(v); }
+      : e(half_lanes(b)) {
+    // Each component rounded to float once; (x, y) pairs converted two at a time, then transposed.
+    const __m128 p0 = _mm_cvtpd_ps(_mm_loadu_pd(b0.data()));  // b0.x b0.y 0 0
+    const __m128 p1 = _mm_cvtpd_ps(_mm_loadu_pd(b1.data()));
+    const __m128 p2 = _mm_cvtpd_ps(_mm_loadu_pd(b2.data()));
+    const __m128 u01 = _mm_unpacklo_ps(p0, p1);  // b0.x b1.x b0.y b1.y
+    x = _mm_shuffle_ps(u01, p2, _MM_SHUFFLE(3, 0, 1, 0));
+    y = _mm_shuffle_ps(u01, p2, _MM_SHUFFLE(3, 1, 3, 2));
+    z = _mm_movelh_ps(_mm_cvtpd_ps(_mm_set_pd(b1.z(), b0.z())), _mm_cvtpd_ps(_mm_set_sd(b2.z())));
+  }
 };
 
 /// True when one of the six face axes separates A's node box (axes a.axis0, a.axis1, `a2`) from
@@ -80,8 +91,7 @@ struct FloatFaceAxes {
   const __m128 t =
       _mm_set_ps(0, static_cast<float>(t2), static_cast<float>(t1), static_cast<float>(t0));
   const __m128 abs_t = _mm_and_ps(t, abs_mask);
-  const __m128 ea =
-      _mm_add_ps(_mm_set_ps(0, a.half[2], a.half[1], a.half[0]), _mm_set1_ps(margin_f));
+  const __m128 ea = _mm_add_ps(half_lanes(a), _mm_set1_ps(margin_f));
 
   // A's axes: lane i compares |t_i| with ea_i + sum_j q_ij eb_j (rows times eb, transposed, added).
   const __m128 p0 = _mm_mul_ps(q0, fb.e);
