@@ -172,14 +172,40 @@ TraversalStats dual_traverse(const Model& a, const Model& b, const PairFrame& fr
   std::array<Item, 512> stack;
   std::size_t top = 0;
   constexpr std::uint32_t kNone = ~std::uint32_t{0};
-  std::uint32_t centre_of = kNone;  // the node of B whose centre cb holds
-  std::uint32_t axes_of = kNone;    // the node of B whose axes rb holds
-  std::uint32_t third_of = kNone;   // the node of A whose third axis a2 holds
-  Vec3 cb = Vec3::Zero();
-  // The float face test needs B's axes in float lanes too.
+  // The float face test needs the placed axes in float lanes too.
   constexpr bool kFloat = kBox == BoxTest::faces && FloatFaceAxes::kAvailable;
-  PosedAxes<kFloat> rb;
-  Vec3 a2 = Vec3::Zero();
+  // A node's placement in the other model's frame (centre, then box axes) and a node's own third
+  // axis, each kept while consecutive pairs share the node: the same values as computed afresh,
+  // without the cost. A pair is tested in A's frame (B's node placed) or in B's (A's node placed
+  // by the inverse rotation), whichever placement is at hand: one tree is descended under a fixed
+  // node of the other, so placing the fixed node once saves placing each node of the other tree.
+  // The sphere and box tests are filters whose rounding the margin covers in either frame.
+  struct Placed {
+    std::uint32_t centre_of = kNone;  // the node whose centre c holds
+    std::uint32_t axes_of = kNone;    // the node whose placed axes r hold
+    std::uint32_t third_of = kNone;   // the node whose own third axis holds
+    Vec3 c = Vec3::Zero();
+    PosedAxes<kFloat> r;
+    Vec3 third = Vec3::Zero();
+  };
+  Placed pb;  // B's nodes in A's frame; third: A's node's own third axis
+  Placed pa;  // A's nodes in B's frame; third: B's node's own third axis
+  const Mat3 irot = rot.transpose();
+  const auto centre_b = [&](std::uint32_t ib) -> const Vec3& {
+    if (ib != pb.centre_of) {
+      pb.centre_of = ib;
+      pb.c = rot * nodes_b[ib].center + trans;
+    }
+    return pb.c;
+  };
+  const auto centre_a = [&](std::uint32_t ia) -> const Vec3& {
+    if (ia != pa.centre_of) {
+      pa.centre_of = ia;
+      pa.c = rot.transpose() * (nodes_a[ia].center - trans);  // as nearest-first always formed it
+    }
+    return pa.c;
+  };
+  std::uint32_t last_a = kNone;
   stack[top++] = {0, 0, kAll, kAll};
   while (top > 0) {
     Item item = stack[--top];
@@ -187,29 +213,44 @@ TraversalStats dual_traverse(const Model& a, const Model& b, const PairFrame& fr
     const BvhNode& nb = nodes_b[item.ib];
     ++stats.node_pairs;
 
-    // B's node in A's frame (centre, then box axes) and A's third axis are kept while consecutive
-    // pairs share the node (one tree is descended under a fixed node of the other): the same
-    // values as computed afresh, without the cost.
-    if (item.ib != centre_of) {
-      centre_of = item.ib;
-      cb = rot * nb.center + trans;
-    }
+    // In B's frame when A's node is placed already, or when neither is and A's node stays (B's
+    // tree is being descended under it). Exact walks only: the others (the random methods') keep
+    // exactly the culls they always had, since the leaf pairs they meet feed their sampling.
+    const bool in_b = kBox == BoxTest::faces && item.ib != pb.centre_of &&
+                      (item.ia == pa.centre_of || item.ia == last_a);
+    last_a = item.ia;
     const Scalar radius_a = na.radius;
     const Scalar radius_b = nb.radius;
     const Scalar rsum = radius_a + radius_b + frame.margin;
-    if ((cb - na.center).squaredNorm() > rsum * rsum) {
+    const Scalar dist2 = in_b ? (centre_a(item.ia) - nb.center).squaredNorm()
+                              : (centre_b(item.ib) - na.center).squaredNorm();
+    if (dist2 > rsum * rsum) {
       ++stats.sphere_rejects;
       continue;
     }
-    if (item.ib != axes_of) {
-      axes_of = item.ib;
-      rb = PosedAxes<kFloat>(nb, rot);
+    bool disjoint = false;
+    if (in_b) {
+      if (item.ia != pa.axes_of) {
+        pa.axes_of = item.ia;
+        pa.r = PosedAxes<kFloat>(na, irot);
+      }
+      if (item.ib != pa.third_of) {
+        pa.third_of = item.ib;
+        pa.third = nb.axis0.cross(nb.axis1);
+      }
+      disjoint = obb_disjoint<kBox>(nb, pa.third, na, pa.r, pa.c, frame);
+    } else {
+      if (item.ib != pb.axes_of) {
+        pb.axes_of = item.ib;
+        pb.r = PosedAxes<kFloat>(nb, rot);
+      }
+      if (item.ia != pb.third_of) {
+        pb.third_of = item.ia;
+        pb.third = na.axis0.cross(na.axis1);
+      }
+      disjoint = obb_disjoint<kBox>(na, pb.third, nb, pb.r, pb.c, frame);
     }
-    if (item.ia != third_of) {
-      third_of = item.ia;
-      a2 = na.axis0.cross(na.axis1);
-    }
-    if (obb_disjoint<kBox>(na, a2, nb, rb, cb, frame)) {
+    if (disjoint) {
       ++stats.obb_rejects;
       continue;
     }
@@ -220,7 +261,7 @@ TraversalStats dual_traverse(const Model& a, const Model& b, const PairFrame& fr
       if (leaf_a && na.count > 1 && na.count <= kMaskedLeaf && radius_a > kMaskRatio * radius_b) {
         // A's triangles in B's node box coordinates: u = (R b)^T (v - (R c_b + t)).
         const Mat3 m = (rot * nb.axes()).transpose();
-        const Vec3 off = -(m * cb);
+        const Vec3 off = -(m * centre_b(item.ib));
         item.live_a = live_triangles(a.leaf_corners(), na.first_or_right, na.count, item.live_a, m,
                                      off, nb.half_extents().array() + frame.margin);
         if ((item.live_a & (kAll >> (32 - na.count))) == 0) {
@@ -257,6 +298,7 @@ TraversalStats dual_traverse(const Model& a, const Model& b, const PairFrame& fr
       std::uint32_t first = item.ia + 1;
       std::uint32_t second = na.first_or_right;
       if constexpr (kNearestFirst) {
+        const Vec3& cb = centre_b(item.ib);
         if ((nodes_a[second].center - cb).squaredNorm() <
             (nodes_a[first].center - cb).squaredNorm()) {
           std::swap(first, second);
@@ -268,8 +310,7 @@ TraversalStats dual_traverse(const Model& a, const Model& b, const PairFrame& fr
       std::uint32_t first = item.ib + 1;
       std::uint32_t second = nb.first_or_right;
       if constexpr (kNearestFirst) {
-        // A's centre in B's frame.
-        const Vec3 ca = rot.transpose() * (na.center - trans);
+        const Vec3& ca = centre_a(item.ia);  // A's centre in B's frame
         if ((nodes_b[second].center - ca).squaredNorm() <
             (nodes_b[first].center - ca).squaredNorm()) {
           std::swap(first, second);
