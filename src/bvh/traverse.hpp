@@ -228,28 +228,24 @@ TraversalStats dual_traverse(const Model& a, const Model& b, const PairFrame& fr
       ++stats.sphere_rejects;
       continue;
     }
-    bool disjoint = false;
-    if (in_b) {
-      if (item.ia != pa.axes_of) {
-        pa.axes_of = item.ia;
-        pa.r = PosedAxes<kFloat>(na, irot);
+    // The box test of node `fixed` (own axes) and node `moved` placed in fixed's model frame by
+    // `place` (p.c already holds moved's placed centre). Forced inline: as a call it cost 3.5 % of
+    // pair_contacts' instructions.
+    const auto box_disjoint = [&](Placed & p, const BvhNode& fixed, std::uint32_t i_fixed,
+                                  const BvhNode& moved, std::uint32_t i_moved, const Mat3& place)
+        __attribute__((always_inline)) {
+      if (i_moved != p.axes_of) {
+        p.axes_of = i_moved;
+        p.r = PosedAxes<kFloat>(moved, place);
       }
-      if (item.ib != pa.third_of) {
-        pa.third_of = item.ib;
-        pa.third = nb.axis0.cross(nb.axis1);
+      if (i_fixed != p.third_of) {
+        p.third_of = i_fixed;
+        p.third = fixed.axis0.cross(fixed.axis1);
       }
-      disjoint = obb_disjoint<kBox>(nb, pa.third, na, pa.r, pa.c, frame);
-    } else {
-      if (item.ib != pb.axes_of) {
-        pb.axes_of = item.ib;
-        pb.r = PosedAxes<kFloat>(nb, rot);
-      }
-      if (item.ia != pb.third_of) {
-        pb.third_of = item.ia;
-        pb.third = na.axis0.cross(na.axis1);
-      }
-      disjoint = obb_disjoint<kBox>(na, pb.third, nb, pb.r, pb.c, frame);
-    }
+      return obb_disjoint<kBox>(fixed, p.third, moved, p.r, p.c, frame);
+    };
+    const bool disjoint = in_b ? box_disjoint(pa, nb, item.ib, na, item.ia, irot)
+                               : box_disjoint(pb, na, item.ia, nb, item.ib, rot);
     if (disjoint) {
       ++stats.obb_rejects;
       continue;
