@@ -206,7 +206,8 @@ inline std::array<Scalar, 2> guess_edge_edge(const std::array<Vec3, 4>& p) {
   const Scalar a = da.squaredNorm(), b = da.dot(db), c = db.squaredNorm();
   const Scalar d = da.dot(r), e = db.dot(r);
   const Scalar det = a * c - b * b;
-  Scalar u = det > 0 ? clamp01((b * e - c * d) / det) : 0;
+  // Parallel or degenerate (det 0): b0's nearest point on edge a.
+  Scalar u = det > 0 ? clamp01((b * e - c * d) / det) : (a > 0 ? clamp01(-d / a) : 0);
   Scalar v = c > 0 ? (b * u + e) / c : 0;
   if (v < 0 || v > 1) {  // clamp v, then the best u for it
     v = clamp01(v);
