@@ -222,6 +222,7 @@ FrameResult Scene::run_frame(std::size_t frame, const SceneQuery& query,
       }
       return collide(model_of(i), pose(i), model_of(j), pose(j), request, scratch);
     };
+    result.pairs.reserve(m);  // one allocation, not a doubling series
     if (query.threads == 1 || m < 2) {
       thread_local CollisionResult scratch;
       for (std::size_t k = 0; k < m; ++k) {
