@@ -256,15 +256,17 @@ class AabbTree {
         spill_.push_back(v);
       }
     }
+    // The heap holds entries only while the inline array is full, so a stack with room inline
+    // never looks at it.
     [[gnu::always_inline]] T pop() {
-      if (!spill_.empty()) {
+      if (top_ == kInline && !spill_.empty()) {
         const T v = spill_.back();
         spill_.pop_back();
         return v;
       }
       return inline_[--top_];
     }
-    [[nodiscard]] bool empty() const { return top_ == 0 && spill_.empty(); }
+    [[nodiscard]] bool empty() const { return top_ == 0; }
 
    private:
     static constexpr int kInline = 256;
