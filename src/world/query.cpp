@@ -193,6 +193,13 @@ void World::Impl::candidate_slots(Scalar delta, std::vector<SlotPair>& out,
     // that reach this point on the production-line scenes.
     const Scalar inner = ra.box.half_extents.minCoeff() + rb.box.half_extents.minCoeff();
     if (d2 < inner * inner) return true;
+    // Likewise when either centre lies in the other box (on the same margin argument): about a
+    // third of the pairs left on the production-line scenes.
+    const Vec3 ab = cb - ca;
+    if (((ra.box.axes.transpose() * ab).cwiseAbs().array() <= ra.box.half_extents.array()).all() ||
+        ((rb.box.axes.transpose() * ab).cwiseAbs().array() <= rb.box.half_extents.array()).all()) {
+      return true;
+    }
     // Rounding allowance of the box fit and of the separating-axis arithmetic.
     const Scalar margin = delta + tolerance::kVolume * (reach + std::max(ca.norm(), cb.norm()));
     return geometry::obb_overlap(ra.box, rb.box, margin);
