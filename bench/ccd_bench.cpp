@@ -5,7 +5,8 @@
 // tests/ccd (exact_truth.cpp, linked here for its query generators), and 4000 generic queries
 // (random corners and motions, mostly apart). Each query is timed alone
 // (200 repetitions, mean); the counters give the median and 90th percentile over the queries, in
-// microseconds; the benchmark loop runs the whole set.
+// microseconds, and (corpus and near misses) the false negatives / positives against the exact
+// truth; the benchmark loop runs the whole set.
 //
 // Mesh sweeps (sweep/<pair>, collide_end/<pair>, fcl_ca/<pair>): 16 seeded motions per pair, A
 // passing by or through B (which turns a little) while turning up to 2.5 rad, half of them
@@ -112,8 +113,20 @@ void ccd_primitive(benchmark::State& state) {
   const char* labels[] = {"degenerate corpus", "vf near misses", "ee near misses", "generic"};
   state.SetLabel(labels[state.range(0)]);
   int hits = 0;
-  for (const CcdQuery& q : queries) hits += run_query(q) ? 1 : 0;
+  int false_negatives = 0;
+  int false_positives = 0;
+  for (const CcdQuery& q : queries) {
+    const bool hit = run_query(q);
+    hits += hit ? 1 : 0;
+    if (const auto truth = antcd::test::ccd_truth(q); truth && *truth != hit) {
+      (*truth ? false_negatives : false_positives) += 1;
+    }
+  }
   state.counters["hits"] = hits;
+  if (state.range(0) != 3) {  // the generic queries' motions have no exact truth here
+    state.counters["false_neg"] = false_negatives;
+    state.counters["false_pos"] = false_positives;
+  }
 }
 BENCHMARK(ccd_primitive)->Arg(0)->Arg(1)->Arg(2)->Arg(3)->Unit(benchmark::kMillisecond);
 
@@ -190,7 +203,7 @@ const Pair& pair(int which) {
 
 void sweep(benchmark::State& state) {
   const Pair& p = pair(static_cast<int>(state.range(0)));
-  int misses = 0, late = 0, hits = 0, touching = 0;
+  int misses = 0, late = 0, hits = 0, touching = 0, decided = 0;
   double iterations = 0;
   for (const Motion& m : p.motions) {
     const auto r = antcd::sweep(*p.a, m.a0, m.a1, *p.b, m.b0, m.b1);
@@ -198,6 +211,7 @@ void sweep(benchmark::State& state) {
     touching += m.first ? 1 : 0;
     misses += m.first && !r.hit ? 1 : 0;
     late += m.first && r.hit && r.toi > *m.first ? 1 : 0;
+    decided += r.tolerance_decided ? 1 : 0;
     iterations += r.iterations;
   }
   for (auto _ : state) {
@@ -212,6 +226,7 @@ void sweep(benchmark::State& state) {
   state.counters["hits"] = hits;
   state.counters["misses"] = misses;
   state.counters["late"] = late;
+  state.counters["tolerance_decided"] = decided;
   state.counters["iterations"] = iterations / static_cast<double>(p.motions.size());
   state.SetLabel(p.name);
 }
