@@ -59,7 +59,7 @@ struct PairFrame {
 /// B's node box axes mapped into A's model frame by the rotation `rot`: R b0, R b1 and their cross
 /// product as B's third axis, equal to R (b0 x b1) up to rounding (which the margin covers, like
 /// the rest of the separating-axis arithmetic); with kFloat, also as float lanes.
-template <bool kFloat>
+template <bool kFloat = false>
 struct PosedAxes {
   Vec3 b0 = Vec3::Zero(), b1 = Vec3::Zero(), b2 = Vec3::Zero();
   FloatFaceAxes f;  ///< with kFloat: b0, b1, b2 and B's half extents in float
@@ -82,16 +82,12 @@ enum class BoxTest { full, faces };
 /// Separating-axis test between A's node box (third axis `a2` = a.axis0 x a.axis1) and B's node
 /// box with axes `rb` and centre `cb` in A's model frame: the axes of kBox with the tolerances and
 /// margin of geometry::obb_overlap, inlined into the traversal. True when a separating axis was
-/// found. The face axes run in float where the frame allows (float_face_separated).
+/// found.
 template <BoxTest kBox, bool kFloat>
 [[gnu::always_inline]] inline bool obb_disjoint(const BvhNode& a, const Vec3& a2, const BvhNode& b,
                                                 const PosedAxes<kFloat>& rb, const Vec3& cb,
-                                                const PairFrame& frame) {
+                                                Scalar margin) {
   const Vec3 d = cb - a.center;
-  if constexpr (kBox == BoxTest::faces && kFloat) {
-    if (frame.float_faces) return float_face_separated(a, a2, rb.f, d, frame.margin_f);
-  }
-  const Scalar margin = frame.margin;
   Mat3 r;
   r << a.axis0.dot(rb.b0), a.axis0.dot(rb.b1), a.axis0.dot(rb.b2),  //
       a.axis1.dot(rb.b0), a.axis1.dot(rb.b1), a.axis1.dot(rb.b2),   //
@@ -242,7 +238,12 @@ TraversalStats dual_traverse(const Model& a, const Model& b, const PairFrame& fr
         p.third_of = i_fixed;
         p.third = fixed.axis0.cross(fixed.axis1);
       }
-      return obb_disjoint<kBox>(fixed, p.third, moved, p.r, p.c, frame);
+      if constexpr (kFloat) {  // the face axes in float where the frame allows
+        if (frame.float_faces) {
+          return float_face_separated(fixed, p.third, p.r.f, p.c - fixed.center, frame.margin_f);
+        }
+      }
+      return obb_disjoint<kBox>(fixed, p.third, moved, p.r, p.c, frame.margin);
     };
     const bool disjoint = in_b ? box_disjoint(pa, nb, item.ib, na, item.ia, irot)
                                : box_disjoint(pb, na, item.ia, nb, item.ib, rot);
