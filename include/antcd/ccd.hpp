@@ -36,6 +36,11 @@
 // that in Euclidean distance). When the
 // search needs more than max_boxes boxes (very degenerate input), it stops with a hit at the
 // earliest time not yet excluded (tolerance_decided, budget_exhausted).
+// With min_separation == 0 a filter runs first: a contact needs the four points coplanar, so time
+// pieces where the coplanarity cubic (Bernstein form, each coefficient with a certified rounding
+// bound) keeps one strict sign are skipped, and the earliest remaining windows are checked at a
+// parameter guess (accepted only within 2W per axis) before the search above runs on them alone.
+// It removes no window that can hold a contact (docs/ccd.md, "Primitives").
 //
 // Thread safety: every function here is a pure const computation; call it from any thread.
 // Errors: non-finite coordinates, min_separation < 0 or not finite, time_tolerance <= 0 or not
