@@ -51,6 +51,11 @@ try {
   await page.waitForSelector('#antcd-viewer[data-ready="true"], #antcd-viewer[data-error]', { timeout: 60000 })
     .catch((e) => { throw new Error(`page not ready: ${e.message}; ${problems.join('; ')}`); });
   const attrs = () => page.locator('#antcd-viewer').evaluate((e) => ({ ...e.dataset }));
+  // Waits for n animation frames: the page's loop (controllers followed, World posed and asked)
+  // has run at least n - 1 times since the call, however slow the machine.
+  const frames = (n) => page.evaluate(async (k) => {
+    for (let i = 0; i < k; ++i) await new Promise((done) => requestAnimationFrame(done));
+  }, n);
   let d = await attrs();
   assert.equal(d.error, undefined, `page error: ${d.error}`);
   assert.equal(d.live, 'true');
@@ -59,7 +64,7 @@ try {
   // The scene plays: the frame advances and every frame is answered.
   await page.waitForFunction(() => Number(document.getElementById('antcd-viewer').dataset.frame) >= 2, null, { timeout: 30000 });
   await page.evaluate(() => window.antcdLive.pause());
-  await page.waitForTimeout(300);
+  await frames(3);
   const before = await page.evaluate(() => window.antcdLive.state());
   assert.deepEqual(sortPairs(before.pairs), nativePairs(before.frame, []), `frame ${before.frame}: pairs before the drag`);
 
@@ -83,7 +88,7 @@ try {
     await page.mouse.move(dragged.from.x + ((dragged.to.x - dragged.from.x) * s) / 10, dragged.from.y + ((dragged.to.y - dragged.from.y) * s) / 10);
   }
   await page.mouse.up();
-  await page.waitForTimeout(400);
+  await frames(3);
   const after = await page.evaluate(() => window.antcdLive.state());
   d = await attrs();
   assert.equal(d.dragged, dragged.name, 'the pressed object is the dragged one');
@@ -130,9 +135,9 @@ try {
     .multiply(new THREE.Matrix4().makeTranslation(c0.clone().negate()));
   for (let s = 1; s <= 5; ++s) {
     await live('controllerPose', 0, motion(s / 5).multiply(m0).elements);
-    await page.waitForTimeout(50);
+    await frames(1);
   }
-  await page.waitForTimeout(300);
+  await frames(3);
   const held = await page.evaluate(() => window.antcdLive.state());
   const g = held.moved.find((x) => x.name === grab.name);
   assert.ok(g && g.rotation_wxyz, 'the grabbed object moved with the controller');
@@ -145,7 +150,7 @@ try {
   // Squeeze end: the object stays where it was let go while the controller moves on.
   await live('controllerEvent', 0, 'squeezeend');
   await live('controllerPose', 0, new THREE.Matrix4().makeTranslation(1, 2, 3).multiply(motion(1)).multiply(m0).elements);
-  await page.waitForTimeout(300);
+  await frames(3);
   const released = await page.evaluate(() => window.antcdLive.state());
   assert.deepEqual(released.moved.find((x) => x.name === grab.name).pose, g.pose, 'released where it was let go');
   assert.deepEqual(sortPairs(released.pairs), heldExpected, 'highlighted pairs after the release');
