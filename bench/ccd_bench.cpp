@@ -203,7 +203,7 @@ const Pair& pair(int which) {
 
 void sweep(benchmark::State& state) {
   const Pair& p = pair(static_cast<int>(state.range(0)));
-  int misses = 0, late = 0, hits = 0, touching = 0;
+  int misses = 0, late = 0, hits = 0, touching = 0, decided = 0;
   double iterations = 0;
   for (const Motion& m : p.motions) {
     const auto r = antcd::sweep(*p.a, m.a0, m.a1, *p.b, m.b0, m.b1);
@@ -211,6 +211,7 @@ void sweep(benchmark::State& state) {
     touching += m.first ? 1 : 0;
     misses += m.first && !r.hit ? 1 : 0;
     late += m.first && r.hit && r.toi > *m.first ? 1 : 0;
+    decided += r.tolerance_decided ? 1 : 0;
     iterations += r.iterations;
   }
   for (auto _ : state) {
@@ -225,6 +226,7 @@ void sweep(benchmark::State& state) {
   state.counters["hits"] = hits;
   state.counters["misses"] = misses;
   state.counters["late"] = late;
+  state.counters["tolerance_decided"] = decided;
   state.counters["iterations"] = iterations / static_cast<double>(p.motions.size());
   state.SetLabel(p.name);
 }

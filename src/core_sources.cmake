@@ -37,5 +37,6 @@ set(ANTCD_CORE_SOURCES
   world/continuous.cpp
   ccd/primitive.cpp
   ccd/sweep.cpp
+  ccd/swept_proximity.cpp
 )
 set(ANTCD_CORE_TREE_SOURCE world/aabb_tree.cpp)

@@ -15,6 +15,16 @@
 // than min_separation apart until t + (L - min_separation) / mu and the search advances there.
 // A rounding allowance (1e-12 of the scene's size: coordinates, radii, translations) is taken off
 // every L, covering the rounding of the interpolated poses, of the distance and of t.
+// Interval proofs first: an earliest-first bisection of [0, 1] (pieces down to 1/16) tests each
+// piece with one bounded boolean traversal at its midpoint pose, where a node pair is apart over
+// the piece if its spheres or boxes at the midpoint are farther apart than min_separation plus the
+// pair's own motion bound over half the piece (|relative translation| + theta (|centre| + radius)
+// per node), or its sphere centres' chords between the piece's end poses stay farther apart than
+// the radii plus the chords' bend (|centre| theta^2 w^2 / 8, w the width), or its boxes, each kept
+// at its midpoint orientation and swept along that chord, are separated on a face axis with the
+// margin grown by theta (w / 2) radius + the bend; triangle pairs likewise (exact distance at the
+// midpoint, or balls about the centroids along their chords). A motion whose pieces are all apart
+// is a miss; otherwise the advancement starts at the first piece not proven apart.
 // Endgame (fine meshes, where a hierarchy query near contact opens hundreds of node pairs): over a
 // window [t, t + h] only triangle pairs within min_separation + mu h of each other at t can touch;
 // collide() with that delta lists them, and the advancement runs on their exact triangle distances
@@ -29,9 +39,9 @@
 //   allowance. Otherwise the surfaces are at toi within min_separation + mu * time_tolerance +
 //   allowance (result.distance is a pair's distance there): the search stops only that close, and
 //   a step from any farther reaches at least time_tolerance / 2 ahead.
-// - After max_iterations iterations (distance queries and windows) the search stops with a hit at
-// the time reached
-//   (tolerance_decided and budget_exhausted set): still toi <= t*.
+// - After max_iterations iterations (interval tests, distance queries and windows) the search
+//   stops with a hit at the time reached (tolerance_decided and budget_exhausted set): still
+//   toi <= t*.
 // - contact: a triangle pair at toi whose distance is within mu * time_tolerance / 2 of the
 //   minimum (an intersecting pair when the surfaces intersect), world frame: point is the common
 //   point or the closest points' midpoint, normal and depth as in collide.hpp (from B towards A).
@@ -55,7 +65,7 @@ struct SweepRequest {
   Scalar min_separation = 0;
   /// Time tolerance (> 0), see the guarantees above.
   Scalar time_tolerance = 1e-6;
-  /// Largest number of iterations: distance queries and endgame windows (>= 1).
+  /// Largest number of iterations: interval tests, distance queries and endgame windows (>= 1).
   std::uint32_t max_iterations = 100000;
 };
 
@@ -70,11 +80,13 @@ struct SweepResult {
   /// max_iterations ran out (the hit is then a conservative stop).
   bool budget_exhausted = false;
   /// When hit: the contact pair's distance at toi (within mu * time_tolerance / 2 above the
-  /// surfaces' distance); else the proven lower bound of the distance at the last time examined.
+  /// surfaces' distance); else a proven lower bound of the distance at the last time examined
+  /// (>= min_separation; when interval tests proved the motion apart, of the distance over the
+  /// whole motion, equal to min_separation where a box test, which measures no gap, proved it).
   Scalar distance = 0;
   /// mu: the bound on the relative speed of the surfaces (mesh units per unit time).
   Scalar motion_bound = 0;
-  /// Iterations made: distance queries and endgame windows.
+  /// Iterations made: interval tests, distance queries and endgame windows.
   std::uint32_t iterations = 0;
 };
 

@@ -9,6 +9,7 @@
 #include <antcd/tolerances.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -16,6 +17,7 @@
 #include <vector>
 
 #include "ccd/motion.hpp"
+#include "ccd/swept_proximity.hpp"
 #include "util/check.hpp"
 #include "util/pose_check.hpp"
 
@@ -40,6 +42,15 @@ constexpr Scalar kWindowSpan = 8;
 constexpr std::uint64_t kWindowNodePairs = 400;
 /// Above this many triangle pairs within reach of a window, the local advancement is skipped.
 constexpr std::size_t kMaxWindowPairs = 256;
+/// Depth of the earliest-first bisection that proves stretches of the motion apart before the
+/// advancement starts (pieces down to 2^-depth of the motion).
+/// Scene production line (`antcd scene generate --frames 60 --seed 3`): depth 3 / 4 / 6 settle
+/// 5893 / 5919 / 5956 of 8473 sweeps this way; 4 was the fastest of one run each.
+constexpr int kBisectDepth = 4;
+/// Node pairs one interval test may examine before giving up: a piece that is apart but close
+/// costs a whole proximity traversal (7 000-15 000 node pairs seen without a cap, more than the
+/// advancement it saves). 300 settled 5888 sweeps, 1000 settled 5919 and was faster.
+constexpr std::uint32_t kApartBudget = 1000;
 /// Advancement steps on one window's pairs before handing back to the whole-mesh loop.
 constexpr int kMaxWindowSteps = 1000;
 
@@ -73,15 +84,30 @@ void fill_contact(const Model& a, const Transform& pa, const Model& b, const Tra
   c.depth = pen.depth;
 }
 
-/// The two rigid motions (see sweep.hpp).
-struct SweptPair {
-  const Model& a;
-  const Transform& a0;
-  const Transform& a1;
-  const Model& b;
-  const Transform& b0;
-  const Transform& b1;
-};
+/// Earliest-first bisection of [t, 1] with ccd::interval_apart, down to intervals of width
+/// (1 - t) / 2^depth: returns the start of the earliest such interval not proven apart (nothing
+/// touches before it), or 1 when every piece of [t, 1] is proven apart (the models then stay at
+/// least separation + slack apart, see interval_apart). Counts its tests in `tests`.
+Scalar apart_until(const ccd::RigidPair& m, Scalar t, Scalar separation, int depth,
+                   std::uint32_t& tests, Scalar& slack) {
+  struct Piece {
+    Scalar lo, hi;
+    int depth;
+  };
+  std::array<Piece, 64> stack;
+  std::size_t top = 0;
+  stack[top++] = {t, 1, 0};
+  while (top > 0) {
+    const Piece p = stack[--top];
+    ++tests;
+    if (ccd::interval_apart(m, p.lo, p.hi, separation, kApartBudget, &slack)) continue;
+    if (p.depth >= depth) return p.lo;
+    const Scalar mid = (p.lo + p.hi) / 2;
+    stack[top++] = {mid, p.hi, p.depth + 1};
+    stack[top++] = {p.lo, mid, p.depth + 1};
+  }
+  return 1;
+}
 
 /// Scratch storage of the local advancement, reused across one sweep's windows.
 struct LocalPairs {
@@ -99,7 +125,7 @@ struct LocalPairs {
 /// Returns the time reached (nothing touches before it): t + h when the window is clear, else the
 /// first time a pair's exact distance is within ms + allowance + mu * tol (the whole-mesh loop
 /// decides there); -1 when more than kMaxWindowPairs pairs are within reach (nothing done).
-Scalar advance_locally(const SweptPair& m, Scalar t, Scalar h, Scalar mu, Scalar ms,
+Scalar advance_locally(const ccd::RigidPair& m, Scalar t, Scalar h, Scalar mu, Scalar ms,
                        Scalar allowance, Scalar tol, LocalPairs& local) {
   CollisionRequest reach;
   reach.delta = ms + mu * h + 2 * allowance;
@@ -175,16 +201,22 @@ SweepResult sweep(const Model& a, const Transform& pose_a0, const Transform& pos
   const Scalar rb = ccd::origin_radius(b);
   const Vec3 relative_move =
       (pose_a1.translation - pose_a0.translation) - (pose_b1.translation - pose_b0.translation);
-  const Scalar mu = tolerance::widened(
-      relative_move.norm() + ccd::rotation_angle(pose_a0.rotation, pose_a1.rotation) * ra +
-      ccd::rotation_angle(pose_b0.rotation, pose_b1.rotation) * rb);
+  const ccd::RigidPair motion{a,
+                              pose_a0,
+                              pose_a1,
+                              b,
+                              pose_b0,
+                              pose_b1,
+                              tolerance::widened(relative_move.norm()),
+                              ccd::rotation_angle(pose_a0.rotation, pose_a1.rotation),
+                              ccd::rotation_angle(pose_b0.rotation, pose_b1.rotation)};
+  const Scalar mu = tolerance::widened(motion.speed + motion.theta_a * ra + motion.theta_b * rb);
   const Scalar scale = ra + rb + ms + pose_a0.translation.norm() + pose_a1.translation.norm() +
                        pose_b0.translation.norm() + pose_b1.translation.norm();
   // The poses, the distance and the time steps are each within a few 1e-16 of the scene's size
   // (see sweep.hpp).
   const Scalar allowance = tolerance::kArithmetic * scale;
 
-  const SweptPair motion{a, pose_a0, pose_a1, b, pose_b0, pose_b1};
   LocalPairs local;
   // No local advancement until the gap is a quarter of one where too many pairs were in reach.
   Scalar local_below = std::numeric_limits<Scalar>::infinity();
@@ -196,7 +228,13 @@ SweepResult sweep(const Model& a, const Transform& pose_a0, const Transform& pos
 
   SweepResult result;
   result.motion_bound = mu;
-  Scalar t = 0;
+  // Whole stretches of the motion proven apart at once (most swept pairs of a scene never touch).
+  Scalar slack = std::numeric_limits<Scalar>::infinity();
+  Scalar t = apart_until(motion, 0, ms + allowance, kBisectDepth, result.iterations, slack);
+  if (t >= 1) {
+    result.distance = ms + slack;
+    return result;
+  }
   while (true) {
     if (result.iterations >= request.max_iterations) {
       result.hit = true;

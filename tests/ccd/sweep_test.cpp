@@ -96,6 +96,26 @@ TEST(Sweep, RotationSweepsThroughBetweenFrames) {
   check_motion(bar, a1, a0, cube, c0, c1, {}, "bar and cube");
 }
 
+TEST(Sweep, FineBarArcSweepsAProbeBeyondEveryChord) {
+  // A finely split bar (many small nodes and triangles) turns by 120 degrees about z, from -60 to
+  // +60 degrees, while sliding a little along y. A small cube sits on its arc near the tip at
+  // t = 0.5, 0.45 beyond the chords between the end positions of every bar point: a swept test
+  // that moves nodes or triangles along those chords without the arc's bend misses it.
+  const Model bar(make_box({1, 0.05, 0.05}, 16), {}, "fine bar");
+  const Model probe = box_model({0.03, 0.03, 0.03}, "probe");
+  const Transform a0 = Transform::from_axis_angle(Vec3::UnitZ(), -M_PI / 3, {0, -0.02, 0});
+  const Transform a1 = Transform::from_axis_angle(Vec3::UnitZ(), M_PI / 3, {0, 0.02, 0});
+  const Transform b = Transform::from_axis_angle(Vec3::UnitZ(), 0, {0.9, 0, 0});
+  EXPECT_FALSE(collide(bar, a0, probe, b).colliding);
+  EXPECT_FALSE(collide(bar, a1, probe, b).colliding);
+  ASSERT_TRUE(test::first_substep_contact(bar, a0, a1, probe, b, b, 0).has_value());
+  ASSERT_TRUE(sweep(bar, a0, a1, probe, b, b).hit);
+  check_motion(bar, a0, a1, probe, b, b, {}, "fine bar");
+  // The same with the probe moving and the roles swapped.
+  const Transform b1 = Transform::from_axis_angle(Vec3::UnitX(), 0.4, {0.85, 0.05, 0});
+  check_motion(probe, b, b1, bar, a0, a1, {}, "probe and fine bar");
+}
+
 TEST(Sweep, FreeMotionsAndRestingContact) {
   const Model a = box_model({0.5, 0.5, 0.5}, "a");
   const Model b = box_model({0.5, 0.5, 0.5}, "b");
@@ -103,7 +123,9 @@ TEST(Sweep, FreeMotionsAndRestingContact) {
   const Transform far1 = Transform::from_axis_angle(Vec3::UnitX(), 1.0, {3, 2, 0});
   const SweepResult free = sweep(a, Transform::identity(), Transform::identity(), b, far0, far1);
   EXPECT_FALSE(free.hit);
-  EXPECT_GT(free.distance, 0);
+  // A proven lower bound: at least min_separation (0) and at most the distance at the end.
+  EXPECT_GE(free.distance, 0);
+  EXPECT_LE(free.distance, distance(a, Transform::identity(), b, far1).distance);
   // Touching at t = 0 (faces on x = 0.5): a proven hit at 0.
   const Transform touch = Transform::from_axis_angle(Vec3::UnitX(), 0, {1, 0, 0});
   const SweepResult rest = sweep(a, Transform::identity(), Transform::identity(), b, touch, far1);
