@@ -9,10 +9,10 @@
 //   the last frame (poses + collideAll), data-query-mean-ms its mean over the last 60 frames;
 //   data-dragged the moved object's name. window.antcdLive: state() (frame, pairs, the moved
 //   objects' poses as 16 doubles, with rotation_wxyz when a controller turned them), pause(),
-//   play(), showFrame(f), pickPoint(name) (a canvas point on the object, client pixels), screenOf(name),
-//   queryTimes() (per animation frame since the last call), and the WebXR controllers without a
-//   headset: controllerPose(c, matrix), controllerEvent(c, 'squeezestart' | 'squeezeend'),
-//   aimAt(name) (a controller matrix pointing at the object).
+//   play(), showFrame(f), poseOf(name), pickPoint(name) (a canvas point on the object, client
+//   pixels), screenOf(name), queryTimes() (per animation frame since the last call), and the
+//   WebXR controllers without a headset: controllerPose(c, matrix), controllerEvent(c,
+//   'squeezestart' | 'squeezeend'), aimAt(name) (a controller matrix pointing at the object).
 // Poses and meshes are the scene's float64 values (poses64, positions64 of the payload), so the
 // answers are those of the native library at the same poses.
 import * as THREE from 'three';
