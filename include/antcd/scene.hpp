@@ -162,7 +162,9 @@ struct FrameResult {
 class ANTCD_API Scene {
  public:
   /// Loads every mesh (once per distinct file and scale) and builds the hierarchies.
-  /// Throws MeshError / SceneError naming the object whose mesh failed.
+  /// Throws MeshError / SceneError naming the object whose mesh failed, and SceneError naming the
+  /// object and frame of a pose that is not rigid (every pose is checked here, once: the frames
+  /// hand them to the World unchecked).
   explicit Scene(SceneDescription description, const BuildOptions& options = {});
   /// The meshes come from `mesh_source` instead of files: it is called once per distinct
   /// (SceneObject::mesh, scale) with the first object that uses that mesh, and returns the mesh

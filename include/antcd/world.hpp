@@ -48,6 +48,10 @@
 
 namespace antcd {
 
+namespace detail {
+struct WorldAccess;  // src/world/world_access.hpp: the scene runner's entries (not public API)
+}  // namespace detail
+
 /// A handle to an object of a World. Compares and orders by (slot, generation).
 struct ObjectId {
   std::uint32_t slot = UINT32_MAX;
@@ -266,6 +270,7 @@ class ANTCD_API World {
   struct Impl;
 
  private:
+  friend struct detail::WorldAccess;
   std::unique_ptr<Impl> impl_;
 };
 

@@ -20,6 +20,8 @@
 #include "scene/pair_query.hpp"
 #include "util/check.hpp"
 #include "util/parallel.hpp"
+#include "util/pose_check.hpp"
+#include "world/world_access.hpp"
 
 namespace antcd {
 
@@ -32,6 +34,8 @@ struct Scene::Broad {
   std::vector<std::uint32_t> moving;
   std::vector<ObjectId> moving_ids;
   std::vector<Transform> moving_poses;
+  /// The World's tree pairs of a frame (room reused from frame to frame).
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> tree_pairs;
 
   /// The exact method's per-pair hints from frame to frame (detail::PairWitness), one per
   /// candidate pair of the last frame that used them, sorted by pair. A frame that finds them in
@@ -57,19 +61,16 @@ struct Scene::Broad {
     std::swap(witnesses, spare_witnesses);
   }
 
-  /// The frame's poses into the World (the moving objects' only), then its candidate pairs: one
-  /// caller at a time (the World's mutations must not overlap its queries).
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> candidates(
-      const std::vector<SceneObject>& objects, std::size_t frame, Scalar delta) {
-    std::vector<std::pair<std::uint32_t, std::uint32_t>> out;
+  /// The frame's poses into the World (the moving objects' only; checked when the scene was
+  /// built), then its candidate pairs into `out`: one caller at a time (the World's mutations must
+  /// not overlap its queries).
+  void candidates(const std::vector<SceneObject>& objects, std::size_t frame, Scalar delta,
+                  std::vector<std::pair<std::uint32_t, std::uint32_t>>& out) {
     const std::lock_guard<std::mutex> lock(mutex);
     moving_poses.clear();
     for (const std::uint32_t i : moving) moving_poses.push_back(objects[i].pose(frame));
-    world.set_poses(moving_ids, moving_poses);
-    const std::vector<ObjectPair> pairs = world.candidate_pairs(delta);
-    out.reserve(pairs.size());
-    for (const ObjectPair& p : pairs) out.emplace_back(p.a.slot, p.b.slot);
-    return out;
+    detail::WorldAccess::set_checked_poses(world, moving_ids, moving_poses);
+    detail::WorldAccess::candidate_slots(world, delta, out, tree_pairs);
   }
 
   /// Continuous: the World to the poses of frame - 1 (frame 0: frame 0), then the swept broad
@@ -145,6 +146,12 @@ Scene::Scene(SceneDescription description,
   }
   for (std::size_t i = 0; i < description_.objects.size(); ++i) {
     const SceneObject& o = description_.objects[i];
+    for (std::size_t k = 0; k < o.poses.size(); ++k) {
+      Scalar err = 0;
+      if (const char* problem = detail::pose_problem(o.poses[k], err)) {
+        throw SceneError("object '" + o.name + "': pose " + std::to_string(k) + " " + problem);
+      }
+    }
     broad_->ids.push_back(broad_->world.add(models_[model_index_[i]], o.pose(0), {o.name}));
     if (o.poses.size() > 1) {
       broad_->moving.push_back(static_cast<std::uint32_t>(i));
@@ -162,7 +169,9 @@ Scene::Scene(SceneDescription description,
 std::vector<std::pair<std::uint32_t, std::uint32_t>> Scene::broad_phase(std::size_t frame,
                                                                         Scalar delta) const {
   check_frame(frame, description_.frames, delta);
-  return broad_->candidates(description_.objects, frame, delta);
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> out;
+  broad_->candidates(description_.objects, frame, delta, out);
+  return out;
 }
 
 FrameResult Scene::run_frame(std::size_t frame, const SceneQuery& query,
@@ -213,6 +222,7 @@ FrameResult Scene::run_frame(std::size_t frame, const SceneQuery& query,
       }
       return collide(model_of(i), pose(i), model_of(j), pose(j), request, scratch);
     };
+    result.pairs.reserve(m);  // one allocation, not a doubling series
     if (query.threads == 1 || m < 2) {
       thread_local CollisionResult scratch;
       for (std::size_t k = 0; k < m; ++k) {
@@ -277,7 +287,7 @@ FrameResult Scene::run_frame(std::size_t frame, const SceneQuery& query,
       broad_->continuous(description_.objects, frame, query.delta, result);
       return;
     }
-    result.candidates = broad_->candidates(description_.objects, frame, query.delta);
+    broad_->candidates(description_.objects, frame, query.delta, result.candidates);
     if (query.method == Method::Exact) {
       exact_frame();
     } else {

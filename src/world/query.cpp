@@ -15,6 +15,7 @@
 #include "util/parallel.hpp"
 #include "util/portable.hpp"
 #include "world/ray_check.hpp"
+#include "world/world_access.hpp"
 #include "world/world_impl.hpp"
 
 namespace antcd {
@@ -70,13 +71,14 @@ void sort_pairs(std::vector<SlotPair>& pairs, std::size_t slots) {
 // traversal each pair's object data would be a cache miss of its own. One traversal of the tree
 // against itself, split into independent tasks on a large world; the order of the answer never
 // depends on them.
-std::vector<SlotPair> self_pairs(const World::Impl& w, Scalar gap) {
+// Into `out` (cleared first, its storage reused).
+void self_pairs(const World::Impl& w, Scalar gap, std::vector<SlotPair>& out) {
   const auto emit_into = [](std::vector<SlotPair>& out) {
     return [&out](std::uint32_t a, std::uint32_t b) {
       out.emplace_back(std::min(a, b), std::max(a, b));
     };
   };
-  std::vector<SlotPair> out;
+  out.clear();
   if (w.live < kParallelObjects || parallel::max_concurrency() == 1) {
     out.reserve(w.live);  // one allocation, not a doubling series, for up to a pair per object
     w.tree.pairs(w.tree.all_pairs(), gap, emit_into(out));
@@ -93,6 +95,10 @@ std::vector<SlotPair> self_pairs(const World::Impl& w, Scalar gap) {
     for (const auto& f : found) out.insert(out.end(), f.begin(), f.end());
   }
   sort_pairs(out, w.objects.size());
+}
+std::vector<SlotPair> self_pairs(const World::Impl& w, Scalar gap) {
+  std::vector<SlotPair> out;
+  self_pairs(w, gap, out);
   return out;
 }
 
@@ -145,7 +151,24 @@ bool spheres_apart(const Object& a, const Object& b, Scalar delta) {
 
 std::vector<ObjectPair> World::candidate_pairs(Scalar delta) const {
   detail::require_non_negative("World::candidate_pairs", "delta", delta);
-  const Impl& w = *impl_;
+  std::vector<SlotPair> slots;
+  std::vector<SlotPair> scratch;
+  impl_->candidate_slots(delta, slots, scratch);
+  std::vector<ObjectPair> out;
+  out.reserve(slots.size());
+  for (const auto& [i, j] : slots) out.push_back({impl_->id_of(i), impl_->id_of(j)});
+  return out;
+}
+
+void detail::WorldAccess::candidate_slots(const World& world, Scalar delta,
+                                          std::vector<SlotPair>& out,
+                                          std::vector<SlotPair>& scratch) {
+  world.impl_->candidate_slots(delta, out, scratch);
+}
+
+void World::Impl::candidate_slots(Scalar delta, std::vector<SlotPair>& out,
+                                  std::vector<SlotPair>& scratch) const {
+  const Impl& w = *this;
   // The tree boxes contain the root boxes grown by twice their rounding allowance. A pair whose
   // root spheres and root boxes pass the tests below has root boxes whose axis-aligned bounds are
   // within sqrt(3) times the box margin, so growing one of them by twice that (and the other by its
@@ -170,17 +193,23 @@ std::vector<ObjectPair> World::candidate_pairs(Scalar delta) const {
     // that reach this point on the production-line scenes.
     const Scalar inner = ra.box.half_extents.minCoeff() + rb.box.half_extents.minCoeff();
     if (d2 < inner * inner) return true;
+    // Likewise when either centre lies in the other box (on the same margin argument): about a
+    // third of the pairs left on the production-line scenes.
+    const Vec3 ab = cb - ca;
+    if (((ra.box.axes.transpose() * ab).cwiseAbs().array() <= ra.box.half_extents.array()).all() ||
+        ((rb.box.axes.transpose() * ab).cwiseAbs().array() <= rb.box.half_extents.array()).all()) {
+      return true;
+    }
     // Rounding allowance of the box fit and of the separating-axis arithmetic.
     const Scalar margin = delta + tolerance::kVolume * (reach + std::max(ca.norm(), cb.norm()));
     return geometry::obb_overlap(ra.box, rb.box, margin);
   };
-  const std::vector<SlotPair> pairs = self_pairs(w, gap);
-  std::vector<ObjectPair> out;
-  out.reserve(pairs.size());
-  for (const auto& [i, j] : pairs) {
-    if (w.admits(i, j) && accept(i, j)) out.push_back({w.id_of(i), w.id_of(j)});
+  self_pairs(w, gap, scratch);
+  out.clear();
+  out.reserve(scratch.size());
+  for (const auto& [i, j] : scratch) {
+    if (w.admits(i, j) && accept(i, j)) out.emplace_back(i, j);
   }
-  return out;
 }
 
 std::vector<PairContacts> World::collide_all(const CollisionRequest& request) const {

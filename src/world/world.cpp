@@ -12,6 +12,7 @@
 #include "util/check.hpp"
 #include "util/parallel.hpp"
 #include "util/pose_check.hpp"
+#include "world/world_access.hpp"
 #include "world/world_impl.hpp"
 
 namespace antcd {
@@ -192,6 +193,16 @@ void World::set_poses(std::span<const ObjectId> ids, std::span<const Transform> 
     check_pose(poses[k], "World::set_poses",
                "poses[" + std::to_string(k) + "] of " + object_label(w.objects[ids[k].slot], ids[k]));
   }
+  w.apply_poses(ids, poses);
+}
+
+void detail::WorldAccess::set_checked_poses(World& world, std::span<const ObjectId> ids,
+                                            std::span<const Transform> poses) {
+  world.impl_->apply_poses(ids, poses);
+}
+
+void World::Impl::apply_poses(std::span<const ObjectId> ids, std::span<const Transform> poses) {
+  Impl& w = *this;
   // Boxes in parallel (independent): an id given more than once ends with its last pose, so only
   // its last occurrence is fitted. An object whose new box left its leaf's box gets the new box
   // (grown by the rounding margin the queries rely on, see fattened()) in its leaf at once; its

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <memory>
+#include <span>
 #include <string>
 #include <utility>
 #include <vector>
@@ -86,6 +87,12 @@ struct World::Impl {
   static bool admits(const QueryFilter& f, const Bounds& b) {
     return (f.group & b.mask) != 0 && (b.group & f.mask) != 0;
   }
+
+  /// set_poses() after its argument checks (ids live, poses rigid, spans of one length).
+  void apply_poses(std::span<const ObjectId> ids, std::span<const Transform> poses);
+  /// candidate_pairs(delta) as slot pairs into `out` (cleared); `scratch` receives the tree's.
+  void candidate_slots(Scalar delta, std::vector<std::pair<std::uint32_t, std::uint32_t>>& out,
+                       std::vector<std::pair<std::uint32_t, std::uint32_t>>& scratch) const;
 
   /// The fattened box the tree stores for an object: grown by at least twice the rounding
   /// allowance, so that the tree's box of an object always contains grown(box, 2 * tolerance)

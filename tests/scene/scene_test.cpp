@@ -233,6 +233,30 @@ TEST(Scene, RejectsBadQueriesAndFrames) {
   expect_refused(r, "centroid_delta must be finite and > 0");
 }
 
+// Every pose is checked when the scene is built (the frames hand them to the World unchecked): a
+// bad pose of a later frame is refused there, naming the object and the frame.
+TEST(Scene, RefusesABadPoseOfAnyFrameWhenBuilt) {
+  const auto dir = test::fresh_temp_dir("scene_bad_pose");
+  const auto expect_refused = [&](const SceneDescription& s, const char* needle) {
+    try {
+      const Scene scene(s);
+      ADD_FAILURE() << "accepted: " << needle;
+    } catch (const SceneError& e) {
+      EXPECT_NE(std::string(e.what()).find("object 'obj_1': pose 2 "), std::string::npos)
+          << e.what();
+      EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
+    }
+  };
+  SceneDescription sheared = small_scene(dir, 4, 3, 1);
+  ASSERT_EQ(sheared.objects[1].poses.size(), 3u);
+  sheared.objects[1].poses[2].rotation(0, 1) += 0.01;
+  expect_refused(sheared, "not a rigid motion");
+  SceneDescription nan = small_scene(dir, 4, 3, 1);
+  nan.objects[1].poses[2].translation.x() = std::numeric_limits<Scalar>::quiet_NaN();
+  expect_refused(nan, "not finite");
+  EXPECT_NO_THROW(Scene{small_scene(dir, 4, 3, 1)});
+}
+
 // A verdict needs one colliding feature pair: stopping at the first hit (the default) and running
 // every search to its end give the same pairs; only the counts of feature pairs found differ.
 TEST(Scene, RandomVerdictsDoNotDependOnSearchingToTheEnd) {
