@@ -95,6 +95,19 @@ TEST(Tolerances, Definitions) {
   EXPECT_FALSE(tolerance::is_rotation(turn * (1 + 2 * tolerance::kRigid)));  // a scale
   EXPECT_TRUE(tolerance::is_rotation(turn * (1 + 0.25 * tolerance::kRigid)));
   EXPECT_FALSE(tolerance::is_rotation(Mat3::Constant(kNaN)));
+  // The written-out error against its definition, and one NaN entry anywhere propagating.
+  Mat3 skew = turn;
+  skew(0, 1) += 3e-7;
+  skew(2, 0) -= 1e-6;
+  EXPECT_NEAR(tolerance::orthonormality_error(skew),
+              (skew.transpose() * skew - Mat3::Identity()).cwiseAbs().maxCoeff(), 1e-15);
+  EXPECT_GT(tolerance::orthonormality_error(skew), 5e-7);
+  for (int k = 0; k < 9; ++k) {
+    Mat3 r = turn;
+    r(k % 3, k / 3) = kNaN;
+    EXPECT_TRUE(std::isnan(tolerance::orthonormality_error(r))) << k;
+    EXPECT_FALSE(tolerance::is_rotation(r)) << k;
+  }
 }
 
 }  // namespace

@@ -1,9 +1,12 @@
 // The live page (`antcd view SCENE --live`) in Debian's headless Chromium: the paper's scene (90
 // objects) with the WebAssembly World answering every animation frame. Pauses the motion, drags an
-// object onto another with the mouse, and checks the highlighted pairs against the native
-// library at the same poses (a one-frame copy of the scene with the dragged object's new
-// translation, run with `antcd run --method exact`); no console errors, no network request, a
-// query time per frame reported (printed, with the mean over the frames seen).
+// object onto another with the mouse, then grabs a third with a WebXR controller's squeeze (no
+// headset: the page's hooks place controller 0 and dispatch its events as three.js's WebXR
+// manager does), moves and turns the controller and lets go; checks that the grabbed object
+// followed the controller rigidly and stayed after the squeeze, and the highlighted pairs against
+// the native library at the same poses after each move (a one-frame copy of the scene with the
+// moved objects' new poses, run with `antcd run --method exact`); no console errors, no network
+// request, a query time per frame reported (printed, with the mean over the frames seen).
 //
 // Usage: node live_test.mjs --antcd BIN --node-modules DIR --chromium EXE --workdir DIR
 //        [--screenshot PNG]   (also saves the page after the drag, for the README)
@@ -14,6 +17,7 @@ import assert from 'node:assert/strict';
 import { launchChromium, viewerTestSetup, watchedPage } from './chromium.mjs';
 
 const { args, work, antcd } = viewerTestSetup(process.argv.slice(2));
+const THREE = await import(pathToFileURL(join(args['node-modules'], 'three', 'build', 'three.module.js')).href);
 
 antcd('scene', 'generate', '--out', 'scene', '--objects', '90', '--frames', '40', '--seed', '11');
 antcd('view', 'scene/scene.json', '--live', '--out', 'live.html');
@@ -23,13 +27,15 @@ const sortPairs = (pairs) =>
   pairs.map(([a, b]) => (order.get(a) < order.get(b) ? [a, b] : [b, a]))
     .sort((p, q) => order.get(p[0]) - order.get(q[0]) || order.get(p[1]) - order.get(q[1]));
 
-// The native answer at the page's poses: the scene at `frame`, the moved objects at their poses
-// (translation only: the rotation is the scene's, which the test checks).
+// The native answer at the page's poses: the scene at `frame`, the moved objects at their poses:
+// the new translation, and the rotation either the scene's (a mouse drag keeps it) or the
+// quaternion the page made a controller-turned pose from (grab.js: the native loader's formula).
 function nativePairs(frame, moved) {
   const objects = scene.objects.map((o) => {
     const p = structuredClone(o.poses.length === 1 ? o.poses[0] : o.poses[frame]);
     const m = moved.find((x) => x.name === o.name);
     if (m) p.translation = [m.pose[12], m.pose[13], m.pose[14]];
+    if (m?.rotation_wxyz) p.rotation_wxyz = m.rotation_wxyz;
     return { ...o, poses: [p] };
   });
   writeFileSync(join(work, 'scene', 'moved.json'), JSON.stringify({ ...scene, frames: 1, objects }));
@@ -45,6 +51,11 @@ try {
   await page.waitForSelector('#antcd-viewer[data-ready="true"], #antcd-viewer[data-error]', { timeout: 60000 })
     .catch((e) => { throw new Error(`page not ready: ${e.message}; ${problems.join('; ')}`); });
   const attrs = () => page.locator('#antcd-viewer').evaluate((e) => ({ ...e.dataset }));
+  // Waits for n animation frames: the page's loop (controllers followed, World posed and asked)
+  // has run at least n - 1 times since the call, however slow the machine.
+  const frames = (n) => page.evaluate(async (k) => {
+    for (let i = 0; i < k; ++i) await new Promise((done) => requestAnimationFrame(done));
+  }, n);
   let d = await attrs();
   assert.equal(d.error, undefined, `page error: ${d.error}`);
   assert.equal(d.live, 'true');
@@ -53,7 +64,7 @@ try {
   // The scene plays: the frame advances and every frame is answered.
   await page.waitForFunction(() => Number(document.getElementById('antcd-viewer').dataset.frame) >= 2, null, { timeout: 30000 });
   await page.evaluate(() => window.antcdLive.pause());
-  await page.waitForTimeout(300);
+  await frames(3);
   const before = await page.evaluate(() => window.antcdLive.state());
   assert.deepEqual(sortPairs(before.pairs), nativePairs(before.frame, []), `frame ${before.frame}: pairs before the drag`);
 
@@ -77,7 +88,7 @@ try {
     await page.mouse.move(dragged.from.x + ((dragged.to.x - dragged.from.x) * s) / 10, dragged.from.y + ((dragged.to.y - dragged.from.y) * s) / 10);
   }
   await page.mouse.up();
-  await page.waitForTimeout(400);
+  await frames(3);
   const after = await page.evaluate(() => window.antcdLive.state());
   d = await attrs();
   assert.equal(d.dragged, dragged.name, 'the pressed object is the dragged one');
@@ -94,6 +105,57 @@ try {
   console.log(`live page: 90 objects, ${expected.length} colliding pairs after dragging ${m.name}; ` +
               `WebAssembly query ${d.queryMs} ms last frame, ${d.queryMeanMs} ms mean (headless Chromium)`);
   if (args.screenshot) await page.screenshot({ path: resolve(args.screenshot) });
+
+  // WebXR squeeze: controller 0 pointed at an object (not the dragged one) grabs it.
+  const live = (f, ...a) => page.evaluate(([g, x]) => window.antcdLive[g](...x), [f, a]);
+  let grab = null;
+  for (const [k, name] of names.entries()) {
+    if (k % 5 !== 1 || name === m.name) continue;
+    const aim = await live('aimAt', name);
+    const target = names[(k + 2) % names.length];
+    if (aim && target !== m.name) {
+      grab = { name, target, aim };
+      break;
+    }
+  }
+  assert.ok(grab, 'an object a controller can point at');
+  const matrix = (a) => new THREE.Matrix4().fromArray(a);
+  const grabbedPose = matrix(await live('poseOf', grab.name));
+  const m0 = matrix(grab.aim);
+  await live('controllerPose', 0, grab.aim);
+  await live('controllerEvent', 0, 'squeezestart');
+  assert.equal((await attrs()).dragged, grab.name, 'squeeze grabs the object the controller points at');
+  // Move the controller in steps by D: a 40 degree turn about the object's centre, then the
+  // object's centre onto the target's. The object must end at D grabbedPose (the scene is not scaled
+  // outside a headset: three.js world = scene frame).
+  const c0 = new THREE.Vector3().setFromMatrixPosition(grabbedPose);
+  const c1 = new THREE.Vector3().setFromMatrixPosition(matrix(await live('poseOf', grab.target)));
+  const motion = (s) => new THREE.Matrix4().makeTranslation(c0.clone().lerp(c1, s))
+    .multiply(new THREE.Matrix4().makeRotationAxis(new THREE.Vector3(0.3, 1, 0.2).normalize(), (s * 40 * Math.PI) / 180))
+    .multiply(new THREE.Matrix4().makeTranslation(c0.clone().negate()));
+  for (let s = 1; s <= 5; ++s) {
+    await live('controllerPose', 0, motion(s / 5).multiply(m0).elements);
+    await frames(1);
+  }
+  await frames(3);
+  const held = await page.evaluate(() => window.antcdLive.state());
+  const g = held.moved.find((x) => x.name === grab.name);
+  assert.ok(g && g.rotation_wxyz, 'the grabbed object moved with the controller');
+  const want = motion(1).multiply(grabbedPose).elements;
+  const error = Math.max(...g.pose.map((v, k) => Math.abs(v - want[k])));
+  assert.ok(error < 1e-9 * (1 + c0.length() + c1.length()), `rigid follow: pose off by ${error}`);
+  const heldExpected = nativePairs(held.frame, held.moved);
+  assert.deepEqual(sortPairs(held.pairs), heldExpected, 'highlighted pairs while grabbed equal the native answer');
+  assert.ok(heldExpected.some(([a, b]) => a === grab.name || b === grab.name), `${grab.name} moved onto ${grab.target} collides`);
+  // Squeeze end: the object stays where it was let go while the controller moves on.
+  await live('controllerEvent', 0, 'squeezeend');
+  await live('controllerPose', 0, new THREE.Matrix4().makeTranslation(1, 2, 3).multiply(motion(1)).multiply(m0).elements);
+  await frames(3);
+  const released = await page.evaluate(() => window.antcdLive.state());
+  assert.deepEqual(released.moved.find((x) => x.name === grab.name).pose, g.pose, 'released where it was let go');
+  assert.deepEqual(sortPairs(released.pairs), heldExpected, 'highlighted pairs after the release');
+  console.log(`live page: WebXR squeeze grabbed ${grab.name}, moved it onto ${grab.target} (rigid within ${error.toExponential(1)}), ` +
+              `${heldExpected.length} colliding pairs as native`);
   assert.deepEqual(problems, []);
 } finally {
   await browser.close();

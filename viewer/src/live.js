@@ -8,8 +8,11 @@
 //   of the colliding pairs, names in scene order, sorted; data-query-ms the WebAssembly time of
 //   the last frame (poses + collideAll), data-query-mean-ms its mean over the last 60 frames;
 //   data-dragged the moved object's name. window.antcdLive: state() (frame, pairs, the moved
-//   objects' poses as 16 doubles), pause(), play(), pickPoint(name) (a canvas point on the
-//   object, client pixels).
+//   objects' poses as 16 doubles, with rotation_wxyz when a controller turned them), pause(),
+//   play(), showFrame(f), poseOf(name), pickPoint(name) (a canvas point on the object, client
+//   pixels), screenOf(name), queryTimes() (per animation frame since the last call), and the
+//   WebXR controllers without a headset: controllerPose(c, matrix), controllerEvent(c,
+//   'squeezestart' | 'squeezeend'), aimAt(name) (a controller matrix pointing at the object).
 // Poses and meshes are the scene's float64 values (poses64, positions64 of the payload), so the
 // answers are those of the native library at the same poses.
 import * as THREE from 'three';
@@ -17,6 +20,7 @@ import * as THREE from 'three';
 import createAntcd from '../../wasm/index.mjs';
 import wasmBinary from '../../wasm/dist/antcd_core.wasm';
 import { loadView } from './data.js';
+import { ControllerGrabs } from './grab.js';
 import { Stage } from './stage.js';
 
 const FPS = 12;
@@ -80,8 +84,10 @@ async function main() {
   let frame = 0;
   let playing = true;
   let lastStep = 0;
-  const moved = new Map(); // object index -> Float64Array(16): the user's pose, world frame
+  const moved = new Map(); // object index -> Float64Array(16): the user's pose, scene frame
+  const rotations = new Map(); // object index -> [w, x, y, z] its moved rotation came from
   const times = [];
+  const timeLog = []; // { ms, stepped } per animation frame, for queryTimes()
   let pairs = [];
 
   const resize = () => stage.resize(root.clientWidth, root.clientHeight);
@@ -91,8 +97,9 @@ async function main() {
 
   // The World's answer for the current frame and moves: poses of the objects that move (the
   // scene's, or the user's), then every colliding pair.
-  let posedFrame = 0;
+  let posedFrame = -1;
   const query = () => {
+    const stepped = posedFrame !== frame;
     const t0 = performance.now();
     for (let i = 0; i < handles.length; ++i) {
       const own = moved.get(i);
@@ -104,6 +111,8 @@ async function main() {
     const ms = performance.now() - t0;
     times.push(ms);
     if (times.length > 60) times.shift();
+    timeLog.push({ ms, stepped });
+    if (timeLog.length > 10000) timeLog.shift();
     pairs = [];
     for (let k = 0; k < r.pairs.length; k += 2) {
       const i = indexOf.get(r.pairs[k]);
@@ -180,37 +189,26 @@ async function main() {
   canvas.addEventListener('pointercancel', endDrag);
 
   // WebXR: squeeze grabs the object the controller points at; it then follows the controller
-  // rigidly (rotation too) until the squeeze ends.
-  const grabs = new Map();
-  for (let c = 0; c < 2; ++c) {
+  // rigidly (rotation too) until the squeeze ends (grab.js).
+  const controllers = [0, 1].map((c) => {
     const controller = stage.renderer.xr.getController(c);
     stage.scene.add(controller);
+    return controller;
+  });
+  const grabs = new ControllerGrabs(pickRay, poseOf, (i, pose, wxyz) => {
+    moved.set(i, pose);
+    rotations.set(i, wxyz);
+  });
+  for (const controller of controllers) {
     controller.addEventListener('squeezestart', () => {
-      const origin = new THREE.Vector3().setFromMatrixPosition(controller.matrixWorld);
-      const direction = new THREE.Vector3(0, 0, -1).transformDirection(controller.matrixWorld);
-      const hit = pickRay(origin, direction);
-      if (!hit) return;
-      toScene.copy(stage.world.matrixWorld).invert();
-      const hand = new THREE.Matrix4().multiplyMatrices(toScene, controller.matrixWorld);
-      const offset = hand.invert().multiply(new THREE.Matrix4().fromArray(poseOf(hit.index)));
-      grabs.set(controller, { index: hit.index, offset });
-      root.dataset.dragged = model.objects[hit.index].name;
+      const i = grabs.start(controller, controller.matrixWorld, stage.world.matrixWorld);
+      if (i === null) return;
+      stage.selected = i;
+      root.dataset.dragged = model.objects[i].name;
     });
-    controller.addEventListener('squeezeend', () => grabs.delete(controller));
+    controller.addEventListener('squeezeend', () => grabs.end(controller));
   }
-  const position = new THREE.Vector3();
-  const rotation = new THREE.Quaternion();
-  const scale = new THREE.Vector3();
-  const followControllers = () => {
-    for (const [controller, g] of grabs) {
-      toScene.copy(stage.world.matrixWorld).invert();
-      const m = new THREE.Matrix4().multiplyMatrices(toScene, controller.matrixWorld).multiply(g.offset);
-      // Rigid again (the scaled frames leave rounding): rotation from the normalised quaternion.
-      m.decompose(position, rotation, scale);
-      m.compose(position, rotation.normalize(), scale.set(1, 1, 1));
-      moved.set(g.index, Float64Array.from(m.elements));
-    }
-  };
+  const followControllers = () => grabs.follow((c) => c.matrixWorld, stage.world.matrixWorld);
 
   const setPlaying = (on) => {
     playing = on;
@@ -224,10 +222,15 @@ async function main() {
   window.antcdLive = {
     pause: () => setPlaying(false),
     play: () => setPlaying(true),
+    // Pauses on scene frame f (answered at the next animation frame).
+    showFrame: (f) => {
+      setPlaying(false);
+      frame = Math.min(Math.max(0, Math.floor(f)), model.frames - 1);
+    },
     state: () => ({
       frame,
       pairs: JSON.parse(root.dataset.colliding ?? '[]'),
-      moved: [...moved].map(([i, m]) => ({ name: model.objects[i].name, pose: Array.from(m) })),
+      moved: [...moved].map(([i, m]) => ({ name: model.objects[i].name, pose: Array.from(m), rotation_wxyz: rotations.get(i) })),
       queryMs: Number(root.dataset.queryMs),
     }),
     // A canvas point (client pixels) whose pick ray hits object `name` first, or null.
@@ -250,6 +253,48 @@ async function main() {
         stage.raycaster.setFromCamera(new THREE.Vector2(p.x, p.y), stage.camera);
         const hit = pickRay(stage.raycaster.ray.origin, stage.raycaster.ray.direction);
         if (hit && hit.index === i) return { x, y };
+      }
+      return null;
+    },
+    // The query time of every animation frame since the last call ({ ms, stepped: the scene
+    // advanced, so its moving objects were posed }), for the frame-time benchmark.
+    queryTimes: () => timeLog.splice(0),
+    // Object `name`'s current pose (16 numbers, column-major, scene frame).
+    poseOf: (name) => Array.from(poseOf(model.objects.findIndex((o) => o.name === name))),
+    // WebXR without a headset: controller c's placement (16 numbers, column-major, in the three.js
+    // world) and its events ('squeezestart', 'squeezeend'), dispatched as WebXR's would be.
+    controllerPose: (c, elements) => {
+      const k = controllers[c];
+      k.matrixAutoUpdate = false;
+      k.matrix.fromArray(elements);
+      k.updateMatrixWorld(true);
+    },
+    controllerEvent: (c, type) => controllers[c].dispatchEvent({ type }),
+    // A controller placement (three.js world) whose ray hits object `name` first, or null.
+    aimAt: (name) => {
+      const i = model.objects.findIndex((o) => o.name === name);
+      if (i < 0) return null;
+      const mesh = model.meshes[model.objects[i].mesh];
+      const m = new THREE.Matrix4().fromArray(poseOf(i));
+      const centre = new THREE.Vector3().setFromMatrixPosition(m);
+      const n = mesh.positions64.length / 3;
+      let radius = 0;
+      for (let k = 0; k < n; ++k) radius = Math.max(radius, Math.hypot(mesh.positions64[3 * k], mesh.positions64[3 * k + 1], mesh.positions64[3 * k + 2]));
+      const v = new THREE.Vector3();
+      for (let k = 0; k < 200; ++k) {
+        const a = Math.floor((k * 7919) % n);
+        v.set(mesh.positions64[3 * a], mesh.positions64[3 * a + 1], mesh.positions64[3 * a + 2]).applyMatrix4(m);
+        const out = v.clone().sub(centre);
+        if (out.lengthSq() === 0) continue;
+        out.normalize();
+        for (const reach of [0.5, 1, 2]) {
+          const eye = v.clone().addScaledVector(out, reach * radius).applyMatrix4(stage.world.matrixWorld);
+          const target = v.clone().applyMatrix4(stage.world.matrixWorld);
+          const up = Math.abs(out.y) > 0.9 ? new THREE.Vector3(1, 0, 0) : new THREE.Vector3(0, 1, 0);
+          const aim = new THREE.Matrix4().lookAt(eye, target, up).setPosition(eye);
+          const hit = pickRay(eye, new THREE.Vector3(0, 0, -1).transformDirection(aim));
+          if (hit && hit.index === i) return aim.elements.slice();
+        }
       }
       return null;
     },

@@ -24,6 +24,7 @@
 #include <emscripten/bind.h>
 #include <emscripten/emscripten.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
@@ -45,6 +46,11 @@ constexpr double kGenerationScale = 4294967296.0;   // 2^32
 constexpr std::uint32_t kMaxGeneration = 1U << 20;  // handles stay below 2^52
 
 double g_poses[kPoseSlots * 16];
+// Per slot, the last pose that passed pose_at's check, so that a pose repeated from call to call
+// (a static object) is not checked again: equal numbers, the same verdict. The check of a changed
+// pose was, with the JS call itself, most of a culled query's time (spider against Wuson).
+double g_checked[kPoseSlots * 16];
+bool g_checked_valid[kPoseSlots] = {};
 std::vector<double> g_out;
 std::string g_error;
 CollisionResult g_collision;
@@ -80,6 +86,12 @@ Transform pose_at(int k, const char* function, const char* what) {
     for (int r = 0; r < 3; ++r) t.rotation(r, c) = m[4 * c + r];
   }
   t.translation = Vec3(m[12], m[13], m[14]);
+  double* checked = g_checked + 16 * k;
+  if (g_checked_valid[k]) {
+    bool same = true;
+    for (int i = 0; i < 16; ++i) same &= m[i] == checked[i];  // a NaN is never equal
+    if (same) return t;
+  }
   const double row_error = std::abs(m[3]) + std::abs(m[7]) + std::abs(m[11]) + std::abs(m[15] - 1);
   Scalar err = 0;
   const char* problem = detail::pose_problem(t, err);
@@ -87,8 +99,11 @@ Transform pose_at(int k, const char* function, const char* what) {
     problem = "is not a rigid motion (last row of the matrix is not 0, 0, 0, 1)";
   }
   if (problem != nullptr) {
+    g_checked_valid[k] = false;
     throw ArgumentError(std::string(function) + ": " + what + " " + problem);
   }
+  std::copy(m, m + 16, checked);
+  g_checked_valid[k] = true;
   return t;
 }
 

@@ -148,6 +148,16 @@ test('bad input is refused with an Error naming the problem', () => {
       return true;
     });
   }
+  // A pose that passed its check is not checked again while it repeats (bindings.cpp); a changed
+  // one is, a rejected one every time.
+  const skew = at(0, 0, 0).map((v, k) => (k === 0 ? 1 + 1e-3 : v));
+  assert.equal(antcd.collides(box, I, box, at(0.5)), true);
+  assert.equal(antcd.collides(box, I, box, at(0.5)), true);
+  assert.throws(() => antcd.collides(box, I, box, skew), /poseB is not a rigid motion/);
+  assert.throws(() => antcd.collides(box, I, box, skew), /poseB is not a rigid motion/);
+  assert.throws(() => antcd.collides(box, skew, box, I), /poseA is not a rigid motion/);
+  assert.equal(antcd.collides(box, I.map((v) => (v === 0 ? -0 : v)), box, at(0.5)), true);
+  assert.equal(antcd.collides(box, I, box, at(3)), false);
   const gone = antcd.Model.box(1, 1, 1);
   gone.delete();
   assert.throws(() => antcd.collide(gone, I, box, I), /collide: a must be a live antcd Model \(it was deleted\)/);
