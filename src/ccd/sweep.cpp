@@ -18,6 +18,7 @@
 
 #include "ccd/motion.hpp"
 #include "ccd/swept_proximity.hpp"
+#include "distance/seeded.hpp"
 #include "util/check.hpp"
 #include "util/pose_check.hpp"
 
@@ -25,8 +26,11 @@ namespace antcd {
 namespace {
 
 /// The loop's distance queries may stop within this fraction of the distance (the lower bound is
-/// still proven); only the stopping decision needs the exact distance.
-constexpr Scalar kStepRelTolerance = 0.5;
+/// still proven); only the stopping decision needs the exact distance. With the queries seeded by
+/// the last closest pair (see seed_at), proving more of the distance pays: callgrind on the
+/// 12-frame production line of seed 3, 0.5 / 0.3 / 0.15 / 0.05 / 0 (exact): 7.19 / 6.49 / 6.19
+/// / 6.26 / 9.55 G instructions (unseeded, 0.5: 8.45 G).
+constexpr Scalar kStepRelTolerance = 0.15;
 /// Local advancement (see advance_locally) runs when its window reaches at least this many
 /// whole-mesh steps ahead (the endgame of an approach) ...
 constexpr Scalar kWindowSteps = 2;
@@ -67,19 +71,32 @@ Scalar proven_lower_bound(const DistanceResult& d, Scalar slack) {
   return std::isfinite(d.distance) ? std::max(d.lower_bound, d.distance - slack) : d.lower_bound;
 }
 
+/// Triangle `i` of the model's mesh at pose `p` (world frame).
+std::array<Vec3, 3> posed_triangle(const Model& m, const Transform& p, std::uint32_t i) {
+  const auto& t = m.mesh().triangles[i];
+  const auto& v = m.mesh().vertices;
+  return {p.apply(v[t[0]]), p.apply(v[t[1]]), p.apply(v[t[2]])};
+}
+
+/// The triangle pair (ta, tb) at the poses pa, pb as a seed of the next distance query: its
+/// distance there bounds the minimum from above.
+detail::DistanceSeed seed_at(const Model& a, const Transform& pa, const Model& b,
+                             const Transform& pb, std::uint32_t ta, std::uint32_t tb) {
+  const auto x = posed_triangle(a, pa, ta);
+  const auto y = posed_triangle(b, pb, tb);
+  return detail::make_seed(geometry::triangle_distance(x[0], x[1], x[2], y[0], y[1], y[2]), ta, tb);
+}
+
 void fill_contact(const Model& a, const Transform& pa, const Model& b, const Transform& pb,
                   const DistanceResult& d, Contact& c) {
   c.triangle_a = d.triangle_a;
   c.triangle_b = d.triangle_b;
   c.point = (d.point_a + d.point_b) / 2;
   c.distance = d.distance;
-  const auto& ta = a.mesh().triangles[d.triangle_a];
-  const auto& tb = b.mesh().triangles[d.triangle_b];
-  const auto& va = a.mesh().vertices;
-  const auto& vb = b.mesh().vertices;
+  const auto x = posed_triangle(a, pa, d.triangle_a);
+  const auto y = posed_triangle(b, pb, d.triangle_b);
   const geometry::TrianglePenetration pen =
-      geometry::triangle_penetration(pa.apply(va[ta[0]]), pa.apply(va[ta[1]]), pa.apply(va[ta[2]]),
-                                     pb.apply(vb[tb[0]]), pb.apply(vb[tb[1]]), pb.apply(vb[tb[2]]));
+      geometry::triangle_penetration(x[0], x[1], x[2], y[0], y[1], y[2]);
   c.normal = pen.normal;
   c.depth = pen.depth;
 }
@@ -138,8 +155,6 @@ Scalar advance_locally(const ccd::RigidPair& m, Scalar t, Scalar h, Scalar mu, S
   const Scalar end = t + h;
   if (pairs.empty()) return end;
   local.at.assign(pairs.size(), t);
-  const auto& va = m.a.mesh().vertices;
-  const auto& vb = m.b.mesh().vertices;
   const auto gap_at = [&](std::size_t i, Scalar s) {
     return pairs[i].distance - mu * (s - local.at[i]) - ms - allowance;
   };
@@ -164,12 +179,10 @@ Scalar advance_locally(const ccd::RigidPair& m, Scalar t, Scalar h, Scalar mu, S
       const Scalar refresh = 2 * std::max<Scalar>(gap, 0) + mu * tol;
       for (std::size_t i = 0; i < pairs.size(); ++i) {
         if (local.at[i] == s || gap_at(i, s) > refresh) continue;
-        const auto& ta = m.a.mesh().triangles[pairs[i].triangle_a];
-        const auto& tb = m.b.mesh().triangles[pairs[i].triangle_b];
-        pairs[i].distance = geometry::triangle_distance(pa.apply(va[ta[0]]), pa.apply(va[ta[1]]),
-                                                        pa.apply(va[ta[2]]), pb.apply(vb[tb[0]]),
-                                                        pb.apply(vb[tb[1]]), pb.apply(vb[tb[2]]))
-                                .distance;
+        const auto x = posed_triangle(m.a, pa, pairs[i].triangle_a);
+        const auto y = posed_triangle(m.b, pb, pairs[i].triangle_b);
+        pairs[i].distance =
+            geometry::triangle_distance(x[0], x[1], x[2], y[0], y[1], y[2]).distance;
         local.at[i] = s;
       }
     }
@@ -235,6 +248,11 @@ SweepResult sweep(const Model& a, const Transform& pose_a0, const Transform& pos
     result.distance = ms + slack;
     return result;
   }
+  // The closest pair of the last distance query: re-evaluated at the next pose, it seeds the next
+  // query with an upper bound of the minimum (most of the hierarchy is then pruned at once).
+  bool seeded = false;
+  std::uint32_t seed_a = 0;
+  std::uint32_t seed_b = 0;
   while (true) {
     if (result.iterations >= request.max_iterations) {
       result.hit = true;
@@ -249,8 +267,15 @@ SweepResult sweep(const Model& a, const Transform& pose_a0, const Transform& pos
     DistanceRequest step;
     step.rel_tolerance = kStepRelTolerance;
     step.upper_bound = ms + allowance + mu * (1 - t);
-    DistanceResult d = distance(a, pa, b, pb, step);
+    detail::DistanceSeed seed;
+    if (seeded) seed = seed_at(a, pa, b, pb, seed_a, seed_b);
+    DistanceResult d = detail::seeded_distance(a, pa, b, pb, step, seed);
     ++result.iterations;
+    if (std::isfinite(d.distance)) {
+      seeded = true;
+      seed_a = d.triangle_a;
+      seed_b = d.triangle_b;
+    }
     if (d.beyond_upper_bound) {
       result.distance = d.lower_bound;
       break;
@@ -264,7 +289,7 @@ SweepResult sweep(const Model& a, const Transform& pose_a0, const Transform& pos
       // below it, so a stop here is within reach and a step from here is >= tol / 2.
       DistanceRequest settle;
       settle.abs_tolerance = mu * tol / 2;
-      d = distance(a, pa, b, pb, settle);
+      d = detail::seeded_distance(a, pa, b, pb, settle, detail::make_seed(d));
       ++result.iterations;
       const bool proven = d.intersecting || d.distance + allowance <= ms;
       if (proven || d.distance - ms - allowance <= mu * tol) {

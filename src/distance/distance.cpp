@@ -15,6 +15,7 @@
 
 #include "bvh/traverse.hpp"
 #include "distance/node_bound.hpp"
+#include "distance/seeded.hpp"
 #include "util/check.hpp"
 
 #include <algorithm>
@@ -38,7 +39,10 @@ void check_request(const DistanceRequest& r) {
 // The search state: best pair so far and the pruning rule.
 class Search {
  public:
-  explicit Search(const DistanceRequest& r) : request_(r) {}
+  // `seed`: a triangle pair's distance at these poses (nullptr: none), see distance/seeded.hpp.
+  Search(const DistanceRequest& r, const detail::DistanceSeed* seed) : request_(r), seed_(seed) {
+    if (seed_ != nullptr) best_ = seed_->distance;
+  }
 
   // True when a pair whose distance is at least `lb` need not be examined. Remembers the bound
   // when it was below the best distance (skipped on the tolerance or upper-bound ground).
@@ -68,6 +72,7 @@ class Search {
     }
     if (d.distance < best_) {
       best_ = d.distance;
+      seed_ = nullptr;  // the seed's pair is no longer the best
       pa_ = d.pa;
       pb_ = d.pb;
       ia_ = ia;
@@ -92,7 +97,12 @@ class Search {
     out.intersecting = intersecting_;
     out.beyond_upper_bound = out.lower_bound > request_.upper_bound;
     out.approximate = !out.beyond_upper_bound && out.lower_bound < out.distance;
-    if (best_ < kInf) {
+    if (seed_ != nullptr) {
+      out.point_a = seed_->point_a;
+      out.point_b = seed_->point_b;
+      out.triangle_a = seed_->triangle_a;
+      out.triangle_b = seed_->triangle_b;
+    } else if (best_ < kInf) {
       out.point_a = pose_a.apply(pa_);
       out.point_b = pose_a.apply(pb_);
       out.triangle_a = tris_a[ia_];
@@ -102,6 +112,7 @@ class Search {
 
  private:
   const DistanceRequest& request_;
+  const detail::DistanceSeed* seed_;  // while the seed's pair is the best one
   Scalar best_ = kInf;
   Scalar min_skipped_ = kInf;
   bool intersecting_ = false;
@@ -112,9 +123,10 @@ class Search {
 };
 
 DistanceResult surface_distance(const Model& a, const Transform& pose_a, const Model& b,
-                                const Transform& pose_b, const DistanceRequest& request) {
+                                const Transform& pose_b, const DistanceRequest& request,
+                                const detail::DistanceSeed* seed) {
   DistanceResult result;
-  Search search(request);
+  Search search(request, seed);
   // delta 0: the frame's margin is then only the rounding allowance of the volume tests.
   const detail::PairFrame frame(a, pose_a, b, pose_b, 0);
   const Mat3& rot = frame.b_to_a.rotation;
@@ -301,7 +313,7 @@ DistanceResult distance(const Model& a, const Transform& pose_a, const Model& b,
       }
     }
   }
-  DistanceResult result = surface_distance(a, pose_a, b, pose_b, request);
+  DistanceResult result = surface_distance(a, pose_a, b, pose_b, request, nullptr);
   if (!request.signed_distance) return result;
   if (!result.intersecting && !nested(a, pose_a, b, pose_b)) return result;
   PenetrationRequest pr;
@@ -318,6 +330,17 @@ DistanceResult distance(const Model& a, const Transform& pose_a, const Model& b,
   result.point_a = pd.point_a;
   result.point_b = pd.point_b;
   return result;
+}
+
+DistanceResult detail::seeded_distance(const Model& a, const Transform& pose_a, const Model& b,
+                                       const Transform& pose_b, const DistanceRequest& request,
+                                       const DistanceSeed& seed) {
+  check_request(request);
+  if (request.signed_distance) {
+    throw ArgumentError("seeded_distance: signed_distance is not supported");
+  }
+  const bool usable = seed.distance > 0 && seed.distance < kInf;
+  return surface_distance(a, pose_a, b, pose_b, request, usable ? &seed : nullptr);
 }
 
 }  // namespace antcd

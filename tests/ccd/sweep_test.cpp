@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "ccd/continuous_support.hpp"
+#include "distance/seeded.hpp"
 #include "support/test_support.hpp"
 
 namespace antcd {
@@ -306,6 +307,73 @@ TEST(Sweep, ThreadsShareModelsAndGetTheSameAnswers) {
       EXPECT_EQ(g[i].contact.triangle_a, reference[i].contact.triangle_a);
     }
   }
+}
+
+// The advancement's distance queries start from the last closest pair (src/distance/seeded.hpp):
+// whatever the seed pair, the answer keeps distance()'s guarantees, and the closest pair as the
+// seed prunes at least as much as no seed.
+TEST(SeededDistance, AnySeedPairKeepsTheGuaranteesOfDistance) {
+  const Model a(make_torus(1.0, 0.3, 24, 12), {}, "torus");
+  const Model b(make_sphere(0.5, 16, 8), {}, "sphere");
+  std::mt19937_64 rng(31);
+  std::uniform_real_distribution<Scalar> unit(-1, 1);
+  std::uniform_int_distribution<std::uint32_t> tri_a(0, a.mesh().triangles.size() - 1);
+  std::uniform_int_distribution<std::uint32_t> tri_b(0, b.mesh().triangles.size() - 1);
+  const auto pair_at = [&](const Transform& pa, const Transform& pb, std::uint32_t ta,
+                           std::uint32_t tb) {
+    const auto& x = a.mesh().triangles[ta];
+    const auto& y = b.mesh().triangles[tb];
+    const auto& va = a.mesh().vertices;
+    const auto& vb = b.mesh().vertices;
+    return geometry::triangle_distance(pa.apply(va[x[0]]), pa.apply(va[x[1]]), pa.apply(va[x[2]]),
+                                       pb.apply(vb[y[0]]), pb.apply(vb[y[1]]), pb.apply(vb[y[2]]));
+  };
+  std::uint64_t seeded_pairs = 0;
+  std::uint64_t unseeded_pairs = 0;
+  for (int i = 0; i < 60; ++i) {
+    const Transform pa = test::random_pose(rng, 0.2);
+    const Vec3 dir = Vec3(unit(rng), unit(rng), unit(rng)).normalized();
+    const Transform pb = Transform::from_axis_angle(Vec3(unit(rng), unit(rng), unit(rng)),
+                                                    3 * unit(rng), (1.2 + unit(rng)) * dir);
+    const DistanceResult exact = distance(a, pa, b, pb);
+    if (exact.intersecting) continue;
+    const std::string what = "pose " + std::to_string(i);
+    for (int k = 0; k < 2; ++k) {
+      // k 0: a random pair; k 1: the closest pair.
+      const std::uint32_t ta = k == 0 ? tri_a(rng) : exact.triangle_a;
+      const std::uint32_t tb = k == 0 ? tri_b(rng) : exact.triangle_b;
+      const detail::DistanceSeed seed = detail::make_seed(pair_at(pa, pb, ta, tb), ta, tb);
+      for (const Scalar rel : {Scalar{0}, Scalar{0.15}}) {
+        DistanceRequest req;
+        req.rel_tolerance = rel;
+        const DistanceResult r = detail::seeded_distance(a, pa, b, pb, req, seed);
+        EXPECT_LE(r.lower_bound, exact.distance + 1e-12) << what;
+        EXPECT_GE(r.distance, exact.distance - 1e-12) << what;
+        EXPECT_GE(exact.distance, r.distance * (1 - rel) - 1e-12) << what;
+        if (rel == 0) {
+          EXPECT_NEAR(r.distance, exact.distance, 1e-12) << what;
+        }
+        // The pair and points reported are the distance's own.
+        EXPECT_NEAR(pair_at(pa, pb, r.triangle_a, r.triangle_b).distance, r.distance, 1e-12)
+            << what;
+        EXPECT_NEAR((r.point_a - r.point_b).norm(), r.distance, 1e-12) << what;
+        if (k == 1 && rel > 0) {
+          const DistanceResult plain = distance(a, pa, b, pb, req);
+          EXPECT_LE(r.node_pairs, plain.node_pairs) << what;
+          seeded_pairs += r.node_pairs;
+          unseeded_pairs += plain.node_pairs;
+        }
+      }
+    }
+  }
+  std::cout << "node pairs seeded with the closest pair " << seeded_pairs << ", unseeded "
+            << unseeded_pairs << '\n';
+  EXPECT_LT(seeded_pairs, unseeded_pairs);
+  DistanceRequest signed_req;
+  signed_req.signed_distance = true;
+  EXPECT_THROW((void)detail::seeded_distance(a, Transform::identity(), b, Transform::identity(),
+                                             signed_req, {}),
+               ArgumentError);
 }
 
 TEST(Sweep, RejectsBadArguments) {
