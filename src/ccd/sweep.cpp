@@ -128,17 +128,44 @@ Scalar apart_until(const ccd::RigidPair& m, Scalar t, Scalar separation, int dep
 
 /// Scratch storage of the local advancement, reused across one sweep's windows.
 struct LocalPairs {
-  CollisionResult near;    // the triangle pairs within reach; Contact::distance is refreshed
-  std::vector<Scalar> at;  // the time of each pair's distance
+  CollisionResult near;      // the triangle pairs within reach; Contact::distance is refreshed
+  std::vector<Scalar> at;    // the time of each pair's distance
+  std::vector<Scalar> rate;  // how fast each pair's distance may fall from then on
 };
+
+/// How fast the distance `d` of triangle ta of A and tb of B (closest points d.pa, d.pb at the
+/// poses of time s) may fall after s, at most mu. With the rotations held at their poses at s,
+/// the pair only translates, by the relative velocity v of A against B: the distance between two
+/// convex sets moving apart along a line is a convex function of time, so it stays above its
+/// tangent at s, whose slope is n . v (n the unit vector from B's closest point to A's). Each
+/// point p of A strays from its held-rotation path by at most theta_a |p| per unit time (the
+/// chord of its arc about the model origin), and likewise for B, so the distance falls by at most
+/// theta_a rho_a + theta_b rho_b - n . v per unit time (rho the largest vertex norm of the
+/// triangle in its model's frame; may be negative: the bound then rises). n's direction is
+/// allowed an error of 2 allowance / |pa - pb|; pairs nearer than 4 allowance use mu.
+Scalar pair_rate(const ccd::RigidPair& m, const Vec3& v, Scalar mu, Scalar allowance,
+                 const geometry::TriangleDistance& d, std::uint32_t ta, std::uint32_t tb) {
+  if (!(d.distance > 4 * allowance)) return mu;
+  const auto largest_norm = [](const Model& model, std::uint32_t i) {
+    const auto& t = model.mesh().triangles[i];
+    const auto& p = model.mesh().vertices;
+    return std::max({p[t[0]].norm(), p[t[1]].norm(), p[t[2]].norm()});
+  };
+  const Scalar turning =
+      tolerance::widened(m.theta_a * largest_norm(m.a, ta) + m.theta_b * largest_norm(m.b, tb));
+  const Vec3 n = (d.pa - d.pb) / d.distance;
+  const Scalar closing =
+      -n.dot(v) + v.norm() * (2 * allowance / d.distance + tolerance::kArithmetic);
+  return std::min(mu, turning + closing);
+}
 
 /// Conservative advancement over the window [t, t + h] on the few triangle pairs that can touch in
 /// it: no point moves faster than mu, so a pair more than ms + mu h apart at t stays more than ms
 /// apart until t + h, and collide() with that delta (plus twice the allowance for its rounding)
 /// lists every other pair. A pair's distance d at time s' bounds it from below at s by
-/// d - mu (s - s'); each step recomputes the pairs whose bound may be the smallest until the
-/// smallest is a distance at s and advances by it, so a step costs a few triangle distances
-/// instead of a hierarchy query.
+/// d - rate (s - s'), rate = mu for the pairs as listed and pair_rate's bound once recomputed; each
+/// step recomputes the pairs whose bound may reach min_separation first (within twice the
+/// earliest such time) until that earliest pair's distance is from s, and advances to its time.
 /// Returns the time reached (nothing touches before it): t + h when the window is clear, else the
 /// first time a pair's exact distance is within ms + allowance + mu * tol (the whole-mesh loop
 /// decides there); -1 when more than kMaxWindowPairs pairs are within reach (nothing done).
@@ -155,40 +182,48 @@ Scalar advance_locally(const ccd::RigidPair& m, Scalar t, Scalar h, Scalar mu, S
   const Scalar end = t + h;
   if (pairs.empty()) return end;
   local.at.assign(pairs.size(), t);
-  const auto gap_at = [&](std::size_t i, Scalar s) {
-    return pairs[i].distance - mu * (s - local.at[i]) - ms - allowance;
+  local.rate.assign(pairs.size(), mu);
+  const Vec3 v = (m.a1.translation - m.a0.translation) - (m.b1.translation - m.b0.translation);
+  constexpr Scalar kNever = std::numeric_limits<Scalar>::infinity();
+  // The earliest time pair i's bound may reach ms + allowance (+inf: it never falls).
+  const auto reach_time = [&](std::size_t i) {
+    const Scalar gap = pairs[i].distance - ms - allowance;
+    return local.rate[i] > 0 ? local.at[i] + gap / local.rate[i] : kNever;
   };
   Scalar s = t;
   for (int step = 0; step < kMaxWindowSteps; ++step) {
     const Transform pa = ccd::interpolate_pose(m.a0, m.a1, s);
     const Transform pb = ccd::interpolate_pose(m.b0, m.b1, s);
-    // Recompute the pairs whose bound is within twice the smallest (within the tolerance's reach
-    // of it when that is <= 0) until the smallest bound is a distance at s.
-    Scalar gap = 0;
+    // Recompute the pairs whose bound may reach the separation within twice the earliest such
+    // time from s (plus the tolerance) until the earliest one is a distance at s.
+    std::size_t nearest = 0;
     while (true) {
-      std::size_t nearest = 0;
-      gap = std::numeric_limits<Scalar>::infinity();
+      Scalar first = kNever;
       for (std::size_t i = 0; i < pairs.size(); ++i) {
-        const Scalar g = gap_at(i, s);
-        if (g < gap) {
-          gap = g;
+        const Scalar r = reach_time(i);
+        if (r < first) {
+          first = r;
           nearest = i;
         }
       }
+      if (first == kNever) return end;  // no bound falls: the window is clear
       if (local.at[nearest] == s) break;
-      const Scalar refresh = 2 * std::max<Scalar>(gap, 0) + mu * tol;
+      const Scalar limit = s + 2 * std::max<Scalar>(first - s, 0) + tol;
       for (std::size_t i = 0; i < pairs.size(); ++i) {
-        if (local.at[i] == s || gap_at(i, s) > refresh) continue;
+        if (local.at[i] == s || reach_time(i) > limit) continue;
         const auto x = posed_triangle(m.a, pa, pairs[i].triangle_a);
         const auto y = posed_triangle(m.b, pb, pairs[i].triangle_b);
-        pairs[i].distance =
-            geometry::triangle_distance(x[0], x[1], x[2], y[0], y[1], y[2]).distance;
+        const geometry::TriangleDistance d =
+            geometry::triangle_distance(x[0], x[1], x[2], y[0], y[1], y[2]);
+        pairs[i].distance = d.distance;
         local.at[i] = s;
+        local.rate[i] = pair_rate(m, v, mu, allowance, d, pairs[i].triangle_a, pairs[i].triangle_b);
       }
     }
-    // The smallest bound is a pair's distance at s: stop on it or advance by it.
+    // The earliest pair's bound is its distance at s: stop on it or advance to its time.
+    const Scalar gap = pairs[nearest].distance - ms - allowance;
     if (gap <= mu * tol) return s;
-    const Scalar next = s + gap / mu * (1 - 1e-15);
+    const Scalar next = s + gap / local.rate[nearest] * (1 - 1e-15);
     if (!(next < end)) return end;
     s = next;
   }
