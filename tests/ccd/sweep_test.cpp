@@ -54,10 +54,12 @@ void check_motion(const Model& a, const Transform& a0, const Transform& a1, cons
       << what;
 }
 
-/// 400 exact collide() steps over [0.98 toi, toi) of a hit find nothing within min_separation.
-void check_clear_before_toi(const Model& a, const Transform& a0, const Transform& a1,
-                            const Model& b, const Transform& b0, const Transform& b1,
-                            const SweepRequest& req, const std::string& what) {
+/// check_motion, and 400 exact collide() steps over [0.98 toi, toi) of a hit find nothing within
+/// min_separation; counts the hits in `hits`.
+void check_fine_motion(const Model& a, const Transform& a0, const Transform& a1, const Model& b,
+                       const Transform& b0, const Transform& b1, const SweepRequest& req,
+                       const std::string& what, int& hits) {
+  check_motion(a, a0, a1, b, b0, b1, req, what, &hits);
   const SweepResult r = sweep(a, a0, a1, b, b0, b1, req);
   if (!r.hit) return;
   CollisionRequest cr;
@@ -231,11 +233,7 @@ TEST(Sweep, FineMeshesNeverTouchBeforeTheToi) {
     const Transform b1 = Transform::from_axis_angle(Vec3(unit(rng), unit(rng), unit(rng)), 0.3);
     SweepRequest req;
     req.min_separation = i % 2 == 0 ? 0.0 : 0.01;
-    const std::string what = "fine motion " + std::to_string(i);
-    int hit = 0;
-    check_motion(torus, a0, a1, sphere, b0, b1, req, what, &hit);
-    hits += hit;
-    check_clear_before_toi(torus, a0, a1, sphere, b0, b1, req, what);
+    check_fine_motion(torus, a0, a1, sphere, b0, b1, req, "fine motion " + std::to_string(i), hits);
   }
   EXPECT_GE(hits, 6);
 }
@@ -259,11 +257,7 @@ TEST(Sweep, FineMeshesSpinningInPlaceNeverTouchBeforeTheToi) {
     const Transform b = Transform::from_axis_angle(Vec3::UnitZ(), 0, at);
     SweepRequest req;
     req.min_separation = i % 2 == 0 ? 0.0 : 0.01;
-    const std::string what = "spin " + std::to_string(i);
-    int hit = 0;
-    check_motion(torus, a0, a1, sphere, b, b, req, what, &hit);
-    hits += hit;
-    check_clear_before_toi(torus, a0, a1, sphere, b, b, req, what);
+    check_fine_motion(torus, a0, a1, sphere, b, b, req, "spin " + std::to_string(i), hits);
   }
   EXPECT_GE(hits, 4);
 }
