@@ -38,14 +38,17 @@ constexpr Scalar kWindowSteps = 2;
 /// sqrt(4 pi / triangles) (the side of a triangle of an even tiling of the root sphere), so that
 /// only a few triangle pairs are within reach.
 constexpr Scalar kWindowReach = 0.25;
-/// ... and at most this many whole-mesh steps long (a longer window holds more pairs).
-constexpr Scalar kWindowSpan = 8;
+/// ... and at most this many whole-mesh steps long (a longer window holds more pairs). With the
+/// per-pair rates (pair_rate), 12-frame production line of seed 3 (callgrind; 1024 pairs at most):
+/// spans 8 / 16 / 32: 5.36 / 5.22 / 5.19 G instructions; 4: 6.45 G (256 pairs).
+constexpr Scalar kWindowSpan = 16;
 /// ... and only after a hierarchy query that examined at least this many node pairs (below, the
 /// whole-mesh steps are cheaper than collecting a window's pairs: thin sheets, 50-300 node pairs,
 /// 6-30 us a query, against 100-300 us a window).
 constexpr std::uint64_t kWindowNodePairs = 400;
 /// Above this many triangle pairs within reach of a window, the local advancement is skipped.
-constexpr std::size_t kMaxWindowPairs = 256;
+/// Same scene (span 8): 256 / 512 / 1024 / 2048 / 4096 pairs: 5.65 / 5.53 / 5.36 / 5.63 / 6.23 G.
+constexpr std::size_t kMaxWindowPairs = 1024;
 /// Depth of the earliest-first bisection that proves stretches of the motion apart before the
 /// advancement starts (pieces down to 2^-depth of the motion).
 /// Scene production line (`antcd scene generate --frames 60 --seed 3`): depth 3 / 4 / 6 settle
