@@ -47,11 +47,11 @@ void bind_ccd(py::module_& m) {
       .def_readonly("budget_exhausted", &SweepResult::budget_exhausted,
                     "The iteration budget ran out (a conservative stop).")
       .def_readonly("distance", &SweepResult::distance,
-                    "Distance at toi when hit; else a proven lower bound at the last step.")
+                    "Distance at toi when hit; else a proven lower bound (>= min_separation).")
       .def_readonly("motion_bound", &SweepResult::motion_bound,
                     "Bound on the surfaces' relative speed (mesh units per unit time).")
       .def_readonly("iterations", &SweepResult::iterations,
-                    "Iterations made: distance queries and endgame windows.")
+                    "Iterations made: interval tests, distance queries and endgame windows.")
       .def("__bool__", [](const SweepResult& r) { return r.hit; })
       .def("__repr__", [](const SweepResult& r) {
         std::ostringstream s;
