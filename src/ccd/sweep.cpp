@@ -139,7 +139,7 @@ struct LocalPairs {
 /// How fast the distance `d` of triangle ta of A and tb of B (closest points d.pa, d.pb at the
 /// poses of time s) may fall after s, at most mu. With the rotations held at their poses at s,
 /// the pair only translates, by the relative velocity v of A against B: the distance between two
-/// convex sets moving apart along a line is a convex function of time, so it stays above its
+/// convex sets whose offset moves along a line is a convex function of time, so it stays above its
 /// tangent at s, whose slope is n . v (n the unit vector from B's closest point to A's). Each
 /// point p of A strays from its held-rotation path by at most theta_a |p| per unit time (the
 /// chord of its arc about the model origin), and likewise for B, so the distance falls by at most
