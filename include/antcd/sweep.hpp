@@ -28,8 +28,14 @@
 // Endgame (fine meshes, where a hierarchy query near contact opens hundreds of node pairs): over a
 // window [t, t + h] only triangle pairs within min_separation + mu h of each other at t can touch;
 // collide() with that delta lists them, and the advancement runs on their exact triangle distances
-// (each a lower bound that falls by at most mu per unit time) until the window is clear or a pair
-// is within the tolerance, where the whole-mesh query decides as above.
+// until the window is clear or a pair is within the tolerance, where the whole-mesh query decides
+// as above. Each pair's distance falls no faster than its own rate: its triangles' rotation term
+// (theta times their vertices' distance from the model origin) minus their approach speed along
+// the closest-point direction at the last exact evaluation (with rotations held fixed, the
+// distance of two translating triangles is convex in time, so it stays above that tangent),
+// capped at mu. Each distance query of the advancement starts from the previous query's closest
+// triangle pair, evaluated exactly at the new pose (an upper bound that prunes from the first node
+// pair; the lower bound it returns is certified as before).
 //
 // Guarantees
 // - Conservative: if the surfaces come within min_separation at some t in [0, 1], the result is a
