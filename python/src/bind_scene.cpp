@@ -154,10 +154,9 @@ void bind_scene(py::module_& m) {
             return out;
           },
           "Continuous runs: one float64[k] array per frame, each pair's first time of impact in "
-          "[0, "
-          "1] over the step from the previous frame (0: at frame - 1, 1: at the frame; frame 0: "
-          "0), "
-          "in the order of pairs; never later than the true first contact. Empty arrays otherwise.")
+          "[0, 1] over the step from the previous frame (0: at frame - 1, 1: at the frame; "
+          "frame 0: 0), in the order of pairs; never later than the true first contact. Empty "
+          "arrays otherwise.")
       .def_property_readonly(
           "contact_points",
           [](const SceneRun& r) {
