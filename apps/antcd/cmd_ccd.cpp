@@ -270,8 +270,8 @@ int run_sweep(const SweepOptions& o) {
     std::printf("hit: no (proven; a certified lower bound of the distance: %.6g)\n", r.distance);
   }
   std::printf(
-      "query: %.3f ms, %u iterations (interval tests, distance queries and windows), motion bound "
-      "%.6g per unit time\n",
+      "query: %.3f ms, %u iterations (interval tests, distance queries and traversals), "
+      "motion bound %.6g per unit time\n",
       query_ms, r.iterations, r.motion_bound);
   return 0;
 }
@@ -309,7 +309,7 @@ void add_ccd_commands(CLI::App& app, int& code) {
   sw->add_option("--time-tolerance", o->time_tolerance, "Time tolerance (> 0)")
       ->check(positive_finite());
   sw->add_option("--max-iterations", o->max_iterations,
-                 "Most iterations (interval tests, distance queries and endgame windows)")
+                 "Most iterations (interval tests, distance queries and traversals)")
       ->check(CLI::Range(1u, 1u << 30));
   sw->add_flag("--json", o->json, "Print the result as JSON");
   sw->add_option("--leaf-size", o->leaf_size, "Triangles per leaf of the hierarchy")

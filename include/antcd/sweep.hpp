@@ -15,7 +15,7 @@
 // than min_separation apart until t + (L - min_separation) / mu and the search advances there.
 // A rounding allowance (1e-12 of the scene's size: coordinates, radii, translations) is taken off
 // every L, covering the rounding of the interpolated poses, of the distance and of t.
-// Interval proofs first: an earliest-first bisection of [0, 1] (pieces down to 1/16) tests each
+// Interval proofs first: an earliest-first bisection of [0, 1] (pieces down to 1/32) tests each
 // piece with one bounded boolean traversal at its midpoint pose, where a node pair is apart over
 // the piece if its spheres or boxes at the midpoint are farther apart than min_separation plus the
 // pair's own motion bound over half the piece (|relative translation| + theta (|centre| + radius)
@@ -25,17 +25,26 @@
 // margin grown by theta (w / 2) radius + the bend; triangle pairs likewise (exact distance at the
 // midpoint, or balls about the centroids along their chords). A motion whose pieces are all apart
 // is a miss; otherwise the advancement starts at the first piece not proven apart.
-// Endgame (fine meshes, where a hierarchy query near contact opens hundreds of node pairs): over a
-// window [t, t + h] only triangle pairs within min_separation + mu h of each other at t can touch;
-// collide() with that delta lists them, and the advancement runs on their exact triangle distances
-// until the window is clear or a pair is within the tolerance, where the whole-mesh query decides
-// as above. Each pair's distance falls no faster than its own rate: its triangles' rotation term
-// (theta times their vertices' distance from the model origin) minus their approach speed along
-// the closest-point direction at the last exact evaluation (with rotations held fixed, the
-// distance of two translating triangles is convex in time, so it stays above that tangent),
-// capped at mu. Each distance query of the advancement starts from the previous query's closest
-// triangle pair, evaluated exactly at the new pose (an upper bound that prunes from the first node
-// pair; the lower bound it returns is certified as before).
+// Each distance query of the advancement starts from the previous query's closest triangle pair,
+// evaluated exactly at the new pose (an upper bound that prunes from the first node pair; the
+// lower bound it returns is certified as before).
+// Fine meshes (a query that examined 400 node pairs or more): the advancement hands over to one
+// traversal of both hierarchies in which every node pair and every triangle pair advances in time
+// on its own, earliest first. A node pair advances while its spheres are apart, by the gap over
+// its centres' closing rate (a ball turns into itself about its centre), or while its boxes are
+// apart on a separating axis, by that gap over the pair's own motion bound; then its children are
+// examined from the time it reached. A triangle pair advances on its planes and centroid axis,
+// then on its exact distance over its own closing rate: its triangles' rotation term (theta times
+// their vertices' distance from the model origin) minus their approach speed along the
+// closest-point direction (with rotations held fixed, the distance of two translating triangles
+// is convex in time, so it stays above that tangent). Chord tests let a pair jump 8 such steps at
+// once: in A's frame a point of B runs within w^2 / 8 (theta_a^2 |q| + 2 theta_a (theta_b |y| +
+// |v|) + theta_b^2 |y|) of its chord over a width w (|q| its distance from A's origin, y its
+// position in B's frame), so spheres whose centre chord stays apart by more than that, and
+// triangles whose B corners stay below the closest-point plane at both ends by more than that,
+// stay apart over the whole width. The first triangle pair found within min_separation +
+// allowance + mu * time_tolerance / 2 gives toi: every other pair is proven apart until a later
+// time. A traversal that examines 200 000 pairs gives up and the whole-mesh advancement goes on.
 //
 // Guarantees
 // - Conservative: if the surfaces come within min_separation at some t in [0, 1], the result is a
@@ -45,12 +54,13 @@
 //   allowance. Otherwise the surfaces are at toi within min_separation + mu * time_tolerance +
 //   allowance (result.distance is a pair's distance there): the search stops only that close, and
 //   a step from any farther reaches at least time_tolerance / 2 ahead.
-// - After max_iterations iterations (interval tests, distance queries and windows) the search
+// - After max_iterations iterations (interval tests, distance queries and traversals) the search
 //   stops with a hit at the time reached (tolerance_decided and budget_exhausted set): still
 //   toi <= t*.
-// - contact: a triangle pair at toi whose distance is within mu * time_tolerance / 2 of the
-//   minimum (an intersecting pair when the surfaces intersect), world frame: point is the common
-//   point or the closest points' midpoint, normal and depth as in collide.hpp (from B towards A).
+// - contact: a triangle pair at toi whose distance is within mu * time_tolerance / 2 + allowance
+//   of the minimum (an intersecting pair when the surfaces intersect), world frame: point is the
+//   common point or the closest points' midpoint, normal and depth as in collide.hpp (from B
+//   towards A).
 //
 // Thread safety: sweep() only reads its Models; any number of threads may sweep the same Models.
 // Errors: ArgumentError for min_separation < 0 or not finite, time_tolerance <= 0 or not finite,
@@ -71,7 +81,7 @@ struct SweepRequest {
   Scalar min_separation = 0;
   /// Time tolerance (> 0), see the guarantees above.
   Scalar time_tolerance = 1e-6;
-  /// Largest number of iterations: interval tests, distance queries and endgame windows (>= 1).
+  /// Largest number of iterations: interval tests, distance queries and traversals (>= 1).
   std::uint32_t max_iterations = 100000;
 };
 
@@ -85,14 +95,15 @@ struct SweepResult {
   bool tolerance_decided = false;
   /// max_iterations ran out (the hit is then a conservative stop).
   bool budget_exhausted = false;
-  /// When hit: the contact pair's distance at toi (within mu * time_tolerance / 2 above the
-  /// surfaces' distance); else a proven lower bound of the distance at the last time examined
-  /// (>= min_separation; when interval tests proved the motion apart, of the distance over the
-  /// whole motion, equal to min_separation where a box test, which measures no gap, proved it).
+  /// When hit: the contact pair's distance at toi (within mu * time_tolerance / 2 + allowance
+  /// above the surfaces' distance); else a proven lower bound of the distance at the
+  /// last time examined (>= min_separation; when interval tests proved the motion apart, of the
+  /// distance over the whole motion; equal to min_separation where a box test or the traversal,
+  /// which measure no gap over the motion, proved the miss).
   Scalar distance = 0;
   /// mu: the bound on the relative speed of the surfaces (mesh units per unit time).
   Scalar motion_bound = 0;
-  /// Iterations made: interval tests, distance queries and endgame windows.
+  /// Iterations made: interval tests, distance queries and traversals.
   std::uint32_t iterations = 0;
 };
 

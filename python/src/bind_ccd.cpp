@@ -51,7 +51,7 @@ void bind_ccd(py::module_& m) {
       .def_readonly("motion_bound", &SweepResult::motion_bound,
                     "Bound on the surfaces' relative speed (mesh units per unit time).")
       .def_readonly("iterations", &SweepResult::iterations,
-                    "Iterations made: interval tests, distance queries and endgame windows.")
+                    "Iterations made: interval tests, distance queries and traversals.")
       .def("__bool__", [](const SweepResult& r) { return r.hit; })
       .def("__repr__", [](const SweepResult& r) {
         std::ostringstream s;

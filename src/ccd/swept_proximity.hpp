@@ -8,6 +8,8 @@
 
 #include <cstdint>
 
+#include "ccd/motion.hpp"
+
 namespace antcd::ccd {
 
 /// Two rigid motions over t in [0, 1] (antcd/ccd.hpp's interpolation) and the bounds of their
@@ -24,6 +26,22 @@ struct RigidPair {
   Scalar theta_a = 0;
   Scalar theta_b = 0;
 };
+
+/// The bounds of A moving from a0 to a1 and B from b0 to b1 (the result keeps references to its
+/// arguments, which must outlive it).
+inline RigidPair rigid_pair(const Model& a, const Transform& a0, const Transform& a1,
+                            const Model& b, const Transform& b0, const Transform& b1) {
+  const Vec3 move = (a1.translation - a0.translation) - (b1.translation - b0.translation);
+  return {a,
+          a0,
+          a1,
+          b,
+          b0,
+          b1,
+          tolerance::widened(move.norm()),
+          rotation_angle(a0.rotation, a1.rotation),
+          rotation_angle(b0.rotation, b1.rotation)};
+}
 
 /// True when A and B are proven to stay more than `separation` apart at every t in [t0, t1]
 /// (0 <= t0 <= t1 <= 1); false when not proven (they may or may not come that close).

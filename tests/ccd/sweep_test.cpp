@@ -212,8 +212,8 @@ TEST(Sweep, RandomFastMotionsNeverBeatDenseStepping) {
 
 TEST(Sweep, FineMeshesNeverTouchBeforeTheToi) {
   // Fine meshes (a 10k-triangle torus through a 5k-triangle sphere, as in bench/ccd_bench.cpp):
-  // near contact the hierarchy queries open many node pairs, so the sweep's endgame advances on
-  // the triangle pairs within reach of a window (advance_locally in src/ccd/sweep.cpp). Besides
+  // near contact the hierarchy queries open many node pairs, so the sweep hands over to its
+  // traversal, every pair advancing on its own (src/ccd/first_contact.cpp). Besides
   // dense stepping, the last stretch before each toi is stepped finely: nothing may touch there.
   const Model torus(make_torus(1.0, 0.3, 100, 50), {}, "torus");
   const Model sphere(make_sphere(0.8, 72, 36), {}, "sphere");
@@ -240,8 +240,8 @@ TEST(Sweep, FineMeshesNeverTouchBeforeTheToi) {
 
 TEST(Sweep, FineMeshesSpinningInPlaceNeverTouchBeforeTheToi) {
   // The fine torus turning about an axis in its plane, without translation, its rim sweeping into
-  // a fine sphere: the endgame windows' per-pair rates (pair_rate in src/ccd/sweep.cpp) then rest
-  // on the turning term alone.
+  // a fine sphere: the traversal's per-pair rates (ccd::pair_rate, src/ccd/first_contact.cpp)
+  // then rest on the turning term alone.
   const Model torus(make_torus(1.0, 0.3, 100, 50), {}, "torus");
   const Model sphere(make_sphere(0.3, 72, 36), {}, "sphere");
   std::mt19937_64 rng(7);

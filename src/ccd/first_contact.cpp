@@ -1,0 +1,341 @@
+// The earliest contact of two rigidly moving models, every pair advancing on its own; see
+// first_contact.hpp.
+#include "ccd/first_contact.hpp"
+
+#include <antcd/geometry.hpp>
+#include <antcd/tolerances.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include "distance/node_bound.hpp"
+
+namespace antcd::ccd {
+
+Scalar pair_rate(Scalar d, const Vec3& pa, const Vec3& pb, const Vec3& v, Scalar turning,
+                 Scalar cap, Scalar allowance) {
+  if (!(d > 4 * allowance)) return cap;
+  const Vec3 n = (pa - pb) / d;
+  const Scalar closing = -n.dot(v) + v.norm() * (2 * allowance / d + tolerance::kArithmetic);
+  return std::min(cap, turning + closing);
+}
+
+namespace {
+
+/// A step of d / rate, rounded down (the allowance covers the sum's rounding).
+constexpr Scalar kStepShrink = 1 - 1e-15;
+/// Times are rounded down to multiples of 1 / kGrid where a step is longer than that.
+constexpr Scalar kGrid = 1 << 14;
+
+/// A rotation at constant angular velocity from q0: q(t) = q0 (cos(t w), sin(t w) u), the
+/// shorter arc to q1 (the slerp of ccd::interpolate_pose, up to rounding).
+struct Turn {
+  Quat q0;
+  Vec3 axis = Vec3::Zero();
+  Scalar half_angle = 0;
+
+  explicit Turn(const Mat3& r0, const Mat3& r1) : q0(r0) {
+    q0.normalize();
+    Quat q1(r1);
+    q1.normalize();
+    Quat delta = q0.conjugate() * q1;
+    if (delta.w() < 0) delta.coeffs() = -delta.coeffs();
+    const Scalar s = delta.vec().norm();
+    if (s > 0) {
+      axis = delta.vec() / s;
+      half_angle = std::atan2(s, delta.w());
+    }
+  }
+  [[nodiscard]] Quat at(Scalar t) const {
+    if (half_angle == 0) return q0;
+    const Scalar a = t * half_angle;
+    const Scalar s = std::sin(a);
+    Quat d;
+    d.w() = std::cos(a);
+    d.vec() = s * axis;
+    return q0 * d;
+  }
+};
+
+/// Work of one search; entries are examined earliest first.
+class Search {
+ public:
+  Search(const RigidPair& m, Scalar separation, Scalar allowance, Scalar volume, Scalar stop_gap,
+         const FirstContactLimits& limits)
+      : m_(m),
+        turn_a_(m.a0.rotation, m.a1.rotation),
+        turn_b_(m.b0.rotation, m.b1.rotation),
+        v_((m.a1.translation - m.a0.translation) - (m.b1.translation - m.b0.translation)),
+        triangle_margin_(separation + allowance),
+        node_margin_(separation + allowance + volume),
+        separation_(separation),
+        allowance_(allowance),
+        stop_gap_(stop_gap),
+        limits_(limits),
+        nodes_a_(m.a.nodes()),
+        nodes_b_(m.b.nodes()),
+        corners_a_(m.a.leaf_corners()),
+        corners_b_(m.b.leaf_corners()) {
+    heap_.reserve(256);
+    local_.reserve(64);
+  }
+
+  FirstContact run(Scalar t0) {
+    heap_.push_back({t0, 0, 0, Kind::nodes, 0});
+    while (!heap_.empty()) {
+      std::pop_heap(heap_.begin(), heap_.end(), Later{});
+      const Entry e = heap_.back();
+      heap_.pop_back();
+      // Every pair still to examine stays apart until at least e.t. The pairs that e opens at
+      // e.t are examined at once, with e's frame (a local depth-first walk).
+      const Frame f = frame_at(e.t);
+      local_.clear();
+      local_.push_back(e);
+      // Pairs queued at the same time (see advance) share the frame.
+      while (!heap_.empty() && heap_.front().t == e.t) {
+        std::pop_heap(heap_.begin(), heap_.end(), Later{});
+        local_.push_back(heap_.back());
+        heap_.pop_back();
+      }
+      while (!local_.empty()) {
+        const Entry x = local_.back();
+        local_.pop_back();
+        if (++result_.pairs > limits_.pairs) {
+          result_ = {};
+          result_.outcome = FirstContact::Outcome::gave_up;
+          return result_;
+        }
+        if (x.kind == Kind::nodes) {
+          nodes(x, f);
+        } else if (triangles(x, f)) {
+          return result_;
+        }
+      }
+    }
+    return result_;  // every pair passed t = 1: a miss
+  }
+
+ private:
+  enum class Kind : std::uint8_t { nodes, triangles };
+  /// A node pair (indices into the node arrays) or a triangle pair (leaf triangle indices) known
+  /// to stay apart before t.
+  struct Entry {
+    Scalar t;
+    std::uint32_t a, b;
+    Kind kind;
+    std::uint8_t steps = 0;  ///< advancement steps of a node pair so far
+  };
+  struct Later {
+    bool operator()(const Entry& x, const Entry& y) const { return x.t > y.t; }
+  };
+  /// B's model frame in A's at one time, and the relative translation velocity in A's frame.
+  struct Frame {
+    Mat3 rot;
+    Vec3 trans;
+    Vec3 v;
+  };
+
+  /// Queues e again at e.t + advance, unless that passes t = 1.
+  void advance(Entry e, Scalar advance) {
+    ++result_.steps;
+    Scalar next = e.t + advance * kStepShrink;
+    if (!(next < 1)) return;  // apart until the end of the motion
+    // Rounded down to a multiple of kGrid when that still moves on, so that pairs share times
+    // and the poses computed for them.
+    if (const Scalar g = std::floor(next * kGrid) / kGrid; g > e.t) next = g;
+    e.t = next;
+    if (e.steps < 255) ++e.steps;
+    heap_.push_back(e);
+    std::push_heap(heap_.begin(), heap_.end(), Later{});
+  }
+
+  [[nodiscard]] Frame frame_at(Scalar t) const {
+    const Quat qa = turn_a_.at(t);
+    const Quat qb = turn_b_.at(t);
+    const Quat to_a = qa.conjugate();
+    const Vec3 ta = (1 - t) * m_.a0.translation + t * m_.a1.translation;
+    const Vec3 tb = (1 - t) * m_.b0.translation + t * m_.b1.translation;
+    return {(to_a * qb).toRotationMatrix(), to_a * (tb - ta), to_a * v_};
+  }
+
+  /// How far a point of B at y (B's model frame; at |p| from A's origin at time t) may stray, in
+  /// A's frame, from the chord between its positions at t and t + w: w^2 / 8 times a bound of the
+  /// second derivative of its path p(s) = R_a(s)^T q(s), q(s) = R_b(s) y + T_b(s) - T_a(s):
+  /// |q'| <= theta_b |y| + speed, |q''| <= theta_b^2 |y|, turning at constant angular velocity
+  /// gives |p''| <= theta_a^2 |q| + 2 theta_a |q'| + |q''|, with |q| <= |p| + w |q'| over the
+  /// interval.
+  [[nodiscard]] Scalar bend(Scalar w, Scalar y, Scalar p) const {
+    const Scalar drift = m_.theta_b * y + m_.speed;
+    const Scalar q = p + w * drift;
+    return tolerance::widened(
+        w * w / 8 *
+        (m_.theta_a * m_.theta_a * q + 2 * m_.theta_a * drift + m_.theta_b * m_.theta_b * y));
+  }
+
+  /// The chord step: how far from e.t a pair may jump when the conservative step is `step`
+  /// (then tried by a chord test, see nodes() and triangles()).
+  [[nodiscard]] static Scalar chord_width(Scalar t, Scalar step) {
+    return std::min(1 - t, kChordSteps * step);
+  }
+
+  /// A node pair at e.t: advanced while its spheres or boxes are apart, else its children (or its
+  /// leaves' triangle pairs) are queued at e.t.
+  void nodes(const Entry& e, const Frame& f) {
+    const BvhNode& na = nodes_a_[e.a];
+    const BvhNode& nb = nodes_b_[e.b];
+    const Vec3 centre_b = f.rot * nb.center + f.trans;
+    const Scalar centres = (centre_b - na.center).norm();
+    const Scalar sphere = centres - na.radius - nb.radius - node_margin_;
+    const Scalar ca = na.center.norm();
+    const Scalar cb = nb.center.norm();
+    Scalar step = 0;
+    if (sphere > 0) {
+      // A ball turns into itself about its centre: only the centres' paths count, and the
+      // distance of the centres falls no faster than pair_rate says of two points.
+      const Scalar turning = tolerance::widened(m_.theta_a * ca + m_.theta_b * cb);
+      const Scalar rate = pair_rate(centres, na.center, centre_b, f.v, turning,
+                                    tolerance::widened(m_.speed + turning), allowance_);
+      if (!(rate > 0)) return;  // the spheres never come nearer
+      step = sphere / rate;
+      // The chord test: in A's frame, B's centre runs within bend() of the chord between its
+      // positions at e.t and e.t + w, so the spheres stay apart over that interval when the
+      // chord stays farther from A's centre than the radii, the margin and the bend.
+      if (const Scalar w = chord_width(e.t, step); w > step) {
+        const Frame g = frame_at(e.t + w);
+        const Vec3 q0 = centre_b - na.center;
+        const Vec3 dq = g.rot * nb.center + g.trans - centre_b;
+        const Scalar len2 = dq.squaredNorm();
+        const Scalar u = len2 > 0 ? std::clamp(-q0.dot(dq) / len2, Scalar{0}, Scalar{1}) : 0;
+        if ((q0 + u * dq).norm() - na.radius - nb.radius - node_margin_ -
+                bend(w, cb, centre_b.norm()) >
+            0) {
+          return advance(e, w);
+        }
+      }
+    }
+    // Face axes only (a stop below any gap returns after them): the other axes cost more than the
+    // node pairs they would advance save.
+    const Scalar box =
+        detail::obb_gap(na.obb(), f.rot * nb.axes(), centre_b, nb.half_extents(), 0) - node_margin_;
+    if (box > 0) {
+      const Scalar rate = tolerance::widened(m_.speed + m_.theta_a * (ca + na.radius) +
+                                             m_.theta_b * (cb + nb.radius));
+      step = std::max(step, box / rate);
+    }
+    if (step > 0 && e.steps < kNodeSteps) return advance(e, step);
+    if (na.is_leaf() && nb.is_leaf()) {
+      for (std::uint32_t i = 0; i < na.count; ++i) {
+        for (std::uint32_t j = 0; j < nb.count; ++j) {
+          local_.push_back({e.t, na.first_or_right + i, nb.first_or_right + j, Kind::triangles, 0});
+        }
+      }
+      return;
+    }
+    // Descend the larger sphere (or the only internal node).
+    if (nb.is_leaf() || (!na.is_leaf() && na.radius >= nb.radius)) {
+      local_.push_back({e.t, e.a + 1, e.b, Kind::nodes, 0});
+      local_.push_back({e.t, na.first_or_right, e.b, Kind::nodes, 0});
+    } else {
+      local_.push_back({e.t, e.a, e.b + 1, Kind::nodes, 0});
+      local_.push_back({e.t, e.a, nb.first_or_right, Kind::nodes, 0});
+    }
+  }
+
+  /// A triangle pair at e.t: true when it is within reach there (the search's answer: every
+  /// other pair stays apart until at least e.t), else advanced.
+  bool triangles(const Entry& e, const Frame& f) {
+    const auto x = corners_a_.triangle(e.a);
+    const auto y = corners_b_.triangle(e.b);
+    const std::array<Vec3, 3> yb{f.rot * y[0] + f.trans, f.rot * y[1] + f.trans,
+                                 f.rot * y[2] + f.trans};
+    const Scalar rho_a = std::max({x[0].norm(), x[1].norm(), x[2].norm()});
+    const Scalar rho_b = std::max({y[0].norm(), y[1].norm(), y[2].norm()});
+    const Scalar turning = tolerance::widened(m_.theta_a * rho_a + m_.theta_b * rho_b);
+    const Scalar cap = tolerance::widened(m_.speed + turning);
+    if (e.steps < kCheapSteps) {
+      // Cheap lower bounds first (the exact distance costs 15 primitive distances): the planes of
+      // both triangles and the axis through their centroids, at the pair's full rate.
+      const Vec3 ga = (x[0] + x[1] + x[2]) / 3;
+      const Vec3 gb = (yb[0] + yb[1] + yb[2]) / 3;
+      const Vec3 na = (x[1] - x[0]).cross(x[2] - x[0]).normalized();
+      const Vec3 nb = (yb[1] - yb[0]).cross(yb[2] - yb[0]).normalized();
+      const Scalar flat =
+          std::max({detail::plane_gap(na, x[0], yb.data()), detail::plane_gap(nb, yb[0], x.data()),
+                    detail::centroid_axis_gap(ga, gb, x.data(), yb.data())}) -
+          triangle_margin_;
+      if (flat > 0) {
+        advance(e, flat / cap);
+        return false;
+      }
+    }
+    const geometry::TriangleDistance d =
+        geometry::triangle_distance(x[0], x[1], x[2], yb[0], yb[1], yb[2]);
+    const Scalar gap = d.distance - triangle_margin_;
+    if (gap <= stop_gap_) {
+      result_.outcome = FirstContact::Outcome::hit;
+      result_.toi = e.t;
+      result_.triangle_a = m_.a.leaf_triangles()[e.a];
+      result_.triangle_b = m_.b.leaf_triangles()[e.b];
+      result_.distance = d.distance;
+      result_.proven =
+          d.distance + allowance_ <= separation_ ||
+          (d.distance == 0 && geometry::triangles_intersect(x[0], x[1], x[2], yb[0], yb[1], yb[2]));
+      return true;
+    }
+    const Scalar rate = pair_rate(d.distance, d.pa, d.pb, f.v, turning, cap, allowance_);
+    if (!(rate > 0)) return false;  // its distance never falls
+    const Scalar step = gap / rate;
+    // The chord test: with n the closest-point direction at e.t, A's triangle lies on the far
+    // side of the plane n . x = min n . x_i, and B's vertices run within bend() of their chords
+    // in A's frame, so B's triangle stays below max(n . y_j at e.t, n . y_j at e.t + w) + bend
+    // over the interval (a point of the triangle is a fixed combination of its vertices).
+    if (const Scalar w = chord_width(e.t, step); w > step && d.distance > 4 * allowance_) {
+      const Frame g = frame_at(e.t + w);
+      const Vec3 n = (d.pa - d.pb) / d.distance;
+      const Scalar low_a = std::min({n.dot(x[0]), n.dot(x[1]), n.dot(x[2])});
+      Scalar high_b = -std::numeric_limits<Scalar>::infinity();
+      Scalar strayed = 0;
+      for (int k = 0; k < 3; ++k) {
+        high_b = std::max({high_b, n.dot(yb[k]), n.dot(g.rot * y[k] + g.trans)});
+        strayed = std::max(strayed, bend(w, y[k].norm(), yb[k].norm()));
+      }
+      if (low_a - high_b - strayed - triangle_margin_ > 0) {
+        advance(e, w);
+        return false;
+      }
+    }
+    advance(e, step);
+    return false;
+  }
+
+  /// Advancement steps of a node pair before its children are examined (from where it reached).
+  static constexpr std::uint8_t kNodeSteps = 4;
+  /// Steps of a triangle pair on cheap bounds before its exact distance is taken.
+  static constexpr std::uint8_t kCheapSteps = 4;
+  /// A chord test spans this many conservative steps (or the rest of the motion).
+  static constexpr Scalar kChordSteps = 8;
+
+  const RigidPair& m_;
+  Turn turn_a_, turn_b_;
+  Vec3 v_;
+  Scalar triangle_margin_, node_margin_, separation_, allowance_, stop_gap_;
+  FirstContactLimits limits_;
+  std::span<const BvhNode> nodes_a_, nodes_b_;
+  LeafCorners corners_a_, corners_b_;
+  std::vector<Entry> heap_;
+  std::vector<Entry> local_;  ///< the pairs opened at the current time
+  FirstContact result_;
+};
+
+}  // namespace
+
+FirstContact first_contact(const RigidPair& m, Scalar t0, Scalar separation, Scalar allowance,
+                           Scalar volume, Scalar stop_gap, const FirstContactLimits& limits) {
+  Search search(m, separation, allowance, volume, stop_gap, limits);
+  return search.run(t0);
+}
+
+}  // namespace antcd::ccd

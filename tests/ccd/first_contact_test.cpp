@@ -1,0 +1,165 @@
+// The sweep's traversal (src/ccd/first_contact.hpp) on its own, started at t = 0, where every
+// node pair and triangle pair must advance on its own bounds from the start: fine meshes whose
+// motion is mostly turning (a ball on a long arm about its model origin), against dense
+// sub-stepping with the exact discrete query.
+#include <antcd/collide.hpp>
+#include <antcd/geometry.hpp>
+#include <antcd/mesh.hpp>
+#include <antcd/tolerances.hpp>
+
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cmath>
+#include <iostream>
+#include <random>
+#include <string>
+
+#include "ccd/continuous_support.hpp"
+#include "ccd/first_contact.hpp"
+#include "ccd/motion.hpp"
+#include "ccd/swept_proximity.hpp"
+
+namespace antcd {
+namespace {
+
+/// first_contact() from t = 0 with the sweep's allowances (src/ccd/sweep.cpp).
+ccd::FirstContact first_contact_of(const Model& a, const Transform& a0, const Transform& a1,
+                                   const Model& b, const Transform& b0, const Transform& b1,
+                                   Scalar separation, Scalar tol,
+                                   const ccd::FirstContactLimits& limits = {}) {
+  const ccd::RigidPair m = ccd::rigid_pair(a, a0, a1, b, b0, b1);
+  const Scalar ra = ccd::origin_radius(a);
+  const Scalar rb = ccd::origin_radius(b);
+  const Scalar mu = tolerance::widened(m.speed + m.theta_a * ra + m.theta_b * rb);
+  const Scalar scale = ra + rb + separation + a0.translation.norm() + a1.translation.norm() +
+                       b0.translation.norm() + b1.translation.norm();
+  return ccd::first_contact(m, 0, separation, tolerance::kArithmetic * scale,
+                            tolerance::kVolume * scale, mu * tol / 2, limits);
+}
+
+/// A fine ball of radius 0.25 whose centre is `arm` from its model origin: turning the model
+/// swings it along an arc (its motion is almost all turning).
+Model ball_on_arm(const Vec3& arm) {
+  Mesh m = make_sphere(0.25, 48, 24);
+  for (Vec3& v : m.vertices) v += arm;
+  return Model(std::move(m), {}, "ball on arm");
+}
+
+TEST(FirstContact, TurningFineMeshesNeverPassTheirFirstContact) {
+  const Model ball = ball_on_arm({2, 0, 0});
+  const Model torus(make_torus(0.5, 0.15, 60, 30), {}, "torus");
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<Scalar> unit(-1, 1);
+  constexpr Scalar kTol = 1e-6;
+  int hits = 0, misses = 0;
+  for (int i = 0; i < 24; ++i) {
+    const std::string what = "motion " + std::to_string(i);
+    // The ball swings by 0.6-1.4 rad about (nearly) z, drifting by at most 0.05; the torus waits
+    // on the arc's circle (radius 2) at a random height and tilt, mostly inside the swing.
+    const Scalar phi0 = unit(rng);
+    const Scalar swing = 1.0 + 0.4 * unit(rng);
+    const Transform a0 = Transform::from_axis_angle(Vec3(0.05 * unit(rng), 0.05 * unit(rng), 1),
+                                                    phi0, 0.05 * Vec3(unit(rng), 0, 0));
+    const Transform a1 = Transform::from_axis_angle(Vec3(0.05 * unit(rng), 0.05 * unit(rng), 1),
+                                                    phi0 + swing, 0.05 * Vec3(0, unit(rng), 0));
+    const Scalar psi = phi0 + swing * (0.5 + 0.6 * unit(rng));
+    const Transform b =
+        Transform::from_axis_angle(Vec3(unit(rng), unit(rng), unit(rng)), 3 * unit(rng),
+                                   Vec3(2 * std::cos(psi), 2 * std::sin(psi), 0.9 * unit(rng)));
+    const Scalar separation = i % 2 == 0 ? 0.0 : 0.01;
+    const ccd::FirstContact r = first_contact_of(ball, a0, a1, torus, b, b, separation, kTol);
+    ASSERT_NE(r.outcome, ccd::FirstContact::Outcome::gave_up) << what;
+    const auto dense = test::first_substep_contact(ball, a0, a1, torus, b, b, separation);
+    const bool hit = r.outcome == ccd::FirstContact::Outcome::hit;
+    if (dense) {
+      ASSERT_TRUE(hit) << what << ": dense stepping touches at " << *dense;
+      EXPECT_LE(r.toi, *dense) << what;
+    }
+    if (!hit) {
+      ++misses;
+      continue;
+    }
+    ++hits;
+    // Nothing within the separation over [0.97 toi, toi).
+    CollisionRequest cr;
+    cr.delta = separation;
+    CollisionResult res;
+    for (int k = 0; k < 300 && r.toi > 0; ++k) {
+      const Scalar t = r.toi * (1 - 0.03 * (1 - k / 300.0));
+      EXPECT_FALSE(collide(ball, ccd::interpolate_pose(a0, a1, t), torus, b, cr, res))
+          << what << ": touches at " << t << " before toi " << r.toi;
+    }
+    // The pair that stopped is within the separation and the tolerance's reach at toi.
+    const auto tri = [](const Model& m, const Transform& p, std::uint32_t t) {
+      const auto& idx = m.mesh().triangles[t];
+      const auto& v = m.mesh().vertices;
+      return std::array<Vec3, 3>{p.apply(v[idx[0]]), p.apply(v[idx[1]]), p.apply(v[idx[2]])};
+    };
+    const auto x = tri(ball, ccd::interpolate_pose(a0, a1, r.toi), r.triangle_a);
+    const auto y = tri(torus, b, r.triangle_b);
+    const Scalar d = geometry::triangle_distance(x[0], x[1], x[2], y[0], y[1], y[2]).distance;
+    EXPECT_NEAR(d, r.distance, 1e-9) << what;
+    EXPECT_LE(d, separation + 4.0 * kTol) << what;  // mu < 8 here
+  }
+  std::cout << "turning fine meshes: " << hits << " hits, " << misses << " misses\n";
+  EXPECT_GE(hits, 6);
+  EXPECT_GE(misses, 2);
+}
+
+TEST(FirstContact, AProbeInsideTheArcIsNotSkippedByAChord) {
+  // The ball on its arm swings about z; a small probe waits inside the arc's circle, near enough
+  // for the ball's inner side to graze it. In A's frame the probe runs on an arc that bulges
+  // outwards of its chords (towards the ball): a chord test without its bend jumps the contact.
+  const Model ball = ball_on_arm({2, 0, 0});
+  const Model probe(make_sphere(0.05, 24, 12), {}, "probe");
+  int hits = 0;
+  for (int i = 0; i < 8; ++i) {
+    const Scalar at = 0.3 + 0.1 * i;
+    const Scalar inside = 1.72 - 0.002 * i;  // the probe's outer side at 1.77 - 0.002 i
+    const Transform a0 = Transform::identity();
+    const Transform a1 = Transform::from_axis_angle(Vec3::UnitZ(), 1.2);
+    const Transform b = Transform::from_axis_angle(
+        Vec3::UnitZ(), 0, Vec3(inside * std::cos(at), inside * std::sin(at), 0));
+    const ccd::FirstContact r = first_contact_of(ball, a0, a1, probe, b, b, 0, 1e-6);
+    const auto dense = test::first_substep_contact(ball, a0, a1, probe, b, b, 0);
+    const std::string what = "probe " + std::to_string(i);
+    ASSERT_TRUE(dense.has_value()) << what;
+    ASSERT_EQ(r.outcome, ccd::FirstContact::Outcome::hit) << what;
+    EXPECT_LE(r.toi, *dense) << what;
+    ++hits;
+  }
+  EXPECT_EQ(hits, 8);
+}
+
+TEST(FirstContact, GivesUpAfterItsPairBudget) {
+  const Model ball = ball_on_arm({2, 0, 0});
+  const Model torus(make_torus(0.5, 0.15, 60, 30), {}, "torus");
+  const Transform a0 = Transform::identity();
+  const Transform a1 = Transform::from_axis_angle(Vec3::UnitZ(), 1.0);
+  const Transform b =
+      Transform::from_axis_angle(Vec3::UnitX(), 0.3, Vec3(2 * std::cos(0.5), 2 * std::sin(0.5), 0));
+  const ccd::FirstContact full = first_contact_of(ball, a0, a1, torus, b, b, 0, 1e-6);
+  ASSERT_EQ(full.outcome, ccd::FirstContact::Outcome::hit);
+  ASSERT_GT(full.pairs, 20u);
+  ccd::FirstContactLimits limits;
+  limits.pairs = 20;
+  const ccd::FirstContact cut = first_contact_of(ball, a0, a1, torus, b, b, 0, 1e-6, limits);
+  EXPECT_EQ(cut.outcome, ccd::FirstContact::Outcome::gave_up);
+}
+
+TEST(FirstContact, PairRateIsTheTangentOfTwoTranslatingPoints) {
+  // Two points 1 apart along x; A moves towards B at 2 per unit time: the distance falls at 2,
+  // plus the turning term, never above the cap; moving apart it rises (rate <= 0).
+  const Vec3 pa(1, 0, 0), pb(0, 0, 0);
+  EXPECT_NEAR(ccd::pair_rate(1, pa, pb, Vec3(-2, 0, 0), 0.5, 10, 1e-15), 2.5, 1e-9);
+  EXPECT_LE(ccd::pair_rate(1, pa, pb, Vec3(3, 0, 0), 0.5, 10, 1e-15), 0);
+  EXPECT_EQ(ccd::pair_rate(1, pa, pb, Vec3(-20, 0, 0), 0.5, 10, 1e-15), 10);
+  // Sideways motion: the tangent is flat, only the turning term is left.
+  EXPECT_NEAR(ccd::pair_rate(1, pa, pb, Vec3(0, 5, 0), 0.5, 10, 1e-15), 0.5, 1e-9);
+  // Nearer than 4 allowances the direction is unknown: the cap.
+  EXPECT_EQ(ccd::pair_rate(1e-14, pa, pb, Vec3(3, 0, 0), 0.5, 10, 1e-14), 10);
+}
+
+}  // namespace
+}  // namespace antcd
