@@ -41,7 +41,7 @@
 // once: in A's frame a point of B runs within w^2 / 8 (theta_a^2 |q| + 2 theta_a (theta_b |y| +
 // |v|) + theta_b^2 |y|) of its chord over a width w (|q| its distance from A's origin, y its
 // position in B's frame), so spheres whose centre chord stays apart by more than that, and
-// triangles whose B corners stay below the closest-point plane at both ends by more than that,
+// triangles whose B corners stay below a separating plane at both ends by more than that,
 // stay apart over the whole width. The first triangle pair found within min_separation +
 // allowance + mu * time_tolerance / 2 gives toi: every other pair is proven apart until a later
 // time. A traversal that examines 200 000 pairs gives up and the whole-mesh advancement goes on.

@@ -11,7 +11,7 @@
 #include <limits>
 #include <vector>
 
-#include "distance/node_bound.hpp"
+#include "distance/node_bound.hpp"  // obb_gap
 
 namespace antcd::ccd {
 
@@ -200,6 +200,7 @@ class Search {
                                     tolerance::widened(m_.speed + turning), allowance_);
       if (!(rate > 0)) return;  // the spheres never come nearer
       step = sphere / rate;
+      if (!(e.t + step * kStepShrink < 1)) return;  // apart until the end of the motion
       // The chord test: in A's frame, B's centre runs within bend() of the chord between its
       // positions at e.t and e.t + w, so the spheres stay apart over that interval when the
       // chord stays farther from A's centre than the radii, the margin and the bend.
@@ -256,18 +257,24 @@ class Search {
     const Scalar turning = tolerance::widened(m_.theta_a * rho_a + m_.theta_b * rho_b);
     const Scalar cap = tolerance::widened(m_.speed + turning);
     if (e.steps < kCheapSteps) {
-      // Cheap lower bounds first (the exact distance costs 15 primitive distances): the planes of
-      // both triangles and the axis through their centroids, at the pair's full rate.
-      const Vec3 ga = (x[0] + x[1] + x[2]) / 3;
-      const Vec3 gb = (yb[0] + yb[1] + yb[2]) / 3;
+      // Cheap lower bounds first (the exact distance costs 15 primitive distances): the gaps
+      // along the normals of both triangles and the axis through their centroids, at the pair's
+      // full rate.
       const Vec3 na = (x[1] - x[0]).cross(x[2] - x[0]).normalized();
       const Vec3 nb = (yb[1] - yb[0]).cross(yb[2] - yb[0]).normalized();
-      const Scalar flat =
-          std::max({detail::plane_gap(na, x[0], yb.data()), detail::plane_gap(nb, yb[0], x.data()),
-                    detail::centroid_axis_gap(ga, gb, x.data(), yb.data())}) -
-          triangle_margin_;
-      if (flat > 0) {
-        advance(e, flat / cap);
+      const Vec3 to_b = ((yb[0] + yb[1] + yb[2]) - (x[0] + x[1] + x[2])).normalized();
+      Vec3 axis = na;
+      Scalar best = -std::numeric_limits<Scalar>::infinity();
+      for (const Vec3& n : {na, Vec3(-na), nb, Vec3(-nb), Vec3(-to_b)}) {
+        if (const Scalar g = axis_gap(n, x, yb); g > best) {
+          best = g;
+          axis = n;
+        }
+      }
+      if (best - triangle_margin_ > 0) {
+        const Scalar step = (best - triangle_margin_) / cap;
+        const Scalar w = chord_width(e.t, step);
+        advance(e, e.steps > 0 && w > step && chord_apart(axis, x, y, yb, e.t, w) ? w : step);
         return false;
       }
     }
@@ -288,27 +295,35 @@ class Search {
     const Scalar rate = pair_rate(d.distance, d.pa, d.pb, f.v, turning, cap, allowance_);
     if (!(rate > 0)) return false;  // its distance never falls
     const Scalar step = gap / rate;
-    // The chord test: with n the closest-point direction at e.t, A's triangle lies on the far
-    // side of the plane n . x = min n . x_i, and B's vertices run within bend() of their chords
-    // in A's frame, so B's triangle stays below max(n . y_j at e.t, n . y_j at e.t + w) + bend
-    // over the interval (a point of the triangle is a fixed combination of its vertices).
-    if (const Scalar w = chord_width(e.t, step); w > step && d.distance > 4 * allowance_) {
-      const Frame g = frame_at(e.t + w);
-      const Vec3 n = (d.pa - d.pb) / d.distance;
-      const Scalar low_a = std::min({n.dot(x[0]), n.dot(x[1]), n.dot(x[2])});
-      Scalar high_b = -std::numeric_limits<Scalar>::infinity();
-      Scalar strayed = 0;
-      for (int k = 0; k < 3; ++k) {
-        high_b = std::max({high_b, n.dot(yb[k]), n.dot(g.rot * y[k] + g.trans)});
-        strayed = std::max(strayed, bend(w, y[k].norm(), yb[k].norm()));
-      }
-      if (low_a - high_b - strayed - triangle_margin_ > 0) {
-        advance(e, w);
-        return false;
-      }
-    }
-    advance(e, step);
+    // The chord test along the closest-point direction.
+    const Scalar w = chord_width(e.t, step);
+    const bool chord = w > step && d.distance > 4 * allowance_ &&
+                       chord_apart((d.pa - d.pb) / d.distance, x, y, yb, e.t, w);
+    advance(e, chord ? w : step);
     return false;
+  }
+
+  /// The gap between A's triangle x and the points y along the unit axis n (A on its high side):
+  /// a lower bound of their distance when positive.
+  static Scalar axis_gap(const Vec3& n, const std::array<Vec3, 3>& x,
+                         const std::array<Vec3, 3>& y) {
+    return std::min({n.dot(x[0]), n.dot(x[1]), n.dot(x[2])}) -
+           std::max({n.dot(y[0]), n.dot(y[1]), n.dot(y[2])});
+  }
+
+  /// The chord test of a triangle pair over [t, t + w] along the unit axis n: A's triangle x
+  /// lies above the plane n . p = min n . x_i; B's corners (y in B's frame, yb in A's at t) run
+  /// within bend() of their chords in A's frame, so B's triangle stays below max(n . y_k at t,
+  /// n . y_k at t + w) + bend (a point of the triangle is a fixed combination of its corners).
+  /// True when that leaves more than the margin between them over the whole interval.
+  bool chord_apart(const Vec3& n, const std::array<Vec3, 3>& x, const std::array<Vec3, 3>& y,
+                   const std::array<Vec3, 3>& yb, Scalar t, Scalar w) const {
+    const Frame g = frame_at(t + w);
+    const std::array<Vec3, 3> y1{g.rot * y[0] + g.trans, g.rot * y[1] + g.trans,
+                                 g.rot * y[2] + g.trans};
+    Scalar strayed = 0;
+    for (int k = 0; k < 3; ++k) strayed = std::max(strayed, bend(w, y[k].norm(), yb[k].norm()));
+    return std::min(axis_gap(n, x, yb), axis_gap(n, x, y1)) - strayed - triangle_margin_ > 0;
   }
 
   /// Advancement steps of a node pair before its children are examined (from where it reached).

@@ -40,8 +40,8 @@ ccd::FirstContact first_contact_of(const Model& a, const Transform& a0, const Tr
 
 /// A fine ball of radius 0.25 whose centre is `arm` from its model origin: turning the model
 /// swings it along an arc (its motion is almost all turning).
-Model ball_on_arm(const Vec3& arm) {
-  Mesh m = make_sphere(0.25, 48, 24);
+Model ball_on_arm(const Vec3& arm, int slices = 48, int stacks = 24) {
+  Mesh m = make_sphere(0.25, slices, stacks);
   for (Vec3& v : m.vertices) v += arm;
   return Model(std::move(m), {}, "ball on arm");
 }
@@ -111,25 +111,32 @@ TEST(FirstContact, AProbeInsideTheArcIsNotSkippedByAChord) {
   // The ball on its arm swings about z; a small probe waits inside the arc's circle, near enough
   // for the ball's inner side to graze it. In A's frame the probe runs on an arc that bulges
   // outwards of its chords (towards the ball): a chord test without its bend jumps the contact.
+  // Fine meshes, then coarse ones (few, large triangles).
   const Model ball = ball_on_arm({2, 0, 0});
   const Model probe(make_sphere(0.05, 24, 12), {}, "probe");
+  const Model coarse_ball = ball_on_arm({2, 0, 0}, 8, 6);
+  const Model coarse_probe(make_sphere(0.05, 6, 4), {}, "coarse probe");
   int hits = 0;
-  for (int i = 0; i < 8; ++i) {
-    const Scalar at = 0.3 + 0.1 * i;
-    const Scalar inside = 1.72 - 0.002 * i;  // the probe's outer side at 1.77 - 0.002 i
+  for (int i = 0; i < 16; ++i) {
+    const bool coarse = i >= 8;
+    const Model& a = coarse ? coarse_ball : ball;
+    const Model& p = coarse ? coarse_probe : probe;
+    const Scalar at = 0.3 + 0.1 * (i % 8);
+    // The probe's outer side at 1.77 - 0.002 i (fine); the coarse ones sit nearer.
+    const Scalar inside = coarse ? 1.74 - 0.005 * (i % 8) : 1.72 - 0.002 * i;
     const Transform a0 = Transform::identity();
     const Transform a1 = Transform::from_axis_angle(Vec3::UnitZ(), 1.2);
     const Transform b = Transform::from_axis_angle(
         Vec3::UnitZ(), 0, Vec3(inside * std::cos(at), inside * std::sin(at), 0));
-    const ccd::FirstContact r = first_contact_of(ball, a0, a1, probe, b, b, 0, 1e-6);
-    const auto dense = test::first_substep_contact(ball, a0, a1, probe, b, b, 0);
+    const ccd::FirstContact r = first_contact_of(a, a0, a1, p, b, b, 0, 1e-6);
+    const auto dense = test::first_substep_contact(a, a0, a1, p, b, b, 0);
     const std::string what = "probe " + std::to_string(i);
     ASSERT_TRUE(dense.has_value()) << what;
     ASSERT_EQ(r.outcome, ccd::FirstContact::Outcome::hit) << what;
     EXPECT_LE(r.toi, *dense) << what;
     ++hits;
   }
-  EXPECT_EQ(hits, 8);
+  EXPECT_EQ(hits, 16);
 }
 
 TEST(FirstContact, GivesUpAfterItsPairBudget) {
