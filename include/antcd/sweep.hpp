@@ -44,7 +44,8 @@
 // triangles whose B corners stay below a separating plane at both ends by more than that,
 // stay apart over the whole width. The first triangle pair found within min_separation +
 // allowance + mu * time_tolerance / 2 gives toi: every other pair is proven apart until a later
-// time. A traversal that examines 200 000 pairs gives up and the whole-mesh advancement goes on.
+// time. A traversal that examines 20 000 pairs (a later one of the same sweep twice as many as the
+// last) hands back the time it reached, and the whole-mesh advancement goes on from there.
 //
 // Guarantees
 // - Conservative: if the surfaces come within min_separation at some t in [0, 1], the result is a

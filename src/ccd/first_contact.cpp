@@ -106,6 +106,7 @@ class Search {
         if (++result_.pairs > limits_.pairs) {
           result_ = {};
           result_.outcome = FirstContact::Outcome::gave_up;
+          result_.toi = e.t;  // every pair still queued stays apart until then
           return result_;
         }
         if (x.kind == Kind::nodes) {

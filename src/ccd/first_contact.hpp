@@ -19,10 +19,11 @@ struct FirstContact {
   enum class Outcome : std::uint8_t {
     miss,     ///< no pair comes within the separation in [t0, 1]: a proof
     hit,      ///< toi and the pair below
-    gave_up,  ///< the work budget ran out: nothing is decided
+    gave_up,  ///< the work budget ran out: only toi is decided (see below)
   };
   Outcome outcome = Outcome::miss;
   /// When hit: the earliest time at which a triangle pair was within reach (see first_contact).
+  /// When gave_up: the time the search had reached; no pair comes within the separation before.
   Scalar toi = 1;
   /// When hit: that pair (mesh triangle indices) and its distance at toi.
   std::uint32_t triangle_a = 0;
@@ -39,7 +40,7 @@ struct FirstContact {
 /// Limits of one first_contact() call.
 struct FirstContactLimits {
   /// Node pairs and triangle pairs examined (each examination at one time) before giving up.
-  std::uint64_t pairs = 200000;
+  std::uint64_t pairs = 5000;
 };
 
 /// Searches [t0, 1] for the earliest time at which a triangle pair of A and B comes within

@@ -68,7 +68,11 @@ TEST(FirstContact, TurningFineMeshesNeverPassTheirFirstContact) {
         Transform::from_axis_angle(Vec3(unit(rng), unit(rng), unit(rng)), 3 * unit(rng),
                                    Vec3(2 * std::cos(psi), 2 * std::sin(psi), 0.9 * unit(rng)));
     const Scalar separation = i % 2 == 0 ? 0.0 : 0.01;
-    const ccd::FirstContact r = first_contact_of(ball, a0, a1, torus, b, b, separation, kTol);
+    // A budget far above what any of these motions takes (the worst, a near miss, about 42 000).
+    ccd::FirstContactLimits limits;
+    limits.pairs = 1000000;
+    const ccd::FirstContact r =
+        first_contact_of(ball, a0, a1, torus, b, b, separation, kTol, limits);
     ASSERT_NE(r.outcome, ccd::FirstContact::Outcome::gave_up) << what;
     const auto dense = test::first_substep_contact(ball, a0, a1, torus, b, b, separation);
     const bool hit = r.outcome == ccd::FirstContact::Outcome::hit;
@@ -153,6 +157,12 @@ TEST(FirstContact, GivesUpAfterItsPairBudget) {
   limits.pairs = 20;
   const ccd::FirstContact cut = first_contact_of(ball, a0, a1, torus, b, b, 0, 1e-6, limits);
   EXPECT_EQ(cut.outcome, ccd::FirstContact::Outcome::gave_up);
+  // The time it reached is proven free: at most the time of impact, and nothing touches before.
+  EXPECT_GE(cut.toi, 0.0);
+  EXPECT_LE(cut.toi, full.toi);
+  const auto dense = test::first_substep_contact(ball, a0, a1, torus, b, b, 0);
+  ASSERT_TRUE(dense.has_value());
+  EXPECT_LE(cut.toi, *dense);
 }
 
 TEST(FirstContact, PairRateIsTheTangentOfTwoTranslatingPoints) {
