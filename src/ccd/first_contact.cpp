@@ -141,7 +141,6 @@ class Search {
 
   /// Queues e again at e.t + advance, unless that passes t = 1.
   void advance(Entry e, Scalar advance) {
-    ++result_.steps;
     Scalar next = e.t + advance * kStepShrink;
     if (!(next < 1)) return;  // apart until the end of the motion
     // Rounded down to a multiple of kGrid when that still moves on, so that pairs share times

@@ -32,9 +32,8 @@ struct FirstContact {
   /// When hit: the pair intersects at toi (exact test on the posed corners) or its distance there
   /// is within the separation less the allowance.
   bool proven = false;
-  /// Node pairs and triangle pairs examined, and advancement steps taken (each at its own time).
+  /// Node pairs and triangle pairs examined (each examination at one time).
   std::uint64_t pairs = 0;
-  std::uint64_t steps = 0;
 };
 
 /// Limits of one first_contact() call.
