@@ -143,6 +143,31 @@ TEST(FirstContact, AProbeInsideTheArcIsNotSkippedByAChord) {
   EXPECT_EQ(hits, 16);
 }
 
+TEST(FirstContact, AProbeCrossingAPlateIsNotSkippedByATriangleChord) {
+  // In A's frame a probe runs on a circle of radius 0.987 about A's origin while a large triangle
+  // of A faces it at x = 0.995 (a second triangle far to the side makes their leaf box enclose
+  // the probe, so the triangle pairs are examined from the start). The probe's outer face reaches
+  // x = 0.997 near the circle's top only: a chord of the path from well before to well after that
+  // crossing stays below the plate, the arc does not. Without the chord's bend the triangle pairs
+  // jump over the contact.
+  Mesh plate;
+  plate.vertices = {{0.995, -1, -1}, {0.995, -1, 1}, {0.995, 1.5, 0},
+                    {0.5, -1, -1},   {0.5, -1, 1},   {0.6, -0.9, 0}};
+  plate.triangles = {{0, 1, 2}, {3, 4, 5}};
+  const Model a(std::move(plate), {}, "plate");
+  const Model probe(make_box({0.01, 0.01, 0.01}), {}, "probe");
+  const Transform b = Transform::from_axis_angle(Vec3::UnitZ(), 0, Vec3(0.987, 0, 0));
+  for (const Scalar swing : {0.7, 0.8, 0.9}) {
+    const Transform a0 = Transform::from_axis_angle(Vec3::UnitZ(), -swing);
+    const Transform a1 = Transform::from_axis_angle(Vec3::UnitZ(), swing);
+    const auto dense = test::first_substep_contact(a, a0, a1, probe, b, b, 0);
+    ASSERT_TRUE(dense.has_value()) << swing;
+    const ccd::FirstContact r = first_contact_of(a, a0, a1, probe, b, b, 0, 1e-6);
+    ASSERT_EQ(r.outcome, ccd::FirstContact::Outcome::hit) << swing;
+    EXPECT_LE(r.toi, *dense) << swing;
+  }
+}
+
 TEST(FirstContact, GivesUpAfterItsPairBudget) {
   const Model ball = ball_on_arm({2, 0, 0});
   const Model torus(make_torus(0.5, 0.15, 60, 30), {}, "torus");
