@@ -15,7 +15,7 @@
 // than min_separation apart until t + (L - min_separation) / mu and the search advances there.
 // A rounding allowance (1e-12 of the scene's size: coordinates, radii, translations) is taken off
 // every L, covering the rounding of the interpolated poses, of the distance and of t.
-// Interval proofs first: an earliest-first bisection of [0, 1] (pieces down to 1/32) tests each
+// Interval proofs first: an earliest-first bisection of [0, 1] (pieces down to 1/16) tests each
 // piece with one bounded boolean traversal at its midpoint pose, where a node pair is apart over
 // the piece if its spheres or boxes at the midpoint are farther apart than min_separation plus the
 // pair's own motion bound over half the piece (|relative translation| + theta (|centre| + radius)
@@ -28,7 +28,8 @@
 // Each distance query of the advancement starts from the previous query's closest triangle pair,
 // evaluated exactly at the new pose (an upper bound that prunes from the first node pair; the
 // lower bound it returns is certified as before).
-// Fine meshes (a query that examined 400 node pairs or more): the advancement hands over to one
+// Fine meshes near contact (a query that examined 400 node pairs or more, with a gap below four
+// typical triangle sizes, root radius * sqrt(4 pi / triangles)): the advancement hands over to one
 // traversal of both hierarchies in which every node pair and every triangle pair advances in time
 // on its own, earliest first. A node pair advances while its spheres are apart, by the gap over
 // its centres' closing rate (a ball turns into itself about its centre), or while its boxes are

@@ -127,7 +127,7 @@ class Search {
     Scalar t;
     std::uint32_t a, b;
     Kind kind;
-    std::uint8_t steps = 0;  ///< advancement steps of a node pair so far
+    std::uint8_t steps = 0;  ///< advancement steps of the pair so far (capped at 255)
   };
   struct Later {
     bool operator()(const Entry& x, const Entry& y) const { return x.t > y.t; }

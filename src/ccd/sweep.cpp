@@ -12,6 +12,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <string>
 #include <vector>
 
@@ -37,12 +38,22 @@ constexpr Scalar kStepRelTolerance = 0.15;
 /// (below, on small meshes such as the thin sheets of bench/ccd_bench, the whole-mesh queries cost
 /// less: 50-300 node pairs, 6-30 us a query).
 constexpr std::uint64_t kTraversalNodePairs = 400;
+/// ... and only once the gap is below this many typical triangle sizes (see triangle_size in
+/// sweep()): farther away, the pairs within reach of the next steps are too many for advancing
+/// each on its own. Callgrind, bench torus/sphere sweeps / 12-frame production line / a 60-frame
+/// continuous scene of 40 assimp meshes (spiders, Wuson, sphereWithHole, box; `scene generate
+/// --mesh`, seed 5): no limit 38.0 M / 1.73 G / 6.89 G; 8: 38.1 M / 1.73 G / 6.64 G; 4: 38.7 M /
+/// 1.73 G / 6.52 G; 2: 39.9 M / 1.73 G / 6.50 G; 0.5: 42.1 M / 1.75 G / 6.60 G; no traversal at
+/// all: 80.2 M / 7.26 G / 6.77 G (main at 4c8b036, with the endgame windows: 54.0 M / 5.22 G /
+/// 6.35 G).
+constexpr Scalar kTraversalGap = 4;
 /// Pairs the first traversal of a sweep may examine (each later one twice the last, up to the
 /// second figure). Random fast motions of assimp's spiders, Wuson and sphereWithHole, a fine torus
 /// and a sheet (300 motions each of two seeds, against 1000-step sub-stepping; a driver outside
 /// the tree): 200 000 at once: 592 / 386 ms in all, four sweeps of about 60 ms (a long graze, then
 /// the whole-mesh advancement from the start); 20 000, resuming from the time reached: 311 / 287
-/// ms (main at 4c8b036, before the traversal: 404 / 405 ms).
+/// ms (main at 4c8b036, before the traversal: 404 / 405 ms); with kTraversalGap too: 359 / 304
+/// ms (4c8b036 in the same run: 394 / 397 ms).
 constexpr std::uint64_t kTraversalPairs = 20000;
 constexpr std::uint64_t kMaxTraversalPairs = 1 << 20;
 /// Depth of the earliest-first bisection that proves stretches of the motion apart before the
@@ -50,9 +61,11 @@ constexpr std::uint64_t kMaxTraversalPairs = 1 << 20;
 /// Scene production line (`antcd scene generate --frames 60 --seed 3`): depth 3 / 4 / 6 settle
 /// 5893 / 5919 / 5956 of 8473 sweeps this way. With the traversal (ccd::first_contact), callgrind
 /// on its 12-frame run (`run --continuous --threads 1`) / bench/ccd_bench's torus-sphere and
-/// thin-sheet motions: depth 3: 3.85 G / 34.2 M / 5.38 M; 4: 3.66 G / 32.1 M / 5.24 M; 5: 3.30 G /
-/// 32.8 M / 5.38 M; 6: 3.09 G / 32.6 M / 6.29 M; 8: 3.17 G / 34.9 M / 7.97 M.
-constexpr int kBisectDepth = 5;
+/// thin-sheet motions, before the chord tests: depth 3: 3.85 G / 34.2 M / 5.38 M; 4: 3.66 G /
+/// 32.1 M / 5.24 M; 5: 3.30 G / 32.8 M / 5.38 M; 6: 3.09 G / 32.6 M / 6.29 M; 8: 3.17 G / 34.9 M
+/// / 7.97 M. With the chord tests and the resumable budget, depth 4 / 5: 1.73 / 1.83 G on the
+/// production line and 6.89 / 7.71 G on the 60-frame assimp scene (see kTraversalGap).
+constexpr int kBisectDepth = 4;
 /// Node pairs one interval test may examine before giving up: a piece that is apart but close
 /// costs a whole proximity traversal (7 000-15 000 node pairs seen without a cap, more than the
 /// advancement it saves). 300 settled 5888 sweeps, 1000 settled 5919 and was faster.
@@ -167,6 +180,13 @@ SweepResult sweep(const Model& a, const Transform& pose_a0, const Transform& pos
   // decided (result filled in); else `reached` is the time it proved free.
   ccd::FirstContactLimits limits;
   limits.pairs = kTraversalPairs;
+  // The typical triangle size: root radius * sqrt(4 pi / triangles), the side of a triangle of an
+  // even tiling of the root sphere.
+  const auto triangle_size = [](const Model& m) {
+    const Scalar n = static_cast<Scalar>(std::max<std::size_t>(m.mesh().triangles.size(), 1));
+    return static_cast<Scalar>(m.root().radius) * std::sqrt(4 * std::numbers::pi / n);
+  };
+  const Scalar near_gap = kTraversalGap * std::min(triangle_size(a), triangle_size(b));
   const auto traverse = [&](Scalar from, Scalar& reached) {
     const ccd::FirstContact first = ccd::first_contact(
         motion, from, ms, allowance, tolerance::kVolume * scale, mu * tol / 2, limits);
@@ -244,7 +264,7 @@ SweepResult sweep(const Model& a, const Transform& pose_a0, const Transform& pos
     }
     // No contact before t + gap / mu (rounded down; the allowance covers the sum's rounding).
     Scalar advance = gap / mu * (1 - 1e-15);
-    if (d.node_pairs >= kTraversalNodePairs && t + advance < 1 &&
+    if (d.node_pairs >= kTraversalNodePairs && gap < near_gap && t + advance < 1 &&
         result.iterations < request.max_iterations) {
       // A query this costly: fine meshes near each other. Every pair advancing on its own costs
       // less than more whole-mesh queries. A traversal that runs out of pairs (a long graze)
