@@ -10,43 +10,57 @@
 // hierarchy's branch-and-bound, certified lower bounds) gives a lower bound L of the distance;
 // no point of either surface moves relative to the other faster than
 //   mu = |(T_a1 - T_a0) - (T_b1 - T_b0)| + theta_a r_a + theta_b r_b,
-// theta the rotation angle of a motion, r the radius about the model origin of the model's
-// hierarchy root sphere (|p| <= |centre| + radius for every vertex p), so the surfaces stay more
-// than min_separation apart until t + (L - min_separation) / mu and the search advances there.
-// A rounding allowance (1e-12 of the scene's size: coordinates, radii, translations) is taken off
-// every L, covering the rounding of the interpolated poses, of the distance and of t.
+// theta the rotation angle of a motion and r the largest distance of the model's points from its
+// turning axis: the slerp turns the model about one axis k fixed in the model frame through its
+// origin, so a point p runs on a circle of radius rho(p) = |k x p| at theta rho(p) per unit time
+// (a roller or wheel spinning about its own axis moves its rim, not its far ends). r is bounded
+// by the hierarchy's root sphere (rho(centre) + radius) or its root box's corners, whichever is
+// less; the computed axis's rounding is allowed for, and a turn under 2e-9 rad uses |p|. So the
+// surfaces stay more than min_separation apart until t + (L - min_separation) / mu and the search
+// advances there. A rounding allowance (1e-12 of the scene's size: coordinates, radii,
+// translations) is taken off every L, covering the rounding of the interpolated poses, of the
+// distance and of t.
 // Interval proofs first: an earliest-first bisection of [0, 1] (pieces down to 1/16) tests each
 // piece with one bounded boolean traversal at its midpoint pose, where a node pair is apart over
-// the piece if its spheres or boxes at the midpoint are farther apart than min_separation plus the
-// pair's own motion bound over half the piece (|relative translation| + theta (|centre| + radius)
-// per node), or its sphere centres' chords between the piece's end poses stay farther apart than
-// the radii plus the chords' bend (|centre| theta^2 w^2 / 8, w the width), or its boxes, each kept
-// at its midpoint orientation and swept along that chord, are separated on a face axis with the
-// margin grown by theta (w / 2) radius + the bend; triangle pairs likewise (exact distance at the
-// midpoint, or balls about the centroids along their chords). A motion whose pieces are all apart
-// is a miss; otherwise the advancement starts at the first piece not proven apart.
+// the piece if its spheres at the midpoint are farther apart than min_separation plus their
+// centres' motion bound over half the piece (|relative translation| + theta rho(centre) per node:
+// a ball turns into itself about its centre), or its boxes are, with each box's own turn about
+// its centre added (theta times the node's radius, or its half extents times the sines of their
+// angles to the axis where less: a long node along the axis hardly turns), or its sphere centres'
+// chords between the piece's end poses stay farther apart than the radii plus the chords' bend
+// (rho(centre) theta^2 w^2 / 8, w the width), or its boxes, each kept at its midpoint orientation
+// and swept along that chord, are separated on a face axis with that margin; triangle pairs
+// likewise (the gaps along both normals or the exact distance at the midpoint, or balls about the
+// centroids along their chords). A motion whose pieces are all apart is a miss; otherwise the
+// advancement starts at the first piece not proven apart.
 // Each distance query of the advancement starts from the previous query's closest triangle pair,
 // evaluated exactly at the new pose (an upper bound that prunes from the first node pair; the
 // lower bound it returns is certified as before).
 // Fine meshes near contact (a query that examined 400 node pairs or more, with a gap below four
 // typical triangle sizes, root radius * sqrt(4 pi / triangles)): the advancement hands over to one
 // traversal of both hierarchies in which every node pair and every triangle pair advances in time
-// on its own, earliest first. A node pair advances while its spheres are apart, by the gap over
-// its centres' closing rate (a ball turns into itself about its centre), or while its boxes are
-// apart on a separating axis, by that gap over the pair's own motion bound; then its children are
-// examined from the time it reached. A triangle pair advances on its planes and centroid axis,
-// then on its exact distance over its own closing rate: its triangles' rotation term (theta times
-// their vertices' distance from the model origin) minus their approach speed along the
-// closest-point direction (with rotations held fixed, the distance of two translating triangles
-// is convex in time, so it stays above that tangent). Chord tests let a pair jump 8 such steps at
-// once: in A's frame a point of B runs within w^2 / 8 (theta_a^2 |q| + 2 theta_a (theta_b |y| +
-// |v|) + theta_b^2 |y|) of its chord over a width w (|q| its distance from A's origin, y its
-// position in B's frame), so spheres whose centre chord stays apart by more than that, and
-// triangles whose B corners stay below a separating plane at both ends by more than that,
-// stay apart over the whole width. The first triangle pair found within min_separation +
-// allowance + mu * time_tolerance / 2 gives toi: every other pair is proven apart until a later
-// time. A traversal that examines 20 000 pairs (a later one of the same sweep twice as many as the
-// last) hands back the time it reached, and the whole-mesh advancement goes on from there.
+// on its own, earliest first. A node pair advances while its spheres are apart (its centres'
+// step, below), or while its boxes are apart on a separating axis, by that gap over the pair's
+// own motion bound; then its children are examined from the time it reached. A triangle pair
+// advances on its planes and centroid axis, then on its exact distance. Each step from time s
+// keeps the pair's gap along one direction n positive (n: the closest-point direction, or the
+// axis used; a gap along a fixed direction is a lower bound of the distance), the longer of two
+// proofs: the tangent (rotations held at s, the pair translates and its gap along n changes at
+// n . v; each point strays from that path by at most theta rho(p) per unit time) and the
+// directional one (a point of A moves along n by the turn at theta |p . (u x k)|, u = n in A's
+// turning frame, a lever that grows by at most theta rho(p) per unit time as u turns; likewise
+// for B: over a time tau the gap falls by at most tau r1 + tau^2 r2 / 2 with r1 = -n . v + theta_a
+// lever_a + theta_b lever_b and r2 = theta_a^2 rho_a + theta_b^2 rho_b, largest over each set's
+// corners). Chord tests let a pair jump 8 such steps at once: in A's frame a point of B runs
+// within w^2 / 8 (theta_a^2 qa + 2 theta_a (theta_b yb + |v|) + theta_b^2 yb) of its chord over
+// a width w (qa the distance of its position in A's frame from A's axis, grown by w times its
+// speed; yb that of its position in B's frame from B's axis), so spheres whose centre chord stays
+// apart by more than that, and triangles whose B corners stay below a separating plane at both ends
+// by more than that, stay apart over the whole width. The first triangle pair found within
+// min_separation + allowance + mu * time_tolerance / 2 gives toi: every other pair is proven apart
+// until a later time. A traversal that examines 20 000 pairs (a later one of the same sweep twice
+// as many as the last) hands back the time it reached, and the whole-mesh advancement goes on from
+// there.
 //
 // Guarantees
 // - Conservative: if the surfaces come within min_separation at some t in [0, 1], the result is a

@@ -9,18 +9,76 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <span>
 #include <vector>
 
 #include "distance/node_bound.hpp"  // obb_gap
 
 namespace antcd::ccd {
 
-Scalar pair_rate(Scalar d, const Vec3& pa, const Vec3& pb, const Vec3& v, Scalar turning,
-                 Scalar cap, Scalar allowance) {
-  if (!(d > 4 * allowance)) return cap;
-  const Vec3 n = (pa - pb) / d;
-  const Scalar closing = -n.dot(v) + v.norm() * (2 * allowance / d + tolerance::kArithmetic);
-  return std::min(cap, turning + closing);
+namespace {
+
+/// One set of points (model frame) against a direction u (the same frame) for pair_step: the
+/// largest |p . (u x k)| (k the spin's axis, allowing for its error; |p| where no axis is known)
+/// and the largest reach.
+struct Lever {
+  Scalar lever = 0;
+  Scalar reach = 0;
+};
+Lever lever_of(const Spin& s, const Vec3& u, std::span<const Vec3> points) {
+  Lever l;
+  if (!s.about_axis) {
+    for (const Vec3& p : points) l.reach = std::max(l.reach, p.norm());
+    l.lever = l.reach;
+    return l;
+  }
+  const Vec3 e = u.cross(s.axis);
+  for (const Vec3& p : points) {
+    const Scalar off = s.axis_error * p.cwiseAbs().sum();  // |p| <= |p|_1
+    l.lever = std::max(l.lever, std::abs(p.dot(e)) + off);
+    l.reach = std::max(l.reach, s.axis.cross(p).norm() + off);
+  }
+  return l;
+}
+
+/// pair_step from the two sets' levers.
+Scalar step_of(Scalar gap, const Vec3& n, Scalar n_error, const Vec3& v, const RigidPair& m,
+               const Lever& la, const Lever& lb) {
+  const Spin& sa = m.spin_a;
+  const Spin& sb = m.spin_b;
+  const Scalar turning = sa.theta * la.reach + sb.theta * lb.reach;
+  const Scalar cap = tolerance::widened(m.speed + turning);
+  // Nearer than a few allowances the direction is not known.
+  if (!(n_error < 0.5)) return gap / cap;
+  const Scalar err = n_error + tolerance::kArithmetic;
+  const Scalar along = -n.dot(v) + v.norm() * err;
+  const Scalar rate = std::min(cap, tolerance::widened(turning + along));
+  const Scalar tangent = rate > 0 ? gap / rate : std::numeric_limits<Scalar>::infinity();
+  // Without an axis the lever is the reach: the directional step is never the longer.
+  if (!sa.about_axis && !sb.about_axis) return tangent;
+  const Scalar r1 =
+      along + sa.theta * (la.lever + la.reach * err) + sb.theta * (lb.lever + lb.reach * err);
+  const Scalar r1w = r1 + std::abs(r1) * tolerance::kArithmetic;  // rounded up, either sign
+  const Scalar r2 =
+      tolerance::widened(sa.theta * sa.theta * la.reach + sb.theta * sb.theta * lb.reach);
+  Scalar directional = std::numeric_limits<Scalar>::infinity();
+  if (r2 > 0) {
+    // The positive root of r2 / 2 tau^2 + r1 tau - gap, in the form without cancellation.
+    const Scalar root = std::sqrt(r1w * r1w + 2 * r2 * gap);
+    directional = r1w > 0 ? 2 * gap / (r1w + root) : (root - r1w) / r2;
+  } else if (r1w > 0) {
+    directional = gap / r1w;
+  }
+  return std::max(tangent, directional * (1 - tolerance::kArithmetic));
+}
+
+}  // namespace
+
+Scalar pair_step(Scalar gap, const Vec3& n, Scalar n_error, const Vec3& v, const Mat3& b_to_a,
+                 const RigidPair& m, std::span<const Vec3> a_points,
+                 std::span<const Vec3> b_points) {
+  return step_of(gap, n, n_error, v, m, lever_of(m.spin_a, n, a_points),
+                 lever_of(m.spin_b, b_to_a.transpose() * n, b_points));
 }
 
 namespace {
@@ -161,18 +219,19 @@ class Search {
     return {(to_a * qb).toRotationMatrix(), to_a * (tb - ta), to_a * v_};
   }
 
-  /// How far a point of B at y (B's model frame; at |p| from A's origin at time t) may stray, in
-  /// A's frame, from the chord between its positions at t and t + w: w^2 / 8 times a bound of the
-  /// second derivative of its path p(s) = R_a(s)^T q(s), q(s) = R_b(s) y + T_b(s) - T_a(s):
-  /// |q'| <= theta_b |y| + speed, |q''| <= theta_b^2 |y|, turning at constant angular velocity
-  /// gives |p''| <= theta_a^2 |q| + 2 theta_a |q'| + |q''|, with |q| <= |p| + w |q'| over the
-  /// interval.
+  /// How far a point of B may stray, in A's frame, from the chord between its positions at t and
+  /// t + w, given y = reach_b of the point (B's model frame) and p = reach_a of its position in A's
+  /// frame at t: w^2 / 8 times a bound of the second derivative of its path p(s) = R_a(s)^T q(s),
+  /// q(s) = R_b(s) y + T_b(s) - T_a(s): |q'| <= theta_b y + speed, |q''| <= theta_b^2 y, and A's
+  /// turn at constant angular velocity about its axis k gives |p''| <= theta_a^2 |k x p(s)| +
+  /// 2 theta_a |q'| + |q''|, with |k x p(s)| <= p + w |q'| over the interval (ccd::Spin).
   [[nodiscard]] Scalar bend(Scalar w, Scalar y, Scalar p) const {
-    const Scalar drift = m_.theta_b * y + m_.speed;
+    const Scalar theta_a = m_.spin_a.theta;
+    const Scalar theta_b = m_.spin_b.theta;
+    const Scalar drift = theta_b * y + m_.speed;
     const Scalar q = p + w * drift;
     return tolerance::widened(
-        w * w / 8 *
-        (m_.theta_a * m_.theta_a * q + 2 * m_.theta_a * drift + m_.theta_b * m_.theta_b * y));
+        w * w / 8 * (theta_a * theta_a * q + 2 * theta_a * drift + theta_b * theta_b * y));
   }
 
   /// The chord step: how far from e.t a pair may jump when the conservative step is `step`
@@ -189,17 +248,19 @@ class Search {
     const Vec3 centre_b = f.rot * nb.center + f.trans;
     const Scalar centres = (centre_b - na.center).norm();
     const Scalar sphere = centres - na.radius - nb.radius - node_margin_;
-    const Scalar ca = na.center.norm();
-    const Scalar cb = nb.center.norm();
+    const Scalar ca = m_.spin_a.reach(na.center);
+    const Scalar cb = m_.spin_b.reach(nb.center);
     Scalar step = 0;
     if (sphere > 0) {
       // A ball turns into itself about its centre: only the centres' paths count, and the
-      // distance of the centres falls no faster than pair_rate says of two points.
-      const Scalar turning = tolerance::widened(m_.theta_a * ca + m_.theta_b * cb);
-      const Scalar rate = pair_rate(centres, na.center, centre_b, f.v, turning,
-                                    tolerance::widened(m_.speed + turning), allowance_);
-      if (!(rate > 0)) return;  // the spheres never come nearer
-      step = sphere / rate;
+      // spheres stay apart while the centres' gap along their direction at e.t does.
+      const Vec3 n = (na.center - centre_b) / centres;
+      const Lever la =
+          m_.spin_a.about_axis ? lever_of(m_.spin_a, n, {&na.center, 1}) : Lever{ca, ca};
+      const Lever lb = m_.spin_b.about_axis
+                           ? lever_of(m_.spin_b, f.rot.transpose() * n, {&nb.center, 1})
+                           : Lever{cb, cb};
+      step = step_of(sphere, n, 2 * allowance_ / centres, f.v, m_, la, lb);
       if (!(e.t + step * kStepShrink < 1)) return;  // apart until the end of the motion
       // The chord test: in A's frame, B's centre runs within bend() of the chord between its
       // positions at e.t and e.t + w, so the spheres stay apart over that interval when the
@@ -211,7 +272,7 @@ class Search {
         const Scalar len2 = dq.squaredNorm();
         const Scalar u = len2 > 0 ? std::clamp(-q0.dot(dq) / len2, Scalar{0}, Scalar{1}) : 0;
         if ((q0 + u * dq).norm() - na.radius - nb.radius - node_margin_ -
-                bend(w, cb, centre_b.norm()) >
+                bend(w, cb, m_.spin_a.reach(centre_b)) >
             0) {
           return advance(e, w);
         }
@@ -222,8 +283,9 @@ class Search {
     const Scalar box =
         detail::obb_gap(na.obb(), f.rot * nb.axes(), centre_b, nb.half_extents(), 0) - node_margin_;
     if (box > 0) {
-      const Scalar rate = tolerance::widened(m_.speed + m_.theta_a * (ca + na.radius) +
-                                             m_.theta_b * (cb + nb.radius));
+      const Scalar rate =
+          tolerance::widened(m_.speed + m_.spin_a.theta * (ca + m_.spin_a.node_reach(na)) +
+                             m_.spin_b.theta * (cb + m_.spin_b.node_reach(nb)));
       step = std::max(step, box / rate);
     }
     if (step > 0 && e.steps < kNodeSteps) return advance(e, step);
@@ -252,14 +314,9 @@ class Search {
     const auto y = corners_b_.triangle(e.b);
     const std::array<Vec3, 3> yb{f.rot * y[0] + f.trans, f.rot * y[1] + f.trans,
                                  f.rot * y[2] + f.trans};
-    const Scalar rho_a = std::max({x[0].norm(), x[1].norm(), x[2].norm()});
-    const Scalar rho_b = std::max({y[0].norm(), y[1].norm(), y[2].norm()});
-    const Scalar turning = tolerance::widened(m_.theta_a * rho_a + m_.theta_b * rho_b);
-    const Scalar cap = tolerance::widened(m_.speed + turning);
     if (e.steps < kCheapSteps) {
       // Cheap lower bounds first (the exact distance costs 15 primitive distances): the gaps
-      // along the normals of both triangles and the axis through their centroids, at the pair's
-      // full rate.
+      // along the normals of both triangles and the axis through their centroids.
       const Vec3 na = (x[1] - x[0]).cross(x[2] - x[0]).normalized();
       const Vec3 nb = (yb[1] - yb[0]).cross(yb[2] - yb[0]).normalized();
       const Vec3 to_b = ((yb[0] + yb[1] + yb[2]) - (x[0] + x[1] + x[2])).normalized();
@@ -272,7 +329,7 @@ class Search {
         }
       }
       if (best - triangle_margin_ > 0) {
-        const Scalar step = (best - triangle_margin_) / cap;
+        const Scalar step = pair_step(best - triangle_margin_, axis, 0, f.v, f.rot, m_, x, y);
         const Scalar w = chord_width(e.t, step);
         advance(e, e.steps > 0 && w > step && chord_apart(axis, x, y, yb, e.t, w) ? w : step);
         return false;
@@ -292,23 +349,14 @@ class Search {
           (d.distance == 0 && geometry::triangles_intersect(x[0], x[1], x[2], yb[0], yb[1], yb[2]));
       return true;
     }
-    const Scalar rate = pair_rate(d.distance, d.pa, d.pb, f.v, turning, cap, allowance_);
-    if (!(rate > 0)) return false;  // its distance never falls
-    const Scalar step = gap / rate;
+    const Scalar step = pair_step(gap, (d.pa - d.pb) / d.distance, 2 * allowance_ / d.distance, f.v,
+                                  f.rot, m_, x, y);
     // The chord test along the closest-point direction.
     const Scalar w = chord_width(e.t, step);
     const bool chord = w > step && d.distance > 4 * allowance_ &&
                        chord_apart((d.pa - d.pb) / d.distance, x, y, yb, e.t, w);
     advance(e, chord ? w : step);
     return false;
-  }
-
-  /// The gap between A's triangle x and the points y along the unit axis n (A on its high side):
-  /// a lower bound of their distance when positive.
-  static Scalar axis_gap(const Vec3& n, const std::array<Vec3, 3>& x,
-                         const std::array<Vec3, 3>& y) {
-    return std::min({n.dot(x[0]), n.dot(x[1]), n.dot(x[2])}) -
-           std::max({n.dot(y[0]), n.dot(y[1]), n.dot(y[2])});
   }
 
   /// The chord test of a triangle pair over [t, t + w] along the unit axis n: A's triangle x
@@ -322,7 +370,9 @@ class Search {
     const std::array<Vec3, 3> y1{g.rot * y[0] + g.trans, g.rot * y[1] + g.trans,
                                  g.rot * y[2] + g.trans};
     Scalar strayed = 0;
-    for (int k = 0; k < 3; ++k) strayed = std::max(strayed, bend(w, y[k].norm(), yb[k].norm()));
+    for (int k = 0; k < 3; ++k) {
+      strayed = std::max(strayed, bend(w, m_.spin_b.reach(y[k]), m_.spin_a.reach(yb[k])));
+    }
     return std::min(axis_gap(n, x, yb), axis_gap(n, x, y1)) - strayed - triangle_margin_ > 0;
   }
 

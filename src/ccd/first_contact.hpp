@@ -9,6 +9,7 @@
 #include <antcd/math.hpp>
 
 #include <cstdint>
+#include <span>
 
 #include "ccd/swept_proximity.hpp"
 
@@ -45,11 +46,11 @@ struct FirstContactLimits {
 /// Searches [t0, 1] for the earliest time at which a triangle pair of A and B comes within
 /// `separation` (nothing touches before t0 is the caller's to know).
 ///
-/// A pair of nodes, or of triangles, at distance d (lower bound) at time t stays apart until
-/// t + (d - separation) / rate, where rate bounds how fast its distance may fall: for the node
-/// spheres |relative translation| + theta_a |centre_a| + theta_b |centre_b| (a ball turns into
-/// itself about its centre, so only the centres' paths count), for their boxes the same with each
-/// |centre| + radius, for a triangle pair pair_rate() below. Pairs are examined earliest first
+/// A pair of nodes, or of triangles, apart at time t stays apart for a step: node spheres and
+/// triangle pairs by pair_step() below (for spheres the centres as the point sets: a ball turns
+/// into itself about its centre, so only the centres' paths count), node boxes by their gap over
+/// |relative translation| + theta_a (reach_a(centre_a) + node_reach_a) + theta_b (...) (reach: the
+/// distance from the model's turning axis, ccd::Spin). Pairs are examined earliest first
 /// (a heap); each advances from its parent's time in steps of that size until it may touch (then
 /// its children are examined from there) or passes 1 (then it is dropped). Chord tests
 /// (first_contact.cpp, nodes() and triangles()) let a pair jump several steps at once where the
@@ -64,17 +65,29 @@ ANTCD_API FirstContact first_contact(const RigidPair& m, Scalar t0, Scalar separ
                                      Scalar allowance, Scalar volume, Scalar stop_gap,
                                      const FirstContactLimits& limits = {});
 
-/// How fast the distance `d` of two triangles may fall from time s on: d at s (closest points pa
-/// of A's triangle and pb of B's, both in one frame), `v` the relative translation velocity of A
-/// against B in that frame, `turning` >= theta_a rho_a + theta_b rho_b (rho the triangle's largest
-/// vertex norm in its model's frame), `cap` a rate that always holds. With the rotations held at
-/// their poses at s, the pair only translates, along a line: the distance of two convex sets whose
-/// offset moves along a line is convex in time, so it stays above its tangent at s, of slope
-/// n . v (n the unit vector from pb to pa). Each point p of A strays from its held-rotation path by
-/// at most theta_a |p| per unit time (the chord of its arc about the model origin), and likewise
-/// for B: the distance falls by at most turning - n . v per unit time (negative: it never falls).
-/// n's direction is allowed an error of 2 allowance / d; pairs nearer than 4 allowance get `cap`.
-ANTCD_API Scalar pair_rate(Scalar d, const Vec3& pa, const Vec3& pb, const Vec3& v, Scalar turning,
-                           Scalar cap, Scalar allowance);
+/// How long a pair of convex sets (two triangles, or two balls' centres) stays apart from time s
+/// on: `gap` > 0 the amount by which their separation along the unit direction n (A's frame at s,
+/// pointing from B towards A; `n_error` >= the error of its computed direction) exceeds what
+/// must stay between them, `v` the relative translation velocity of A against B in A's frame,
+/// `b_to_a` the rotation of B's model frame into A's at s, `a_points` / `b_points` the sets'
+/// corners (or centres) in their own model frames. The result (>= 0, possibly infinite: never
+/// nearer) is the larger of two steps, each a proof:
+/// - tangent: with the rotations held at their poses at s the pair only translates, so its gap
+///   along n changes at n . v exactly; each point p strays from its held-rotation path by at most
+///   theta reach(p) per unit time (the chord of its arc about its model's axis, ccd::Spin), so the
+///   gap falls at most at rate = min(cap, -n . v + theta_a rho_a + theta_b rho_b), rho the largest
+///   reach of the set, cap = speed + the same turning terms; step gap / rate;
+/// - directional: a point p of A turning about A's axis k moves along n at theta |p . (u x k)|
+///   with u = n in A's turning frame, and u turns about k, so over a time tau that lever grows by
+///   at most theta tau reach(p); likewise for B: the gap falls by at most tau r1 + tau^2 r2 / 2,
+///   r1 = -n . v + theta_a lever_a + theta_b lever_b, r2 = theta_a^2 rho_a + theta_b^2 rho_b
+///   (lever: the largest |p . (u x k)| over the set): the step is that polynomial's root. A
+///   roller or wheel spinning about its own axis moves its contact point along the normal
+///   hardly at all, which the tangent step cannot see.
+/// The gap along a fixed direction is a lower bound of the distance of two convex sets, so the
+/// pair stays apart while it stays positive. n_error enters every term that n multiplies.
+ANTCD_API Scalar pair_step(Scalar gap, const Vec3& n, Scalar n_error, const Vec3& v,
+                           const Mat3& b_to_a, const RigidPair& m, std::span<const Vec3> a_points,
+                           std::span<const Vec3> b_points);
 
 }  // namespace antcd::ccd

@@ -160,7 +160,7 @@ SweepResult sweep(const Model& a, const Transform& pose_a0, const Transform& pos
   const Scalar ra = ccd::origin_radius(a);
   const Scalar rb = ccd::origin_radius(b);
   const ccd::RigidPair motion = ccd::rigid_pair(a, pose_a0, pose_a1, b, pose_b0, pose_b1);
-  const Scalar mu = tolerance::widened(motion.speed + motion.theta_a * ra + motion.theta_b * rb);
+  const Scalar mu = ccd::motion_bound(motion);
   const Scalar scale = ra + rb + ms + pose_a0.translation.norm() + pose_a1.translation.norm() +
                        pose_b0.translation.norm() + pose_b1.translation.norm();
   // The poses, the distance and the time steps are each within a few 1e-16 of the scene's size

@@ -47,23 +47,26 @@ bool interval_apart(const RigidPair& m, Scalar t0, Scalar t1, Scalar separation,
   const detail::PairFrame frame(m.a, pa, m.b, pb, separation);
   const Mat3& rot = frame.b_to_a.rotation;
   const Vec3& trans = frame.b_to_a.translation;
-  // Motion of a point at |p| from A's origin relative to one at |q| from B's over the interval.
+  // Motion of a point at reach_a from A's axis relative to one at reach_b from B's over the
+  // interval (ccd::Spin).
+  const Spin& spin_a = m.spin_a;
+  const Spin& spin_b = m.spin_b;
   const Scalar hs = h * m.speed;
-  const Scalar ha = h * m.theta_a;
-  const Scalar hb = h * m.theta_b;
+  const Scalar ha = h * spin_a.theta;
+  const Scalar hb = h * spin_b.theta;
   const auto motion = [&](Scalar reach_a, Scalar reach_b) {
     return tolerance::widened(hs + ha * reach_a + hb * reach_b);
   };
   // The ends of the interval, for the swept sphere test: a node's sphere turns into itself about
-  // its centre, whose path strays from its chord by at most |c| theta^2 w^2 / 8 (an arc of radius
-  // <= |c| at angular speed theta: second derivative <= |c| theta^2).
+  // its centre, whose path strays from its chord by at most reach(c) theta^2 w^2 / 8 (an arc of
+  // radius reach(c) at angular speed theta: second derivative reach(c) theta^2).
   const Transform pa0 = interpolate_pose(m.a0, m.a1, t0);
   const Transform pa1 = interpolate_pose(m.a0, m.a1, t1);
   const Transform pb0 = interpolate_pose(m.b0, m.b1, t0);
   const Transform pb1 = interpolate_pose(m.b0, m.b1, t1);
   const Scalar w2 = tolerance::widened((t1 - t0) * (t1 - t0) / 8);
-  const Scalar bend_a = w2 * m.theta_a * m.theta_a;
-  const Scalar bend_b = w2 * m.theta_b * m.theta_b;
+  const Scalar bend_a = w2 * spin_a.theta * spin_a.theta;
+  const Scalar bend_b = w2 * spin_b.theta * spin_b.theta;
   const auto nodes_a = m.a.nodes();
   const auto nodes_b = m.b.nodes();
   const LeafCorners corners_a = m.a.leaf_corners();
@@ -84,9 +87,11 @@ bool interval_apart(const RigidPair& m, Scalar t0, Scalar t1, Scalar separation,
     const BvhNode& nb = nodes_b[ib];
     const Scalar ra = na.radius;
     const Scalar rb = nb.radius;
-    const Scalar margin = frame.margin + motion(na.center.norm() + ra, nb.center.norm() + rb);
+    const Scalar reach_ca = spin_a.reach(na.center);
+    const Scalar reach_cb = spin_b.reach(nb.center);
+    // A ball turns into itself about its centre: only the centres' motion counts for the spheres.
     const Vec3 cb = rot * nb.center + trans;
-    const Scalar rsum = ra + rb + margin;
+    const Scalar rsum = ra + rb + frame.margin + motion(reach_ca, reach_cb);
     const Scalar centres = (cb - na.center).norm();
     if (centres > rsum) {
       least = std::min(least, centres - rsum);
@@ -96,7 +101,7 @@ bool interval_apart(const RigidPair& m, Scalar t0, Scalar t1, Scalar separation,
     // q0 + dq up to the bends.
     const Vec3 q0 = pb0.apply(nb.center) - pa0.apply(na.center);
     const Vec3 dq = pb1.apply(nb.center) - pa1.apply(na.center) - q0;
-    const Scalar bends = bend_a * na.center.norm() + bend_b * nb.center.norm();
+    const Scalar bends = bend_a * reach_ca + bend_b * reach_cb;
     {
       const Scalar gap = segment_gap(q0, dq);
       const Scalar need = tolerance::widened(ra + rb + frame.margin + bends);
@@ -105,6 +110,10 @@ bool interval_apart(const RigidPair& m, Scalar t0, Scalar t1, Scalar separation,
         continue;
       }
     }
+    // A box also turns about its centre (Spin::node_reach).
+    const Scalar turn_a = spin_a.node_reach(na);
+    const Scalar turn_b = spin_b.node_reach(nb);
+    const Scalar margin = frame.margin + motion(reach_ca + turn_a, reach_cb + turn_b);
     const detail::PosedAxes axes_b(nb, rot);
     const Vec3 a2 = na.axis0.cross(na.axis1);
     if (detail::obb_disjoint<detail::BoxTest::full>(na, a2, nb, axes_b, cb, margin)) {
@@ -113,13 +122,14 @@ bool interval_apart(const RigidPair& m, Scalar t0, Scalar t1, Scalar separation,
     }
     {
       // Swept boxes: each box keeps its orientation at tm and its centre runs along the chord;
-      // a node's points stray from that by at most theta h r (turning about the centre) plus the
+      // a node's points stray from that by at most theta h node_reach (turning about the centre; at
+      // most the radius) plus the
       // centre's bend. Face axes of both boxes, B's extents widened by the sweep's projection.
       const Mat3 to_a = pa.rotation.transpose();
       const Vec3 mid = to_a * (q0 + dq / 2);
       const Vec3 half_sweep = to_a * (dq / 2);
-      const Scalar m2 =
-          tolerance::widened(frame.margin + bends + h * (m.theta_a * ra + m.theta_b * rb));
+      const Scalar m2 = tolerance::widened(frame.margin + bends +
+                                           h * (spin_a.theta * turn_a + spin_b.theta * turn_b));
       Mat3 r;
       r << na.axis0.dot(axes_b.b0), na.axis0.dot(axes_b.b1), na.axis0.dot(axes_b.b2),  //
           na.axis1.dot(axes_b.b0), na.axis1.dot(axes_b.b1), na.axis1.dot(axes_b.b2),   //
@@ -142,8 +152,10 @@ bool interval_apart(const RigidPair& m, Scalar t0, Scalar t1, Scalar separation,
     if (na.is_leaf() && nb.is_leaf()) {
       for (std::uint32_t i = 0; i < na.count && apart; ++i) {
         const auto ta = corners_a.triangle(std::size_t{na.first_or_right} + i);
-        const Scalar reach_a = std::max({ta[0].norm(), ta[1].norm(), ta[2].norm()});
+        const Scalar reach_a =
+            std::max({spin_a.reach(ta[0]), spin_a.reach(ta[1]), spin_a.reach(ta[2])});
         const Ball sa = ball(ta);
+        const Vec3 na_unit = (ta[1] - ta[0]).cross(ta[2] - ta[0]).normalized();
         const Vec3 sa0 = pa0.apply(sa.centre);
         const Vec3 sa1 = pa1.apply(sa.centre);
         for (std::uint32_t j = 0; j < nb.count; ++j) {
@@ -152,19 +164,30 @@ bool interval_apart(const RigidPair& m, Scalar t0, Scalar t1, Scalar separation,
           {
             const Vec3 g0 = pb0.apply(sb.centre) - sa0;
             const Scalar gap = segment_gap(g0, pb1.apply(sb.centre) - sa1 - g0);
-            const Scalar need =
-                tolerance::widened(sa.radius + sb.radius + frame.margin +
-                                   bend_a * sa.centre.norm() + bend_b * sb.centre.norm());
+            const Scalar need = tolerance::widened(sa.radius + sb.radius + frame.margin +
+                                                   bend_a * spin_a.reach(sa.centre) +
+                                                   bend_b * spin_b.reach(sb.centre));
             if (gap > need) {
               least = std::min(least, gap - need);
               continue;
             }
           }
-          const Scalar reach_b = std::max({tb[0].norm(), tb[1].norm(), tb[2].norm()});
-          const Scalar d = geometry::triangle_distance(ta[0], ta[1], ta[2], rot * tb[0] + trans,
-                                                       rot * tb[1] + trans, rot * tb[2] + trans)
-                               .distance;
+          const Scalar reach_b =
+              std::max({spin_b.reach(tb[0]), spin_b.reach(tb[1]), spin_b.reach(tb[2])});
+          const std::array<Vec3, 3> yb{rot * tb[0] + trans, rot * tb[1] + trans,
+                                       rot * tb[2] + trans};
           const Scalar need = frame.margin + motion(reach_a, reach_b);
+          // The gaps along the two normals first: parallel faces (a spinning disc beside a
+          // plate) are proven apart without the exact distance.
+          const Vec3 nb = (yb[1] - yb[0]).cross(yb[2] - yb[0]).normalized();
+          if (const Scalar g = std::max({axis_gap(na_unit, ta, yb), axis_gap(na_unit, yb, ta),
+                                         axis_gap(nb, yb, ta), axis_gap(nb, ta, yb)});
+              g > need) {
+            least = std::min(least, g - need);
+            continue;
+          }
+          const Scalar d =
+              geometry::triangle_distance(ta[0], ta[1], ta[2], yb[0], yb[1], yb[2]).distance;
           if (!(d > need)) {
             apart = false;
             break;

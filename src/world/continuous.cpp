@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 #include <utility>
 #include <vector>
@@ -58,8 +59,9 @@ std::vector<std::size_t> motion_index(const World::Impl& w, std::span<const Obje
 /// A box holding the object at every t of its motion from `from` to `to` (see world.hpp): the
 /// box of its boxes at both poses (each holds its end point of every model point's path), grown
 /// by the most a slerped point strays from the chord's point at the same t (r theta^2 / 8: the
-/// path minus the chord vanishes at both ends and has second derivative at most r theta^2) and a
-/// rounding allowance for the interpolated poses.
+/// path minus the chord vanishes at both ends and has second derivative at most r theta^2, r the
+/// point's distance from the turning axis, ccd::Spin) and a rounding allowance for the
+/// interpolated poses.
 Aabb swept_box(const Model& model, const Transform& from, const Aabb& box_from,
                const Transform& to) {
   Scalar tolerance = 0;
@@ -67,11 +69,13 @@ Aabb swept_box(const Model& model, const Transform& from, const Aabb& box_from,
   Aabb box;
   box.min = box_from.min.cwiseMin(box_to.min);
   box.max = box_from.max.cwiseMax(box_to.max);
-  const Scalar r = ccd::origin_radius(model);
-  const Scalar theta = ccd::rotation_angle(from.rotation, to.rotation);
-  const Scalar rounding =
-      tolerance::kVolume * (r + from.translation.norm() + to.translation.norm());
-  return grown(box, tolerance::widened(r * theta * theta / 8) + rounding);
+  // Only the model's own bound matters here (no pair speed to weigh the turn against).
+  const ccd::Spin spin =
+      ccd::model_spin(model, from.rotation, to.rotation, std::numeric_limits<Scalar>::infinity());
+  const Scalar r = ccd::model_reach(model, spin);
+  const Scalar rounding = tolerance::kVolume * (ccd::origin_radius(model) +
+                                                from.translation.norm() + to.translation.norm());
+  return grown(box, tolerance::widened(r * spin.theta * spin.theta / 8) + rounding);
 }
 
 /// The admitted pairs (i < j, slots, sorted) whose swept boxes come within min_separation.

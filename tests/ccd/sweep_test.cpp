@@ -240,7 +240,7 @@ TEST(Sweep, FineMeshesNeverTouchBeforeTheToi) {
 
 TEST(Sweep, FineMeshesSpinningInPlaceNeverTouchBeforeTheToi) {
   // The fine torus turning about an axis in its plane, without translation, its rim sweeping into
-  // a fine sphere: the traversal's per-pair rates (ccd::pair_rate, src/ccd/first_contact.cpp)
+  // a fine sphere: the traversal's per-pair steps (ccd::pair_step, src/ccd/first_contact.cpp)
   // then rest on the turning term alone.
   const Model torus(make_torus(1.0, 0.3, 100, 50), {}, "torus");
   const Model sphere(make_sphere(0.3, 72, 36), {}, "sphere");
