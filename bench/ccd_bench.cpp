@@ -10,19 +10,25 @@
 //
 // Mesh sweeps (sweep/<pair>, collide_end/<pair>, fcl_ca/<pair>): 16 seeded motions per pair, A
 // passing by or through B (which turns a little) while turning up to 2.5 rad, half of them
-// touching. sweep runs antcd::sweep on every motion; collide_end the boolean collide() of the same
-// pair at the end poses (what a discrete check per frame costs; here the end poses are apart, so
-// it is a root-level rejection); collide_at_contact the boolean collide() at each touching
-// motion's first sub-stepped contact (a discrete check where it works); fcl_ca FCL's
-// continuousCollide (conservative advancement, RSS, CCDM_LINEAR interpolation = the same motion:
-// linear translation, constant angular velocity about the model origin, toc_err 1e-6, 1000
-// iterations). Before timing every motion's first contact is found by 1000-step dense sub-stepping
-// with exact collide(); the counters of fcl_ca count FCL's misses (no contact reported where
-// sub-stepping finds one) and late answers (time of contact after the sub-stepped one), those of
-// sweep the same for antcd (both must be 0); sweep's iterations counts its distance queries and
-// endgame windows (SweepResult::iterations) per motion.
+// touching. sweep runs antcd::sweep on every motion, sweep_touching on the touching ones;
+// collide_end the boolean collide() of the same pair at the end poses (here the end poses are
+// apart, so it is a root-level rejection); collide_at_contact the boolean collide() at each
+// touching motion's first sub-stepped contact (a discrete check where it works: it stops at the
+// first overlapping triangle pair); collide_near_contact the boolean collide() just before that
+// contact, the surfaces 1e-3 of A's radius apart (a discrete check that must prove them apart, as
+// a sweep must before its toi); frame_sweep / frame_collide the sweep of a frame-sized piece (a
+// twentieth) of each touching motion ending just before its contact (/0) or at it (/1), and the
+// boolean collide() at that frame's end pose (the per-frame discrete check of the same frame);
+// fcl_ca FCL's continuousCollide (conservative advancement, RSS, CCDM_LINEAR interpolation = the
+// same motion: linear translation, constant angular velocity about the model origin, toc_err
+// 1e-6, 1000 iterations). Before timing every motion's first contact is found by 1000-step dense
+// sub-stepping with exact collide(); the counters of fcl_ca count FCL's misses (no contact
+// reported where sub-stepping finds one) and late answers (time of contact after the sub-stepped
+// one), those of sweep the same for antcd (both must be 0); sweep's iterations counts its interval
+// tests, distance queries and traversals (SweepResult::iterations) per motion.
 #include <antcd/ccd.hpp>
 #include <antcd/collide.hpp>
+#include <antcd/distance.hpp>
 #include <antcd/mesh.hpp>
 #include <antcd/sweep.hpp>
 
@@ -135,6 +141,9 @@ BENCHMARK(ccd_primitive)->Arg(0)->Arg(1)->Arg(2)->Arg(3)->Unit(benchmark::kMilli
 struct Motion {
   Transform a0, a1, b0, b1;
   std::optional<Scalar> first;  // dense sub-stepping's first contact
+  /// When touching: the latest time on a 1e-4 grid before `first` at which distance() finds the
+  /// surfaces more than 1e-3 of A's root radius apart.
+  std::optional<Scalar> near;
 };
 
 struct Pair {
@@ -189,6 +198,15 @@ Pair make_pair(int which) {
     m.b0 = Transform::identity();
     m.b1 = Transform::from_axis_angle(Vec3(unit(rng), unit(rng), unit(rng)), 0.3);
     m.first = dense_first(p, m);
+    const Scalar gap = 1e-3 * p.a->root().radius;
+    for (Scalar t = m.first.value_or(-1); t >= 0; t -= 1e-4) {
+      if (antcd::distance(*p.a, antcd::ccd::interpolate_pose(m.a0, m.a1, t), *p.b,
+                          antcd::ccd::interpolate_pose(m.b0, m.b1, t))
+              .distance > gap) {
+        m.near = t;
+        break;
+      }
+    }
     p.motions.push_back(m);
   }
   return p;
@@ -232,6 +250,26 @@ void sweep(benchmark::State& state) {
 }
 BENCHMARK(sweep)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
 
+/// sweep on the touching motions alone: the same set as collide_at_contact and
+/// collide_near_contact, for their ratios.
+void sweep_touching(benchmark::State& state) {
+  const Pair& p = pair(static_cast<int>(state.range(0)));
+  std::vector<const Motion*> touching;
+  for (const Motion& m : p.motions) {
+    if (m.first) touching.push_back(&m);
+  }
+  for (auto _ : state) {
+    for (const Motion* m : touching) {
+      benchmark::DoNotOptimize(antcd::sweep(*p.a, m->a0, m->a1, *p.b, m->b0, m->b1).toi);
+    }
+  }
+  state.counters["per_motion"] = benchmark::Counter(
+      static_cast<double>(touching.size()),
+      benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+  state.SetLabel(p.name);
+}
+BENCHMARK(sweep_touching)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
+
 void collide_end(benchmark::State& state) {
   const Pair& p = pair(static_cast<int>(state.range(0)));
   antcd::CollisionResult res;
@@ -247,6 +285,22 @@ void collide_end(benchmark::State& state) {
 }
 BENCHMARK(collide_end)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
 
+/// Times the boolean collide() of the pair at each of `poses`; `per` names the counter of the
+/// time per pose.
+void time_collides(benchmark::State& state, const Pair& p,
+                   const std::vector<std::pair<Transform, Transform>>& poses, const char* per) {
+  antcd::CollisionResult res;
+  for (auto _ : state) {
+    for (const auto& [pa, pb] : poses) {
+      benchmark::DoNotOptimize(antcd::collide(*p.a, pa, *p.b, pb, {}, res));
+    }
+  }
+  state.counters[per] = benchmark::Counter(
+      static_cast<double>(poses.size()),
+      benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+  state.SetLabel(p.name);
+}
+
 /// The boolean collide() at each touching motion's first sub-stepped contact: a discrete check
 /// of the same pair where it does its work (the end poses of these motions are far apart).
 void collide_at_contact(benchmark::State& state) {
@@ -257,18 +311,74 @@ void collide_at_contact(benchmark::State& state) {
     poses.emplace_back(antcd::ccd::interpolate_pose(m.a0, m.a1, *m.first),
                        antcd::ccd::interpolate_pose(m.b0, m.b1, *m.first));
   }
-  antcd::CollisionResult res;
-  for (auto _ : state) {
-    for (const auto& [pa, pb] : poses) {
-      benchmark::DoNotOptimize(antcd::collide(*p.a, pa, *p.b, pb, {}, res));
-    }
-  }
-  state.counters["per_motion"] = benchmark::Counter(
-      static_cast<double>(poses.size()),
-      benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
-  state.SetLabel(p.name);
+  time_collides(state, p, poses, "per_motion");
 }
 BENCHMARK(collide_at_contact)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
+
+/// The boolean collide() of each touching motion just before its first contact, where the
+/// surfaces are apart by 1e-3 of A's root radius (Motion::near): a discrete check that must prove
+/// the pair apart near contact, as a sweep must at every time before its toi, against
+/// collide_at_contact's early exit on the first overlapping triangle pair.
+void collide_near_contact(benchmark::State& state) {
+  const Pair& p = pair(static_cast<int>(state.range(0)));
+  std::vector<std::pair<Transform, Transform>> poses;
+  for (const Motion& m : p.motions) {
+    if (!m.near) continue;
+    poses.emplace_back(antcd::ccd::interpolate_pose(m.a0, m.a1, *m.near),
+                       antcd::ccd::interpolate_pose(m.b0, m.b1, *m.near));
+  }
+  time_collides(state, p, poses, "per_motion");
+}
+BENCHMARK(collide_near_contact)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
+
+/// Frame-sized pieces of the touching motions, a twentieth of the motion each (A moves about a
+/// fifth of its size): kind 0 the frame ending just before contact (Motion::near; the sweep
+/// proves it free), 1 the frame ending at the sub-stepped contact (the sweep finds the toi). A
+/// piece of a slerp is the slerp between its end poses, so the sweep sees the same motion.
+std::vector<Motion> frames(const Pair& p, int kind) {
+  std::vector<Motion> out;
+  for (const Motion& m : p.motions) {
+    if (!m.near) continue;
+    const Scalar end = kind == 0 ? *m.near : *m.first;
+    const Scalar start = std::max<Scalar>(0, end - 0.05);
+    Motion f;
+    f.a0 = antcd::ccd::interpolate_pose(m.a0, m.a1, start);
+    f.a1 = antcd::ccd::interpolate_pose(m.a0, m.a1, end);
+    f.b0 = antcd::ccd::interpolate_pose(m.b0, m.b1, start);
+    f.b1 = antcd::ccd::interpolate_pose(m.b0, m.b1, end);
+    out.push_back(f);
+  }
+  return out;
+}
+
+/// antcd::sweep over each frame (see frames()).
+void frame_sweep(benchmark::State& state) {
+  const Pair& p = pair(static_cast<int>(state.range(0)));
+  const std::vector<Motion> fs = frames(p, static_cast<int>(state.range(1)));
+  int hits = 0;
+  for (const Motion& f : fs) hits += antcd::sweep(*p.a, f.a0, f.a1, *p.b, f.b0, f.b1).hit ? 1 : 0;
+  for (auto _ : state) {
+    for (const Motion& f : fs) {
+      benchmark::DoNotOptimize(antcd::sweep(*p.a, f.a0, f.a1, *p.b, f.b0, f.b1).toi);
+    }
+  }
+  state.counters["per_frame"] = benchmark::Counter(
+      static_cast<double>(fs.size()),
+      benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+  state.counters["hits"] = hits;
+  state.SetLabel(p.name);
+}
+BENCHMARK(frame_sweep)->ArgsProduct({{0, 1}, {0, 1}})->Unit(benchmark::kMicrosecond);
+
+/// The boolean collide() at each frame's end pose: the discrete check of the same frame.
+void frame_collide(benchmark::State& state) {
+  const Pair& p = pair(static_cast<int>(state.range(0)));
+  std::vector<std::pair<Transform, Transform>> poses;
+  for (const Motion& f : frames(p, static_cast<int>(state.range(1))))
+    poses.emplace_back(f.a1, f.b1);
+  time_collides(state, p, poses, "per_frame");
+}
+BENCHMARK(frame_collide)->ArgsProduct({{0, 1}, {0, 1}})->Unit(benchmark::kMicrosecond);
 
 #ifdef ANTCD_BENCH_FCL
 void fcl_ca(benchmark::State& state) {

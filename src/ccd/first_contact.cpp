@@ -118,11 +118,34 @@ struct Turn {
   }
 };
 
+enum class Kind : std::uint8_t { nodes, triangles };
+/// A node pair (indices into the node arrays) or a triangle pair (leaf triangle indices) known
+/// to stay apart before t.
+struct Entry {
+  Scalar t;
+  std::uint32_t a, b;
+  Kind kind;
+  std::uint8_t steps = 0;  ///< advancement steps of the pair so far (capped at 255)
+};
+
+/// The pair queues of a search: kept per thread (first_contact), so that a sweep's traversals
+/// allocate only when they outgrow every earlier one on that thread.
+struct Queues {
+  std::vector<Entry> heap;
+  std::vector<Entry> local;  ///< the pairs opened at the current time
+  /// Capacity kept between searches (entries); a queue that grew beyond it is freed after use.
+  static constexpr std::size_t kKept = 1 << 16;
+  void release_oversized() {
+    if (heap.capacity() > kKept) std::vector<Entry>().swap(heap);
+    if (local.capacity() > kKept) std::vector<Entry>().swap(local);
+  }
+};
+
 /// Work of one search; entries are examined earliest first.
 class Search {
  public:
   Search(const RigidPair& m, Scalar separation, Scalar allowance, Scalar volume, Scalar stop_gap,
-         const FirstContactLimits& limits)
+         const FirstContactLimits& limits, Queues& queues)
       : m_(m),
         turn_a_(m.a0.rotation, m.a1.rotation),
         turn_b_(m.b0.rotation, m.b1.rotation),
@@ -136,12 +159,23 @@ class Search {
         nodes_a_(m.a.nodes()),
         nodes_b_(m.b.nodes()),
         corners_a_(m.a.leaf_corners()),
-        corners_b_(m.b.leaf_corners()) {
-    heap_.reserve(256);
-    local_.reserve(64);
+        corners_b_(m.b.leaf_corners()),
+        queues_(queues) {
+    // The thread's queues move in for the search and back out after it (members, not
+    // references: the hot loop then reads them without an indirection).
+    heap_.swap(queues.heap);
+    local_.swap(queues.local);
   }
+  ~Search() {
+    heap_.swap(queues_.heap);
+    local_.swap(queues_.local);
+  }
+  Search(const Search&) = delete;
+  Search& operator=(const Search&) = delete;
 
   FirstContact run(Scalar t0) {
+    heap_.clear();
+    local_.clear();
     heap_.push_back({t0, 0, 0, Kind::nodes, 0});
     while (!heap_.empty()) {
       std::pop_heap(heap_.begin(), heap_.end(), Later{});
@@ -178,15 +212,6 @@ class Search {
   }
 
  private:
-  enum class Kind : std::uint8_t { nodes, triangles };
-  /// A node pair (indices into the node arrays) or a triangle pair (leaf triangle indices) known
-  /// to stay apart before t.
-  struct Entry {
-    Scalar t;
-    std::uint32_t a, b;
-    Kind kind;
-    std::uint8_t steps = 0;  ///< advancement steps of the pair so far (capped at 255)
-  };
   struct Later {
     bool operator()(const Entry& x, const Entry& y) const { return x.t > y.t; }
   };
@@ -390,6 +415,7 @@ class Search {
   FirstContactLimits limits_;
   std::span<const BvhNode> nodes_a_, nodes_b_;
   LeafCorners corners_a_, corners_b_;
+  Queues& queues_;
   std::vector<Entry> heap_;
   std::vector<Entry> local_;  ///< the pairs opened at the current time
   FirstContact result_;
@@ -399,8 +425,14 @@ class Search {
 
 FirstContact first_contact(const RigidPair& m, Scalar t0, Scalar separation, Scalar allowance,
                            Scalar volume, Scalar stop_gap, const FirstContactLimits& limits) {
-  Search search(m, separation, allowance, volume, stop_gap, limits);
-  return search.run(t0);
+  thread_local Queues queues;
+  FirstContact result;
+  {
+    Search search(m, separation, allowance, volume, stop_gap, limits, queues);
+    result = search.run(t0);
+  }
+  queues.release_oversized();
+  return result;
 }
 
 }  // namespace antcd::ccd

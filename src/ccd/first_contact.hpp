@@ -60,7 +60,9 @@ struct FirstContactLimits {
 /// time, so no pair is within separation before toi.
 /// Rounding: `allowance` (scene's size times kArithmetic) is taken off every triangle distance and
 /// `volume` (kVolume of the scene's size) off every node distance, as in the sweep.
-/// Exported for the tests (tests/ccd/first_contact_test.cpp). Thread safety: reads its models only.
+/// Exported for the tests (tests/ccd/first_contact_test.cpp). Thread safety: reads its models only;
+/// its pair queues are the calling thread's own (kept between calls, so a traversal allocates
+/// only when it outgrows the earlier ones; queues grown beyond 65 536 pairs are freed after use).
 ANTCD_API FirstContact first_contact(const RigidPair& m, Scalar t0, Scalar separation,
                                      Scalar allowance, Scalar volume, Scalar stop_gap,
                                      const FirstContactLimits& limits = {});

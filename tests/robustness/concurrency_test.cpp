@@ -6,6 +6,7 @@
 #include <antcd/distance.hpp>
 #include <antcd/random.hpp>
 #include <antcd/scene.hpp>
+#include <antcd/sweep.hpp>
 
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
@@ -13,6 +14,7 @@
 #include <atomic>
 #include <cstdint>
 #include <latch>
+#include <numbers>
 #include <random>
 #include <string>
 #include <thread>
@@ -180,6 +182,74 @@ TEST(Concurrency, ModelQueriesFromManyThreadsMatchSingleThreaded) {
                    ? 0
                    : 1;
       }
+    }
+    return bad;
+  });
+  EXPECT_EQ(mismatches, 0);
+}
+
+// ---- mesh sweeps
+// ---------------------------------------------------------------------------------
+
+bool same(const SweepResult& x, const SweepResult& y) {
+  return x.hit == y.hit && x.toi == y.toi && x.tolerance_decided == y.tolerance_decided &&
+         x.budget_exhausted == y.budget_exhausted && x.distance == y.distance &&
+         x.motion_bound == y.motion_bound && x.iterations == y.iterations &&
+         x.contact.triangle_a == y.contact.triangle_a &&
+         x.contact.triangle_b == y.contact.triangle_b && x.contact.point == y.contact.point &&
+         x.contact.normal == y.contact.normal;
+}
+
+TEST(Concurrency, SweepsFromManyThreadsMatchSingleThreaded) {
+  // Fine enough that the sweeps hand over to their traversal (whose pair queues are per thread),
+  // and a roller spinning about its own axis (the turn's axis in every bound).
+  const Model torus(make_torus(1.0, 0.3, 60, 30));
+  const Model ball(make_sphere(0.5, 40, 20));
+  const Model roller(make_cylinder(0.05, 1.3, 32, 8));
+  const Model plate(make_box(Vec3(0.3, 0.3, 0.005), 6));
+  struct Case {
+    const Model* a;
+    const Model* b;
+    Transform a0, a1, b0, b1;
+    SweepResult expected;
+  };
+  std::mt19937_64 rng(17);
+  std::uniform_real_distribution<Scalar> unit(-1, 1);
+  std::vector<Case> cases;
+  for (int i = 0; i < 6; ++i) {
+    Case c{&ball, &torus, {}, {}, Transform::identity(), Transform::identity(), {}};
+    const Vec3 dir = Vec3(unit(rng), unit(rng), unit(rng)).normalized();
+    c.a0 = Transform::from_axis_angle(Vec3(unit(rng), unit(rng), unit(rng)), 2 * unit(rng),
+                                      -2.5 * dir);
+    // Through the ring's middle region, or (odd i) well off to one side.
+    const Vec3 side =
+        Vec3(unit(rng), unit(rng), unit(rng)).cross(dir).normalized() * (i % 2 == 0 ? 0.3 : 2.2);
+    c.a0.translation += side;
+    c.a1 = Transform::from_axis_angle(Vec3(unit(rng), unit(rng), unit(rng)), 2 * unit(rng),
+                                      2.5 * dir + side);
+    cases.push_back(c);
+  }
+  for (int i = 0; i < 2; ++i) {
+    Case c{&roller, &plate, {}, {}, {}, {}, {}};
+    c.a0 = Transform::from_axis_angle(Vec3::UnitX(), 0.3 * i);
+    c.a1 = c.a0 * Transform::from_axis_angle(Vec3::UnitZ(), 2.5);
+    c.b0 = Transform::from_axis_angle(Vec3::UnitY(), std::numbers::pi / 2, Vec3(0.2, 0, 0));
+    c.b1 = c.b0;
+    c.b1.translation = Vec3(i == 0 ? 0.07 : 0.04, 0, 0);  // stops short, or touches
+    cases.push_back(c);
+  }
+  std::size_t hits = 0;
+  for (Case& c : cases) {
+    c.expected = sweep(*c.a, c.a0, c.a1, *c.b, c.b0, c.b1);
+    hits += c.expected.hit ? 1 : 0;
+  }
+  ASSERT_GT(hits, 2u);
+  ASSERT_LT(hits, cases.size());
+  const int mismatches = run_threads(1, [&](int t, int) {
+    int bad = 0;
+    for (std::size_t k = 0; k < cases.size(); ++k) {
+      const Case& c = cases[(k + static_cast<std::size_t>(t)) % cases.size()];
+      bad += same(sweep(*c.a, c.a0, c.a1, *c.b, c.b0, c.b1), c.expected) ? 0 : 1;
     }
     return bad;
   });
