@@ -8,7 +8,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <string>
 #include <utility>
 #include <vector>
@@ -69,9 +68,7 @@ Aabb swept_box(const Model& model, const Transform& from, const Aabb& box_from,
   Aabb box;
   box.min = box_from.min.cwiseMin(box_to.min);
   box.max = box_from.max.cwiseMax(box_to.max);
-  // Only the model's own bound matters here (no pair speed to weigh the turn against).
-  const ccd::Spin spin =
-      ccd::model_spin(model, from.rotation, to.rotation, std::numeric_limits<Scalar>::infinity());
+  const ccd::Spin spin = ccd::spin(from.rotation, to.rotation);
   const Scalar r = ccd::model_reach(model, spin);
   const Scalar rounding = tolerance::kVolume * (ccd::origin_radius(model) +
                                                 from.translation.norm() + to.translation.norm());
