@@ -12,6 +12,7 @@
 #include <span>
 #include <vector>
 
+#include "ccd/motion.hpp"
 #include "distance/node_bound.hpp"  // obb_gap
 
 namespace antcd::ccd {
@@ -95,16 +96,13 @@ struct Turn {
   Vec3 axis = Vec3::Zero();
   Scalar half_angle = 0;
 
-  explicit Turn(const Mat3& r0, const Mat3& r1) : q0(r0) {
-    q0.normalize();
-    Quat q1(r1);
-    q1.normalize();
-    Quat delta = q0.conjugate() * q1;
-    if (delta.w() < 0) delta.coeffs() = -delta.coeffs();
-    const Scalar s = delta.vec().norm();
+  explicit Turn(const Mat3& r0, const Mat3& r1) {
+    const TurnDelta d = turn_delta(r0, r1);
+    q0 = d.q0;
+    const Scalar s = d.delta.vec().norm();
     if (s > 0) {
-      axis = delta.vec() / s;
-      half_angle = std::atan2(s, delta.w());
+      axis = d.delta.vec() / s;
+      half_angle = std::atan2(s, d.delta.w());
     }
   }
   [[nodiscard]] Quat at(Scalar t) const {

@@ -57,20 +57,30 @@ struct Spin {
   }
 };
 
-/// The turn from r0 to r1. The axis is the vector part of q0^-1 q1 (unit quaternions of the two
-/// rotations, shorter arc), normalised: each of its components is a sum of four products of unit
-/// components, wrong by a few 1e-16 after the two normalisations; kAxisRounding bounds that error
-/// with room to spare, and normalising a vector of length s errs by at most 2 e / s in direction.
-/// Below kAxisFloor (turns under 2e-9 rad) the axis is not used.
+/// The unit quaternion q0 of r0 and the rotation q0^-1 q1 from it to r1's (w >= 0: the shorter
+/// arc, as the slerp of ccd::interpolate_pose takes): the turn is q(t) = q0 (q0^-1 q1)^t.
+struct TurnDelta {
+  Quat q0;
+  Quat delta;
+};
+inline TurnDelta turn_delta(const Mat3& r0, const Mat3& r1) {
+  TurnDelta d{Quat(r0).normalized(), Quat::Identity()};
+  d.delta = d.q0.conjugate() * Quat(r1).normalized();
+  if (d.delta.w() < 0) d.delta.coeffs() = -d.delta.coeffs();
+  return d;
+}
+
+/// The turn from r0 to r1. The axis is the vector part of q0^-1 q1 (turn_delta), normalised: each
+/// of its components is a sum of four products of unit components, wrong by a few 1e-16 after the
+/// two normalisations; kAxisRounding bounds that error with room to spare, and normalising a vector
+/// of length s errs by at most 2 e / s in direction. Below kAxisFloor (turns under 2e-9 rad) the
+/// axis is not used.
 inline Spin spin(const Mat3& r0, const Mat3& r1) {
   constexpr Scalar kAxisRounding = 1e-13;
   constexpr Scalar kAxisFloor = 1e-9;
   Spin s;
   s.theta = rotation_angle(r0, r1);
-  const Quat q0 = Quat(r0).normalized();
-  const Quat q1 = Quat(r1).normalized();
-  Quat delta = q0.conjugate() * q1;
-  if (delta.w() < 0) delta.coeffs() = -delta.coeffs();
+  const Quat delta = turn_delta(r0, r1).delta;
   const Scalar length = delta.vec().norm();
   if (length > kAxisFloor) {
     s.axis = delta.vec() / length;
