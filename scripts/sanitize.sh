@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # Sanitizer runs:
 #   asan: AddressSanitizer + UndefinedBehaviorSanitizer, -O1 -g, over the whole ctest suite, in
-#         ${ANTCD_ASAN_BUILD_DIR:-build-asan}.
+#         ${ANTCD_ASAN_BUILD_DIR:-build-asan}. With float-cast-overflow (a NaN or out-of-range
+#         double converted to an integer), which GCC's -fsanitize=undefined leaves out and clang's
+#         (scripts/fuzz.sh) includes.
 #   tsan: ThreadSanitizer, -O1 -g, over the concurrency tests (GoogleTest names Concurrency*), in
 #         ${ANTCD_TSAN_BUILD_DIR:-build-tsan}. oneTBB itself is not instrumented: scripts/tsan.supp
 #         silences reports inside TBB's own code only (see there).
@@ -42,7 +44,7 @@ asan_exclude='^(ExactCollide\.GeneratedShapesMatchBruteForceOnRandomPoses|LoadMe
 
 run_asan() {
   local dir="${ANTCD_ASAN_BUILD_DIR:-build-asan}"
-  local san="-fsanitize=address,undefined -fno-sanitize-recover=undefined"
+  local san="-fsanitize=address,undefined,float-cast-overflow -fno-sanitize-recover=undefined,float-cast-overflow"
   local start=$SECONDS
   # The browser viewer's page test runs in test.sh; here `antcd view`'s input checks run under
   # ASan without the npm bundle (ANTCD_BUILD_VIEWER=OFF: no second npm ci, no Chromium), and

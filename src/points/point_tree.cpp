@@ -176,7 +176,14 @@ std::vector<std::size_t> coherent_order(std::span<const Vec3> points) {
   for (const Vec3& p : points) box.extend(p);
   const Vec3 extent = box.extent();
   const Scalar size = std::max(extent.maxCoeff(), std::numeric_limits<Scalar>::min());
-  const Scalar scale = static_cast<Scalar>((1u << 21) - 1) / size;
+  constexpr Scalar kTop = static_cast<Scalar>((1u << 21) - 1);
+  const Scalar scale = kTop / size;
+  // The order only steers the search, so coordinates whose arithmetic overflows (an extent past
+  // the double range, a scale past it for coincident points) may share a cell: clamped as a
+  // double before the conversion, a NaN to cell 0.
+  auto cell = [](Scalar q) -> std::uint64_t {
+    return q > 0 ? static_cast<std::uint64_t>(q < kTop ? q : kTop) : 0;
+  };
   // Spreads the low 21 bits of x three apart.
   auto spread = [](std::uint64_t x) {
     x &= 0x1fffff;
@@ -190,10 +197,7 @@ std::vector<std::size_t> coherent_order(std::span<const Vec3> points) {
   std::vector<std::pair<std::uint64_t, std::size_t>> keyed(points.size());
   for (std::size_t i = 0; i < points.size(); ++i) {
     const Vec3 q = (points[i] - box.min) * scale;
-    keyed[i] = {spread(static_cast<std::uint64_t>(q.x())) |
-                    spread(static_cast<std::uint64_t>(q.y())) << 1 |
-                    spread(static_cast<std::uint64_t>(q.z())) << 2,
-                i};
+    keyed[i] = {spread(cell(q.x())) | spread(cell(q.y())) << 1 | spread(cell(q.z())) << 2, i};
   }
   std::sort(keyed.begin(), keyed.end());
   std::vector<std::size_t> order(points.size());

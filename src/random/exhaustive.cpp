@@ -151,14 +151,19 @@ void run_grid(const FeatureSpace& space, Recorder& rec) {
   for (int k = 0; k < 3; ++k) box = std::max(box, (hi[k] - lo[k]) * 0x1.0p-20f);
   box = std::max(box, std::numeric_limits<float>::min());
   const float inv = 1.0f / box;
+  constexpr std::int64_t kMaxBox = (std::int64_t{1} << 21) - 1;
+  // A's features may lie any distance outside B's boxes (coincident B features make the box
+  // float-min wide): clamped as a float before the conversion to two boxes past either end, whose
+  // neighbours are all out of range, as a NaN is.
   auto coord = [&](float v, int k) -> std::int64_t {
-    return static_cast<std::int64_t>(std::floor((v - lo[k]) * inv));
+    const float c = std::floor((v - lo[k]) * inv);
+    constexpr float kTop = static_cast<float>(kMaxBox + 2);
+    return c >= -2.0f ? static_cast<std::int64_t>(c < kTop ? c : kTop) : -2;
   };
   auto key = [](std::int64_t x, std::int64_t y, std::int64_t z) {
     return (static_cast<std::uint64_t>(x) << 42) | (static_cast<std::uint64_t>(y) << 21) |
            static_cast<std::uint64_t>(z);
   };
-  constexpr std::int64_t kMaxBox = (std::int64_t{1} << 21) - 1;
   std::vector<std::pair<std::uint64_t, std::uint32_t>> binned(nb);
   for (std::uint32_t j = 0; j < nb; ++j) {
     binned[j] = {key(coord(space.b.x[j], 0), coord(space.b.y[j], 1), coord(space.b.z[j], 2)), j};

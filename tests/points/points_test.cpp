@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <random>
 #include <vector>
@@ -288,6 +289,31 @@ TEST(Points, NonFinitePointIsAnArgumentErrorNamingIt) {
     }
   }
   EXPECT_TRUE(contains(model, Transform::identity(), std::vector<Vec3>{}).empty());
+}
+
+// A batch is ordered along a curve through its points' box; one point, coincident points and a
+// box wider than the double range overflow that arithmetic (a NaN cell under the sanitizers'
+// float-cast check before it was clamped). Each answer is the same as the point's alone.
+TEST(Points, BatchesWhoseBoxOverflowsAnswerEachPointAsAlone) {
+  const Model model(make_sphere(1.0, 16, 8), {}, "sphere");
+  const Scalar huge = std::numeric_limits<Scalar>::max() / 2;
+  const std::vector<std::vector<Vec3>> batches = {
+      {Vec3(0.2, 0.1, 0)},
+      {Vec3(3, 0, 0), Vec3(3, 0, 0), Vec3(3, 0, 0)},
+      {Vec3(-huge, 0, 0), Vec3(huge, 0, 0), Vec3(0, 0.5, 0)},
+      {Vec3(0, -huge, huge), Vec3(2, 0, 0), Vec3(0, huge, -huge)}};
+  for (const std::vector<Vec3>& batch : batches) {
+    const SignedDistanceResult sd = signed_distance(model, Transform::identity(), batch);
+    const std::vector<std::uint8_t> in = contains(model, Transform::identity(), batch);
+    for (std::size_t i = 0; i < batch.size(); ++i) {
+      const std::vector<Vec3> alone{batch[i]};
+      const SignedDistanceResult one = signed_distance(model, Transform::identity(), alone);
+      EXPECT_EQ(sd.points[i].distance, one.points[0].distance) << i;
+      EXPECT_EQ(sd.points[i].triangle, one.points[0].triangle) << i;
+      EXPECT_EQ(in[i], contains(model, Transform::identity(), alone)[0]) << i;
+      EXPECT_EQ(in[i] != 0, brute_inside(model.mesh(), Transform::identity(), batch[i])) << i;
+    }
+  }
 }
 
 // Named Concurrency.* so that scripts/sanitize.sh runs it under ThreadSanitizer.
