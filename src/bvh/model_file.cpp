@@ -9,7 +9,9 @@
 // coordinates, indices in range, the tree's depth-first shape, leaves covering the leaf order)
 // before the Model exists.
 #include <antcd/bvh.hpp>
+#include <antcd/geometry.hpp>
 #include <antcd/io.hpp>
+#include <antcd/tolerances.hpp>
 
 #include "bvh/model_cache.hpp"
 #include "bvh/model_file.hpp"
@@ -17,10 +19,12 @@
 #include "util/parallel.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <bit>
 #include <cctype>
 #include <cmath>
 #include <cstring>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -239,6 +243,153 @@ std::size_t check_tree(const std::vector<BvhNode>& nodes, std::size_t leaf_count
   return height[0];
 }
 
+/// A node's volumes prepared for testing points against them, on quarter coordinates (which
+/// neither overflow nor make a NaN for any finite ones): up to the rounding of a fit,
+/// tolerance::kArithmetic of the node's size, far inside the traversal's own allowance
+/// (tolerance::kVolume). A stored +inf extent or radius holds everything along it.
+struct HeldVolume {
+  Mat3 to_box;
+  Vec3 box_center, limit;
+  Scalar reach2 = 0;
+
+  explicit HeldVolume(const BvhNode& node) {
+    const Scalar e = tolerance::kArithmetic;
+    to_box = node.axes().transpose();
+    const Vec3 center = node.center * 0.25;
+    const Vec3 half = node.half_extents() * 0.25;
+    const Scalar radius = 0.25 * static_cast<Scalar>(node.radius);
+    // A valid node's points lie within its smaller volume's reach of its centre.
+    const Scalar slack =
+        e * (center.cwiseAbs().maxCoeff() + std::min(radius, half.norm())) + tolerance::kFloor;
+    box_center = to_box * center;
+    limit = half + Vec3::Constant(slack);
+    reach2 = (radius + slack) * (radius + slack);
+  }
+  /// Whether both volumes hold the point `quarter` (a vertex times 0.25). With orthonormal axes
+  /// (checked apart), the point's offset in the box frame has its length from the centre.
+  [[nodiscard]] bool holds(const Vec3& quarter) const {
+    const Vec3 d = to_box * quarter - box_center;
+    return (d.cwiseAbs().array() <= limit.array()).all() && d.squaredNorm() <= reach2;
+  }
+};
+
+/// Whether the node's axes are orthonormal up to tolerance::kArithmetic.
+bool orthonormal(const BvhNode& node) {
+  const Scalar e = tolerance::kArithmetic;
+  return std::abs(node.axis0.squaredNorm() - 1) <= e &&
+         std::abs(node.axis1.squaredNorm() - 1) <= e && std::abs(node.axis0.dot(node.axis1)) <= e;
+}
+
+/// Checks that every node's volumes hold its subtree's vertices (what every query's pruning relies
+/// on: a file whose volumes were shrunk would make collide() miss contacts and sweep() report late
+/// times) and its axes are orthonormal, and that every triangle left out of the tree is
+/// degenerate, as the build leaves out only those. Each vertex is tested once against each node
+/// above the leaves that hold it (its ancestors' chains merge after a few levels), in parallel.
+void check_volumes(const Model& m, const Reader& in) {
+  const std::span<const BvhNode> nodes = m.nodes();
+  const std::size_t n = nodes.size();
+  const std::vector<Vec3>& vertices = m.mesh().vertices;
+  const std::size_t nv = vertices.size();
+  std::vector<bool> in_tree(m.mesh().triangles.size(), false);
+  for (const std::uint32_t t : m.leaf_triangles()) in_tree[t] = true;
+  for (std::size_t t = 0; t < in_tree.size(); ++t) {
+    const TriangleIndices& tri = m.mesh().triangles[t];
+    const std::vector<Vec3>& v = m.mesh().vertices;
+    if (!in_tree[t] && !geometry::is_degenerate_triangle(v[tri[0]], v[tri[1]], v[tri[2]])) {
+      in.fail("triangle " + std::to_string(t) + " is left out of the tree but is not degenerate");
+    }
+  }
+  // Each node's parent (children come after their parent), each leaf triangle's leaf.
+  std::vector<std::uint32_t> parent(n, 0);
+  std::vector<std::uint32_t> leaf_of(m.leaf_triangles().size());
+  for (std::size_t i = 0; i < n; ++i) {
+    const BvhNode& node = nodes[i];
+    if (node.is_leaf()) {
+      for (std::uint32_t k = node.first_or_right; k < node.first_or_right + node.count; ++k) {
+        leaf_of[k] = static_cast<std::uint32_t>(i);
+      }
+    } else {
+      parent[i + 1] = static_cast<std::uint32_t>(i);
+      parent[node.first_or_right] = static_cast<std::uint32_t>(i);
+    }
+  }
+  // The leaves holding each vertex (compressed rows, ascending: leaf_of grows with k), and the
+  // first leaf triangle holding it.
+  const std::span<const std::uint32_t> leaf_triangles = m.leaf_triangles();
+  const std::size_t nl = leaf_triangles.size();
+  constexpr std::uint32_t kNone = 0xFFFFFFFFU;
+  std::vector<std::uint32_t> begin(nv + 1, 0);
+  std::vector<std::uint32_t> first_use(nv, kNone);
+  for (std::size_t k = 0; k < nl; ++k) {
+    for (const std::uint32_t v : m.mesh().triangles[leaf_triangles[k]]) {
+      ++begin[v + 1];
+      if (first_use[v] == kNone) first_use[v] = static_cast<std::uint32_t>(k);
+    }
+  }
+  for (std::size_t v = 0; v < nv; ++v) begin[v + 1] += begin[v];
+  std::vector<std::uint32_t> leaves(begin[nv]);
+  {
+    std::vector<std::uint32_t> fill(begin.begin(), begin.end() - 1);
+    for (std::size_t k = 0; k < nl; ++k) {
+      for (const std::uint32_t v : m.mesh().triangles[leaf_triangles[k]]) {
+        leaves[fill[v]++] = leaf_of[k];
+      }
+    }
+  }
+  std::vector<HeldVolume> held;
+  held.reserve(n);
+  for (const BvhNode& node : nodes) held.emplace_back(node);
+
+  // The smallest node index found not to hold a vertex (n: none), the same at any thread count.
+  std::atomic<std::size_t> bad{n};
+  const auto report = [&](std::size_t i) {
+    std::size_t seen = bad.load(std::memory_order_relaxed);
+    while (i < seen && !bad.compare_exchange_weak(seen, i)) {
+    }
+  };
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!orthonormal(nodes[i])) {
+      report(i);
+      break;
+    }
+  }
+  // Vertices in the order of their first leaf triangle, so that neighbouring vertices meet the
+  // same nodes: each one tested up its leaves' merging chains of ancestors.
+  const auto range = [&](std::size_t first, std::size_t last) {
+    std::vector<std::uint32_t> chain;  // the nodes still to test, ascending
+    for (std::size_t k = first; k < last; ++k) {
+      const TriangleIndices& tri = m.mesh().triangles[leaf_triangles[k]];
+      for (std::size_t c = 0; c < 3; ++c) {
+        const std::uint32_t v = tri[c];
+        // Once: at its first triangle's first corner holding it.
+        if (first_use[v] != k || (c > 0 && tri[0] == v) || (c > 1 && tri[1] == v)) continue;
+        chain.assign(leaves.begin() + begin[v], leaves.begin() + begin[v + 1]);
+        chain.erase(std::unique(chain.begin(), chain.end()), chain.end());
+        const Vec3 quarter = vertices[v] * 0.25;
+        // Largest index first: a node's parent has a smaller index, so chains meet in order.
+        while (!chain.empty()) {
+          const std::uint32_t i = chain.back();
+          chain.pop_back();
+          if (!held[i].holds(quarter)) report(i);
+          if (i == 0) continue;
+          const std::uint32_t up = parent[i];
+          const auto at = std::lower_bound(chain.begin(), chain.end(), up);
+          if (at == chain.end() || *at != up) chain.insert(at, up);
+        }
+      }
+    }
+  };
+  if (nl < kParallelCheck) {
+    range(0, nl);
+  } else {
+    parallel::for_ranges(0, nl, 1024, range);
+  }
+  if (const std::size_t i = bad.load(); i != n) {
+    in.fail("node " + std::to_string(i) +
+            "'s box or sphere does not hold its triangles (or its axes are not orthonormal)");
+  }
+}
+
 }  // namespace
 
 struct ModelFile {
@@ -384,6 +535,7 @@ struct ModelFile {
       in.fail("the closed flag disagrees with the mesh's topology");
     }
     m.closed_ = is_closed_now;
+    check_volumes(m, in);
     m.stats_.degenerate_triangles = nt - nl;
     m.count_stats();
     return m;

@@ -15,6 +15,7 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <random>
 #include <string>
@@ -318,6 +319,67 @@ TEST(ModelFile, HostileContentsWithAValidChecksumAreClearErrors) {
   expect_error(edit(at.leaves + 8, 5000, 4), "out of range");
   expect_error(edit(at.leaves + 8, m.leaf_triangles()[1], 4), "occurs twice");
   expect_error(edit(at.leaves, 0, 8), "0 leaf triangles");
+}
+
+// The volumes are what every query prunes by: a file whose volumes were shrunk, moved or turned
+// would make collide() miss contacts and sweep() report late times, so the reader checks that
+// each node's box and sphere hold its subtree's vertices and that only degenerate triangles are
+// left out of the tree.
+TEST(ModelFile, VolumesThatDoNotHoldTheirTrianglesAreClearErrors) {
+  Mesh mesh = make_box(Vec3(1, 0.6, 0.3), 2);
+  // A zero-area triangle (three points on a line): left out of the tree by the build.
+  const auto first = static_cast<std::uint32_t>(mesh.vertices.size());
+  mesh.vertices.insert(mesh.vertices.end(), {Vec3(0, 0, 0), Vec3(0.1, 0, 0), Vec3(0.2, 0, 0)});
+  mesh.triangles.push_back({first, first + 1, first + 2});
+  const Model m(mesh, {2, CovarianceMethod::AreaWeightedCentroid}, "box");
+  const auto dropped = static_cast<std::uint32_t>(mesh.triangles.size() - 1);
+  ASSERT_EQ(m.leaf_triangles().size(), mesh.triangles.size() - 1);
+  const Bytes good = m.to_bytes();
+  const Layout at(m);
+  ASSERT_NO_THROW((void)Model::from_bytes(resealed(good)));
+  const auto edited = [&](std::size_t node, std::size_t field, auto value) {
+    Bytes b = good;
+    std::memcpy(b.data() + at.nodes + 8 + 96 * node + field, &value, sizeof value);
+    return resealed(b);
+  };
+  std::size_t leaf = 0;
+  while (!m.nodes()[leaf].is_leaf()) ++leaf;
+  const std::size_t middle = m.nodes()[0].first_or_right;  // the root's right child
+  ASSERT_FALSE(m.nodes()[middle].is_leaf());
+  for (const std::size_t i : {std::size_t{0}, middle, leaf}) {
+    const BvhNode& node = m.nodes()[i];
+    const std::string problem = "node " + std::to_string(i) + "'s box or sphere does not hold";
+    SCOPED_TRACE("node " + std::to_string(i));
+    expect_error(edited(i, 24, node.radius * 0.99f), problem);  // sphere radius
+    for (std::size_t k = 0; k < 3; ++k) {
+      SCOPED_TRACE("axis " + std::to_string(k));
+      if (node.half[k] > 0) {  // a leaf of one face of the box is flat
+        expect_error(edited(i, 36 + 4 * k, node.half[k] * 0.99f), problem);  // box half extent
+      }
+      expect_error(edited(i, 8 * k, node.center[static_cast<int>(k)] + 0.05 * node.radius),
+                   problem);
+    }
+    // Turned a little about the third axis, still orthonormal: the box no longer fits.
+    const Scalar a = 0.05;
+    const Vec3 axis0 = std::cos(a) * node.axis0 + std::sin(a) * node.axis1;
+    const Vec3 axis1 = -std::sin(a) * node.axis0 + std::cos(a) * node.axis1;
+    Bytes turned = good;
+    for (int k = 0; k < 3; ++k) {
+      std::memcpy(turned.data() + at.nodes + 8 + 96 * i + 48 + 8 * k, &axis0[k], 8);
+      std::memcpy(turned.data() + at.nodes + 8 + 96 * i + 72 + 8 * k, &axis1[k], 8);
+    }
+    expect_error(resealed(turned), problem);
+    // Not orthonormal.
+    expect_error(edited(i, 48, node.axis0.x() + 1e-6), problem);
+    // Grown volumes still hold everything: a looser file is a valid one.
+    ASSERT_NO_THROW((void)Model::from_bytes(edited(i, 24, node.radius * 2)));
+    ASSERT_NO_THROW((void)Model::from_bytes(edited(i, 36, node.half[0] * 2)));
+  }
+  // A non-degenerate triangle left out of the tree, the degenerate one in its place.
+  Bytes swapped = good;
+  detail::write_le(swapped.data() + at.leaves + 8, dropped, 4);
+  expect_error(resealed(swapped), "triangle " + std::to_string(m.leaf_triangles()[0]) +
+                                      " is left out of the tree but is not degenerate");
 }
 
 // Found by fuzz/fuzz_model_file.cpp: a closed model with a coordinate near the end of the double
