@@ -318,7 +318,7 @@ void check_volumes(const Model& m, const Reader& in) {
   const std::span<const std::uint32_t> leaf_triangles = m.leaf_triangles();
   const std::size_t nl = leaf_triangles.size();
   constexpr std::uint32_t kNone = 0xFFFFFFFFU;
-  std::vector<std::uint32_t> begin(nv + 1, 0);
+  std::vector<std::size_t> begin(nv + 1, 0);
   std::vector<std::uint32_t> first_use(nv, kNone);
   for (std::size_t k = 0; k < nl; ++k) {
     for (const std::uint32_t v : m.mesh().triangles[leaf_triangles[k]]) {
@@ -329,7 +329,7 @@ void check_volumes(const Model& m, const Reader& in) {
   for (std::size_t v = 0; v < nv; ++v) begin[v + 1] += begin[v];
   std::vector<std::uint32_t> leaves(begin[nv]);
   {
-    std::vector<std::uint32_t> fill(begin.begin(), begin.end() - 1);
+    std::vector<std::size_t> fill(begin.begin(), begin.end() - 1);
     for (std::size_t k = 0; k < nl; ++k) {
       for (const std::uint32_t v : m.mesh().triangles[leaf_triangles[k]]) {
         leaves[fill[v]++] = leaf_of[k];
@@ -363,7 +363,8 @@ void check_volumes(const Model& m, const Reader& in) {
         const std::uint32_t v = tri[c];
         // Once: at its first triangle's first corner holding it.
         if (first_use[v] != k || (c > 0 && tri[0] == v) || (c > 1 && tri[1] == v)) continue;
-        chain.assign(leaves.begin() + begin[v], leaves.begin() + begin[v + 1]);
+        chain.assign(leaves.begin() + static_cast<std::ptrdiff_t>(begin[v]),
+                     leaves.begin() + static_cast<std::ptrdiff_t>(begin[v + 1]));
         chain.erase(std::unique(chain.begin(), chain.end()), chain.end());
         const Vec3 quarter = vertices[v] * 0.25;
         // Largest index first: a node's parent has a smaller index, so chains meet in order.
