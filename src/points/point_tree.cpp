@@ -3,6 +3,7 @@
 #include "points/point_tree.hpp"
 
 #include "bvh/model_cache.hpp"
+#include "util/grid_cell.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -176,14 +177,11 @@ std::vector<std::size_t> coherent_order(std::span<const Vec3> points) {
   for (const Vec3& p : points) box.extend(p);
   const Vec3 extent = box.extent();
   const Scalar size = std::max(extent.maxCoeff(), std::numeric_limits<Scalar>::min());
-  constexpr Scalar kTop = static_cast<Scalar>((1u << 21) - 1);
-  const Scalar scale = kTop / size;
+  constexpr std::uint64_t kTop = (1u << 21) - 1;
+  const Scalar scale = static_cast<Scalar>(kTop) / size;
   // The order only steers the search, so coordinates whose arithmetic overflows (an extent past
-  // the double range, a scale past it for coincident points) may share a cell: clamped as a
-  // double before the conversion, a NaN to cell 0.
-  auto cell = [](Scalar q) -> std::uint64_t {
-    return q > 0 ? static_cast<std::uint64_t>(q < kTop ? q : kTop) : 0;
-  };
+  // the double range, a scale past it for coincident points) may share a cell.
+  auto cell = [](Scalar q) { return clamped_cell<std::uint64_t>(q, 0, kTop); };
   // Spreads the low 21 bits of x three apart.
   auto spread = [](std::uint64_t x) {
     x &= 0x1fffff;

@@ -1,6 +1,7 @@
 // The voxel grid of a closed model: surface cells marked from triangle boxes, the other cells
 // classified per face-connected component by one winding number each.
 #include "points/solid_grid.hpp"
+#include "util/grid_cell.hpp"
 
 #include <antcd/tolerances.hpp>
 
@@ -50,10 +51,8 @@ SolidGrid::SolidGrid(const Model& model, const std::function<int(const Vec3&)>& 
   cells_.assign(total, kOutside);
 
   auto cell_of = [&](Scalar x, int a) {
-    // Clamped as a double before the conversion (a NaN goes to cell 0).
-    const Scalar c = std::floor((x - origin_[a]) * inverse_cell_);
-    const Scalar top = static_cast<Scalar>(dims_[a] - 1);
-    return static_cast<std::int64_t>(c >= 0 ? std::min(c, top) : Scalar{0});
+    return clamped_cell<std::int64_t>(std::floor((x - origin_[a]) * inverse_cell_), 0,
+                                      dims_[a] - 1);
   };
   auto index_of = [&](std::int64_t x, std::int64_t y, std::int64_t z) {
     return static_cast<std::size_t>((z * dims_[1] + y) * dims_[0] + x);

@@ -14,6 +14,7 @@
 
 #include "random/engines.hpp"
 #include "random/fast_math.hpp"
+#include "util/grid_cell.hpp"
 
 namespace antcd::detail {
 namespace {
@@ -152,13 +153,10 @@ void run_grid(const FeatureSpace& space, Recorder& rec) {
   box = std::max(box, std::numeric_limits<float>::min());
   const float inv = 1.0f / box;
   constexpr std::int64_t kMaxBox = (std::int64_t{1} << 21) - 1;
-  // A's features may lie any distance outside B's boxes (coincident B features make the box
-  // float-min wide): clamped as a float before the conversion to two boxes past either end, whose
-  // neighbours are all out of range, as a NaN is.
-  auto coord = [&](float v, int k) -> std::int64_t {
-    const float c = std::floor((v - lo[k]) * inv);
-    constexpr float kTop = static_cast<float>(kMaxBox + 2);
-    return c >= -2.0f ? static_cast<std::int64_t>(c < kTop ? c : kTop) : -2;
+  // A's features may lie any distance outside B's boxes: clamped to two boxes past either end,
+  // whose neighbours are all out of range, as a NaN's are.
+  auto coord = [&](float v, int k) {
+    return clamped_cell<std::int64_t>(std::floor((v - lo[k]) * inv), -2, kMaxBox + 2);
   };
   auto key = [](std::int64_t x, std::int64_t y, std::int64_t z) {
     return (static_cast<std::uint64_t>(x) << 42) | (static_cast<std::uint64_t>(y) << 21) |

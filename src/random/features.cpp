@@ -6,6 +6,7 @@
 #include "bvh/traverse.hpp"
 #include "random/engines.hpp"
 #include "util/check.hpp"
+#include "util/grid_cell.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -149,7 +150,8 @@ FeatureSide make_side(const Model& model, const Transform& pose, const Transform
       std::uint32_t code = 0;
       for (int axis = 0; axis < 3; ++axis) {
         const Scalar t = ext[axis] > 0 ? (centroids[k][axis] - box.min[axis]) / ext[axis] : 0;
-        const auto q = static_cast<std::uint32_t>(std::clamp<Scalar>(t * 1023, 0, 1023));
+        // t is NaN for a box wider than the double range.
+        const auto q = detail::clamped_cell<std::uint32_t>(t * 1023, 0, 1023);
         code |= spread_bits(q) << axis;
       }
       keyed[k] = {code, static_cast<std::uint32_t>(k)};

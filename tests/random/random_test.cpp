@@ -196,6 +196,35 @@ TEST(RandomFeatures, NoLeafPairMeansAnEmptySpaceAndNoSearch) {
   EXPECT_EQ(d.search.evaluations, 0u);
 }
 
+// Features spread wider than the double range (a model with parts near both ends of it): the
+// Morton order's cell arithmetic made a NaN, converted to a cell index (undefined behaviour under
+// scripts/sanitize.sh's float-cast-overflow) before it was clamped. Same features either order.
+TEST(RandomFeatures, FeaturesSpreadPastTheDoubleRangeAreOrdered) {
+  const Scalar far = 1e308;
+  Mesh parts;
+  for (const Scalar x : {-far, 0.0, far}) {
+    const Mesh box = make_box(Vec3(1, 1, 1), 1);
+    parts = merge(
+        {parts, transformed(box, Transform::from_axis_angle(Vec3::UnitZ(), 0, Vec3(x, 0, 0)))});
+  }
+  const Model a(parts, {}, "far parts");
+  const Transform touching = Transform::from_axis_angle(Vec3::UnitZ(), 0, Vec3(0.5, 0.5, 0));
+  std::vector<Vec3> centroids[2];
+  for (const FeatureOrder order : {FeatureOrder::Leaf, FeatureOrder::Morton}) {
+    SamplingOptions options;
+    options.order = order;
+    const FeatureSpace space =
+        build_feature_space(a, Transform::identity(), a, touching, options, 1);
+    ASSERT_GT(space.a.size(), 0u);
+    auto& out = centroids[order == FeatureOrder::Morton ? 1 : 0];
+    for (std::uint32_t k = 0; k < space.a.size(); ++k) out.push_back(space.a.centroid(k));
+    std::sort(out.begin(), out.end(), [](const Vec3& p, const Vec3& q) {
+      return std::lexicographical_compare(p.data(), p.data() + 3, q.data(), q.data() + 3);
+    });
+  }
+  EXPECT_EQ(centroids[0], centroids[1]);
+}
+
 TEST(RandomFeatures, SamplingTakesDistinctTrianglesWithWorldCentroids) {
   const Scenario s = touching_scenarios()[1];  // spider pair: hundreds of candidates per side
   for (const std::uint32_t samples : {20u, 60u, 100000u}) {
