@@ -18,6 +18,10 @@
 #include "util/huge_pages.hpp"
 #include "util/parallel.hpp"
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 #include <algorithm>
 #include <atomic>
 #include <bit>
@@ -243,36 +247,6 @@ std::size_t check_tree(const std::vector<BvhNode>& nodes, std::size_t leaf_count
   return height[0];
 }
 
-/// A node's volumes prepared for testing points against them, on quarter coordinates (which
-/// neither overflow nor make a NaN for any finite ones): up to the rounding of a fit,
-/// tolerance::kArithmetic of the node's size, far inside the traversal's own allowance
-/// (tolerance::kVolume). A stored +inf extent or radius holds everything along it.
-struct HeldVolume {
-  Mat3 to_box;
-  Vec3 box_center, limit;
-  Scalar reach2 = 0;
-
-  explicit HeldVolume(const BvhNode& node) {
-    const Scalar e = tolerance::kArithmetic;
-    to_box = node.axes().transpose();
-    const Vec3 center = node.center * 0.25;
-    const Vec3 half = node.half_extents() * 0.25;
-    const Scalar radius = 0.25 * static_cast<Scalar>(node.radius);
-    // A valid node's points lie within its smaller volume's reach of its centre.
-    const Scalar slack =
-        e * (center.cwiseAbs().maxCoeff() + std::min(radius, half.norm())) + tolerance::kFloor;
-    box_center = to_box * center;
-    limit = half + Vec3::Constant(slack);
-    reach2 = (radius + slack) * (radius + slack);
-  }
-  /// Whether both volumes hold the point `quarter` (a vertex times 0.25). With orthonormal axes
-  /// (checked apart), the point's offset in the box frame has its length from the centre.
-  [[nodiscard]] bool holds(const Vec3& quarter) const {
-    const Vec3 d = to_box * quarter - box_center;
-    return (d.cwiseAbs().array() <= limit.array()).all() && d.squaredNorm() <= reach2;
-  }
-};
-
 /// Whether the node's axes are orthonormal up to tolerance::kArithmetic.
 bool orthonormal(const BvhNode& node) {
   const Scalar e = tolerance::kArithmetic;
@@ -280,110 +254,134 @@ bool orthonormal(const BvhNode& node) {
          std::abs(node.axis1.squaredNorm() - 1) <= e && std::abs(node.axis0.dot(node.axis1)) <= e;
 }
 
-/// Checks that every node's volumes hold its subtree's vertices (what every query's pruning relies
-/// on: a file whose volumes were shrunk would make collide() miss contacts and sweep() report late
-/// times) and its axes are orthonormal, and that every triangle left out of the tree is
-/// degenerate, as the build leaves out only those. Each vertex is tested once against each node
-/// above the leaves that hold it (its ancestors' chains merge after a few levels), in parallel.
+/// Whether a node's box and sphere hold the points [first, last) of (x, y, z). The
+/// points are quarter coordinates, which neither overflow nor make a NaN for any finite ones (a
+/// stored +inf extent or radius holds everything along it). The comparison allows
+/// tolerance::kArithmetic of the node's size for the rounding of a fit, far inside the
+/// traversal's own allowance (tolerance::kVolume); with orthonormal axes (checked before) the
+/// offset in the box frame has the point's distance from the centre. Two points at a time with
+/// SSE2, exactly as one at a time.
+bool holds_points(const BvhNode& node, const Scalar* x, const Scalar* y, const Scalar* z,
+                  std::size_t first, std::size_t last) {
+  const Mat3 to_box = node.axes().transpose();
+  const Vec3 center = node.center * 0.25;
+  const Vec3 half = node.half_extents() * 0.25;
+  const Scalar radius = 0.25 * static_cast<Scalar>(node.radius);
+  // A valid node's points lie within its smaller volume's reach of its centre.
+  const Scalar slack =
+      tolerance::kArithmetic * (center.cwiseAbs().maxCoeff() + std::min(radius, half.norm())) +
+      tolerance::kFloor;
+  const Vec3 box_center = to_box * center;
+  const Scalar a00 = to_box(0, 0), a01 = to_box(0, 1), a02 = to_box(0, 2);
+  const Scalar a10 = to_box(1, 0), a11 = to_box(1, 1), a12 = to_box(1, 2);
+  const Scalar a20 = to_box(2, 0), a21 = to_box(2, 1), a22 = to_box(2, 2);
+  const Scalar c0 = box_center[0], c1 = box_center[1], c2 = box_center[2];
+  const Scalar l0 = half[0] + slack, l1 = half[1] + slack, l2 = half[2] + slack;
+  const Scalar reach2 = (radius + slack) * (radius + slack);
+  // Inside: every comparison true (a NaN compares false, so it counts as outside).
+  std::size_t i = first;
+  bool inside = true;
+#if defined(__SSE2__)
+  // Two points at a time, the same operations in the same order as the scalar loop below.
+  const __m128d sign = _mm_set1_pd(-0.0);
+  __m128d all = _mm_castsi128_pd(_mm_set1_epi32(-1));
+  const auto mul_add3 = [](Scalar a, Scalar b, Scalar c, __m128d px, __m128d py, __m128d pz,
+                           Scalar minus) {
+    const __m128d sum =
+        _mm_add_pd(_mm_add_pd(_mm_mul_pd(_mm_set1_pd(a), px), _mm_mul_pd(_mm_set1_pd(b), py)),
+                   _mm_mul_pd(_mm_set1_pd(c), pz));
+    return _mm_sub_pd(sum, _mm_set1_pd(minus));
+  };
+  for (; i + 2 <= last; i += 2) {
+    const __m128d px = _mm_loadu_pd(x + i), py = _mm_loadu_pd(y + i), pz = _mm_loadu_pd(z + i);
+    const __m128d d0 = mul_add3(a00, a01, a02, px, py, pz, c0);
+    const __m128d d1 = mul_add3(a10, a11, a12, px, py, pz, c1);
+    const __m128d d2 = mul_add3(a20, a21, a22, px, py, pz, c2);
+    const __m128d r2 =
+        _mm_add_pd(_mm_add_pd(_mm_mul_pd(d0, d0), _mm_mul_pd(d1, d1)), _mm_mul_pd(d2, d2));
+    all = _mm_and_pd(all, _mm_cmple_pd(_mm_andnot_pd(sign, d0), _mm_set1_pd(l0)));
+    all = _mm_and_pd(all, _mm_cmple_pd(_mm_andnot_pd(sign, d1), _mm_set1_pd(l1)));
+    all = _mm_and_pd(all, _mm_cmple_pd(_mm_andnot_pd(sign, d2), _mm_set1_pd(l2)));
+    all = _mm_and_pd(all, _mm_cmple_pd(r2, _mm_set1_pd(reach2)));
+  }
+  inside = _mm_movemask_pd(all) == 3;
+#endif
+  for (; i < last; ++i) {
+    const Scalar d0 = a00 * x[i] + a01 * y[i] + a02 * z[i] - c0;
+    const Scalar d1 = a10 * x[i] + a11 * y[i] + a12 * z[i] - c1;
+    const Scalar d2 = a20 * x[i] + a21 * y[i] + a22 * z[i] - c2;
+    inside = inside && std::abs(d0) <= l0 && std::abs(d1) <= l1 && std::abs(d2) <= l2 &&
+             d0 * d0 + d1 * d1 + d2 * d2 <= reach2;
+  }
+  return inside;
+}
+
+/// Checks that every triangle left out of the tree is degenerate, as the build leaves out only
+/// those, that every node's axes are orthonormal, and that its box and its sphere hold every
+/// vertex of its subtree's triangles: what every query's pruning relies on (a file whose volumes
+/// were shrunk would make collide() miss contacts and sweep() report late times). Each leaf's
+/// distinct vertices are laid out in leaf order, so that every node's are one run of them, tested
+/// in one pass per node (each vertex once per level of the tree), nodes in parallel. The smallest
+/// failing node is reported, at any thread count.
 void check_volumes(const Model& m, const Reader& in) {
   const std::span<const BvhNode> nodes = m.nodes();
   const std::size_t n = nodes.size();
-  const std::vector<Vec3>& vertices = m.mesh().vertices;
-  const std::size_t nv = vertices.size();
-  std::vector<bool> in_tree(m.mesh().triangles.size(), false);
+  const Mesh& mesh = m.mesh();
+  std::vector<bool> in_tree(mesh.triangles.size(), false);
   for (const std::uint32_t t : m.leaf_triangles()) in_tree[t] = true;
   for (std::size_t t = 0; t < in_tree.size(); ++t) {
-    const TriangleIndices& tri = m.mesh().triangles[t];
-    const std::vector<Vec3>& v = m.mesh().vertices;
+    const TriangleIndices& tri = mesh.triangles[t];
+    const std::vector<Vec3>& v = mesh.vertices;
     if (!in_tree[t] && !geometry::is_degenerate_triangle(v[tri[0]], v[tri[1]], v[tri[2]])) {
       in.fail("triangle " + std::to_string(t) + " is left out of the tree but is not degenerate");
     }
   }
-  // Each node's parent (children come after their parent), each leaf triangle's leaf.
-  std::vector<std::uint32_t> parent(n, 0);
-  std::vector<std::uint32_t> leaf_of(m.leaf_triangles().size());
+  // Leaves come in depth-first order, so each node's leaves are consecutive: its run of points is
+  // [first[i], last[i]) (children come after their parent).
+  std::vector<Scalar> x, y, z;
+  x.reserve(3 * m.leaf_triangles().size());
+  y.reserve(x.capacity());
+  z.reserve(x.capacity());
+  std::vector<std::size_t> first(n), last(n);
+  std::vector<std::uint32_t> seen;  // the leaf's vertex indices so far
   for (std::size_t i = 0; i < n; ++i) {
     const BvhNode& node = nodes[i];
-    if (node.is_leaf()) {
-      for (std::uint32_t k = node.first_or_right; k < node.first_or_right + node.count; ++k) {
-        leaf_of[k] = static_cast<std::uint32_t>(i);
-      }
-    } else {
-      parent[i + 1] = static_cast<std::uint32_t>(i);
-      parent[node.first_or_right] = static_cast<std::uint32_t>(i);
-    }
-  }
-  // The leaves holding each vertex (compressed rows, ascending: leaf_of grows with k), and the
-  // first leaf triangle holding it.
-  const std::span<const std::uint32_t> leaf_triangles = m.leaf_triangles();
-  const std::size_t nl = leaf_triangles.size();
-  constexpr std::uint32_t kNone = 0xFFFFFFFFU;
-  std::vector<std::size_t> begin(nv + 1, 0);
-  std::vector<std::uint32_t> first_use(nv, kNone);
-  for (std::size_t k = 0; k < nl; ++k) {
-    for (const std::uint32_t v : m.mesh().triangles[leaf_triangles[k]]) {
-      ++begin[v + 1];
-      if (first_use[v] == kNone) first_use[v] = static_cast<std::uint32_t>(k);
-    }
-  }
-  for (std::size_t v = 0; v < nv; ++v) begin[v + 1] += begin[v];
-  std::vector<std::uint32_t> leaves(begin[nv]);
-  {
-    std::vector<std::size_t> fill(begin.begin(), begin.end() - 1);
-    for (std::size_t k = 0; k < nl; ++k) {
-      for (const std::uint32_t v : m.mesh().triangles[leaf_triangles[k]]) {
-        leaves[fill[v]++] = leaf_of[k];
+    if (!node.is_leaf()) continue;
+    first[i] = x.size();
+    seen.clear();
+    for (std::uint32_t k = node.first_or_right; k < node.first_or_right + node.count; ++k) {
+      for (const std::uint32_t v : mesh.triangles[m.leaf_triangles()[k]]) {
+        if (std::find(seen.begin(), seen.end(), v) != seen.end()) continue;
+        seen.push_back(v);
+        x.push_back(mesh.vertices[v].x() * 0.25);
+        y.push_back(mesh.vertices[v].y() * 0.25);
+        z.push_back(mesh.vertices[v].z() * 0.25);
       }
     }
+    last[i] = x.size();
   }
-  std::vector<HeldVolume> held;
-  held.reserve(n);
-  for (const BvhNode& node : nodes) held.emplace_back(node);
-
-  // The smallest node index found not to hold a vertex (n: none), the same at any thread count.
+  for (std::size_t i = n; i-- > 0;) {
+    if (!nodes[i].is_leaf()) {
+      first[i] = first[i + 1];
+      last[i] = last[nodes[i].first_or_right];
+    }
+  }
   std::atomic<std::size_t> bad{n};
-  const auto report = [&](std::size_t i) {
-    std::size_t seen = bad.load(std::memory_order_relaxed);
-    while (i < seen && !bad.compare_exchange_weak(seen, i)) {
-    }
-  };
-  for (std::size_t i = 0; i < n; ++i) {
-    if (!orthonormal(nodes[i])) {
-      report(i);
-      break;
-    }
-  }
-  // Vertices in the order of their first leaf triangle, so that neighbouring vertices meet the
-  // same nodes: each one tested up its leaves' merging chains of ancestors.
-  const auto range = [&](std::size_t first, std::size_t last) {
-    std::vector<std::uint32_t> chain;  // the nodes still to test, ascending
-    for (std::size_t k = first; k < last; ++k) {
-      const TriangleIndices& tri = m.mesh().triangles[leaf_triangles[k]];
-      for (std::size_t c = 0; c < 3; ++c) {
-        const std::uint32_t v = tri[c];
-        // Once: at its first triangle's first corner holding it.
-        if (first_use[v] != k || (c > 0 && tri[0] == v) || (c > 1 && tri[1] == v)) continue;
-        chain.assign(leaves.begin() + static_cast<std::ptrdiff_t>(begin[v]),
-                     leaves.begin() + static_cast<std::ptrdiff_t>(begin[v + 1]));
-        chain.erase(std::unique(chain.begin(), chain.end()), chain.end());
-        const Vec3 quarter = vertices[v] * 0.25;
-        // Largest index first: a node's parent has a smaller index, so chains meet in order.
-        while (!chain.empty()) {
-          const std::uint32_t i = chain.back();
-          chain.pop_back();
-          if (!held[i].holds(quarter)) report(i);
-          if (i == 0) continue;
-          const std::uint32_t up = parent[i];
-          const auto at = std::lower_bound(chain.begin(), chain.end(), up);
-          if (at == chain.end() || *at != up) chain.insert(at, up);
+  const auto range = [&](std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end && i < bad.load(std::memory_order_relaxed); ++i) {
+      if (!orthonormal(nodes[i]) ||
+          !holds_points(nodes[i], x.data(), y.data(), z.data(), first[i], last[i])) {
+        std::size_t seen_bad = bad.load(std::memory_order_relaxed);
+        while (i < seen_bad && !bad.compare_exchange_weak(seen_bad, i)) {
         }
+        return;
       }
     }
   };
-  if (nl < kParallelCheck) {
-    range(0, nl);
+  if (m.leaf_triangles().size() < kParallelCheck) {
+    range(0, n);
   } else {
-    parallel::for_ranges(0, nl, 1024, range);
+    parallel::for_ranges(0, n, 16, range);
   }
   if (const std::size_t i = bad.load(); i != n) {
     in.fail("node " + std::to_string(i) +
