@@ -5,9 +5,10 @@
 //
 // Reading trusts nothing: the header's payload size must be the file's, the checksum must match,
 // every count is checked against the bytes left before anything is allocated for it (so a hostile
-// file never allocates more than about its own size), and the contents are validated (finite
-// coordinates, indices in range, the tree's depth-first shape, leaves covering the leaf order)
-// before the Model exists.
+// file never allocates more than a few times its own size), and the contents are validated
+// (finite coordinates, indices in range, the tree's depth-first shape, leaves covering the leaf
+// order, only degenerate triangles left out, volumes that hold their subtrees) before the Model
+// exists.
 #include <antcd/bvh.hpp>
 #include <antcd/geometry.hpp>
 #include <antcd/io.hpp>
