@@ -5,7 +5,9 @@
 #include <antcd/math.hpp>
 
 #include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
 
+#include <chrono>
 #include <filesystem>
 #include <functional>
 #include <stdexcept>
@@ -26,6 +28,21 @@ class UsageError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
 };
+
+/// Wall time since construction, for the query times the commands print.
+class Stopwatch {
+ public:
+  [[nodiscard]] double seconds() const {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  }
+  [[nodiscard]] double ms() const { return 1000 * seconds(); }
+
+ private:
+  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
+};
+
+/// A point or vector as the JSON array [x, y, z].
+inline nlohmann::json vec_json(const Vec3& v) { return {v.x(), v.y(), v.z()}; }
 
 /// Parses "tx,ty,tz" or "tx,ty,tz,qw,qx,qy,qz" (quaternion normalised if within 1e-3 of unit).
 /// Throws UsageError naming `option` on malformed or non-finite input.

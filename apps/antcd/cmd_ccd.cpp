@@ -8,7 +8,6 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
-#include <chrono>
 #include <cstdio>
 #include <fstream>
 #include <iostream>
@@ -151,10 +150,10 @@ int run_queries(const QueriesOptions& o) {
     // The doubles moved each point by at most `rounding`, so F by at most twice that per axis:
     // widening the separation by it keeps every exact contact a hit.
     const double separation = o.min_separation + 2 * q.rounding * (1 + 1e-15);
-    const auto start = std::chrono::steady_clock::now();
+    const Stopwatch clock;
     results[i] = o.kind == "vf" ? ccd::vertex_face(q.at_t0, q.at_t1, separation, o.time_tolerance)
                                 : ccd::edge_edge(q.at_t0, q.at_t1, separation, o.time_tolerance);
-    seconds[i] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    seconds[i] = clock.seconds();
     total += seconds[i];
   }
   std::size_t hits = 0, false_negatives = 0, false_positives = 0, tolerance = 0, rounded = 0;
@@ -226,10 +225,9 @@ int run_sweep(const SweepOptions& o) {
   request.min_separation = o.min_separation;
   request.time_tolerance = o.time_tolerance;
   request.max_iterations = o.max_iterations;
-  const auto start = std::chrono::steady_clock::now();
+  const Stopwatch clock;
   const SweepResult r = sweep(a, a0, a1, b, b0, b1, request);
-  const double query_ms =
-      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  const double query_ms = clock.ms();
   const Contact& c = r.contact;
   if (o.json) {
     nlohmann::json j;
@@ -244,8 +242,8 @@ int run_sweep(const SweepOptions& o) {
     if (r.hit) {
       j["contact"] = {{"triangle_a", c.triangle_a},
                       {"triangle_b", c.triangle_b},
-                      {"point", {c.point.x(), c.point.y(), c.point.z()}},
-                      {"normal", {c.normal.x(), c.normal.y(), c.normal.z()}},
+                      {"point", vec_json(c.point)},
+                      {"normal", vec_json(c.normal)},
                       {"distance", c.distance},
                       {"depth", c.depth}};
     }

@@ -3,7 +3,6 @@
 
 #include <nlohmann/json.hpp>
 
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
@@ -45,10 +44,9 @@ int run_collide(const CollideOptions& o) {
   request.manifold_points = o.manifold;
   const bool normals = o.normals || o.manifold > 0;
   CollisionResult result;
-  const auto start = std::chrono::steady_clock::now();
+  const Stopwatch clock;
   collide(a, pa, b, pb, request, result);
-  const double query_ms =
-      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  const double query_ms = clock.ms();
 
   if (o.json) {
     nlohmann::json j;
@@ -66,10 +64,10 @@ int run_collide(const CollideOptions& o) {
     for (const Contact& c : result.contacts) {
       nlohmann::json jc = {{"triangle_a", c.triangle_a},
                            {"triangle_b", c.triangle_b},
-                           {"point", {c.point.x(), c.point.y(), c.point.z()}},
+                           {"point", vec_json(c.point)},
                            {"distance", c.distance}};
       if (normals) {
-        jc["normal"] = {c.normal.x(), c.normal.y(), c.normal.z()};
+        jc["normal"] = vec_json(c.normal);
         jc["depth"] = c.depth;
       }
       if (o.manifold > 0) jc["region"] = c.region;

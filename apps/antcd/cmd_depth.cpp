@@ -3,7 +3,6 @@
 
 #include <nlohmann/json.hpp>
 
-#include <chrono>
 #include <cstdio>
 #include <iostream>
 #include <memory>
@@ -23,8 +22,6 @@ struct DepthOptions {
   std::string shape = "auto";
   bool json = false;
 };
-
-nlohmann::json vec_json(const Vec3& p) { return {p.x(), p.y(), p.z()}; }
 
 int run_depth(const DepthOptions& o) {
   const Transform pa = parse_pose(o.pose_a, "--pose-a");
@@ -47,10 +44,9 @@ int run_depth(const DepthOptions& o) {
   const Model b = load_model(o.mesh_b, {});
   warn_degenerate(a);
   warn_degenerate(b);
-  const auto start = std::chrono::steady_clock::now();
+  const Stopwatch clock;
   const PenetrationResult r = penetration(a, pa, b, pb, request);
-  const double query_ms =
-      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  const double query_ms = clock.ms();
   if (o.json) {
     nlohmann::json j;
     j["mesh_a"] = o.mesh_a;

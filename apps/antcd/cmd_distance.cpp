@@ -3,7 +3,6 @@
 
 #include <nlohmann/json.hpp>
 
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
@@ -28,8 +27,6 @@ struct DistanceOptions {
   std::string covariance = "area";
 };
 
-nlohmann::json point_json(const Vec3& p) { return {p.x(), p.y(), p.z()}; }
-
 int run_distance(const DistanceOptions& o) {
   const Transform pa = parse_pose(o.pose_a, "--pose-a");
   const Transform pb = parse_pose(o.pose_b, "--pose-b");
@@ -46,10 +43,9 @@ int run_distance(const DistanceOptions& o) {
   request.abs_tolerance = o.abs_tolerance;
   request.rel_tolerance = o.rel_tolerance;
   request.signed_distance = o.signed_distance;
-  const auto start = std::chrono::steady_clock::now();
+  const Stopwatch clock;
   const DistanceResult r = distance(a, pa, b, pb, request);
-  const double query_ms =
-      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  const double query_ms = clock.ms();
   const bool found = std::isfinite(r.distance);
 
   if (o.json) {
@@ -66,8 +62,8 @@ int run_distance(const DistanceOptions& o) {
     j["upper_bound"] =
         std::isfinite(o.upper_bound) ? nlohmann::json(o.upper_bound) : nlohmann::json(nullptr);
     if (found) {
-      j["point_a"] = point_json(r.point_a);
-      j["point_b"] = point_json(r.point_b);
+      j["point_a"] = vec_json(r.point_a);
+      j["point_b"] = vec_json(r.point_b);
       j["triangle_a"] = r.triangle_a;
       j["triangle_b"] = r.triangle_b;
     }

@@ -47,8 +47,7 @@ int run_info(const InfoOptions& o) {
     j["vertices"] = model.mesh().vertices.size();
     j["triangles"] = s.triangles;
     j["degenerate_triangles"] = s.degenerate_triangles;
-    j["bounds"] = {{"min", {box.min.x(), box.min.y(), box.min.z()}},
-                   {"max", {box.max.x(), box.max.y(), box.max.z()}}};
+    j["bounds"] = {{"min", vec_json(box.min)}, {"max", vec_json(box.max)}};
     j["tree"] = {{"nodes", s.nodes},
                  {"leaves", s.leaves},
                  {"depth", s.depth},

@@ -4,7 +4,6 @@
 
 #include <nlohmann/json.hpp>
 
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
@@ -60,12 +59,11 @@ int run_points(const PointsOptions& o) {
                  "no inside/outside\n",
                  o.mesh.c_str());
   }
-  const auto start = std::chrono::steady_clock::now();
+  const Stopwatch clock;
   const SignedDistanceResult sd = signed_distance(model, pose, points);
   std::vector<std::uint8_t> inside;
   if (model.is_closed()) inside = contains(model, pose, points);
-  const double query_ms =
-      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  const double query_ms = clock.ms();
 
   std::ostringstream out;
   out.precision(17);
@@ -77,11 +75,11 @@ int run_points(const PointsOptions& o) {
     nlohmann::json rows = nlohmann::json::array();
     for (std::size_t i = 0; i < points.size(); ++i) {
       const PointDistance& d = sd.points[i];
-      rows.push_back({{"point", {points[i].x(), points[i].y(), points[i].z()}},
+      rows.push_back({{"point", vec_json(points[i])},
                       {"inside", inside.empty() ? nlohmann::json(nullptr)
                                                 : nlohmann::json(inside[i] != 0)},
                       {"distance", d.distance},
-                      {"closest", {d.closest.x(), d.closest.y(), d.closest.z()}},
+                      {"closest", vec_json(d.closest)},
                       {"triangle", d.triangle}});
     }
     j["points"] = std::move(rows);
