@@ -240,12 +240,9 @@ int run_sweep(const SweepOptions& o) {
     j["distance"] = r.distance;
     j["motion_bound"] = r.motion_bound;
     if (r.hit) {
-      j["contact"] = {{"triangle_a", c.triangle_a},
-                      {"triangle_b", c.triangle_b},
-                      {"point", vec_json(c.point)},
-                      {"normal", vec_json(c.normal)},
-                      {"distance", c.distance},
-                      {"depth", c.depth}};
+      j["contact"] = {{"triangle_a", c.triangle_a}, {"triangle_b", c.triangle_b},
+                      {"point", vec_json(c.point)}, {"normal", vec_json(c.normal)},
+                      {"distance", c.distance},     {"depth", c.depth}};
     }
     j["iterations"] = r.iterations;
     j["query_ms"] = query_ms;

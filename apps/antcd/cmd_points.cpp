@@ -75,12 +75,12 @@ int run_points(const PointsOptions& o) {
     nlohmann::json rows = nlohmann::json::array();
     for (std::size_t i = 0; i < points.size(); ++i) {
       const PointDistance& d = sd.points[i];
-      rows.push_back({{"point", vec_json(points[i])},
-                      {"inside", inside.empty() ? nlohmann::json(nullptr)
-                                                : nlohmann::json(inside[i] != 0)},
-                      {"distance", d.distance},
-                      {"closest", vec_json(d.closest)},
-                      {"triangle", d.triangle}});
+      rows.push_back(
+          {{"point", vec_json(points[i])},
+           {"inside", inside.empty() ? nlohmann::json(nullptr) : nlohmann::json(inside[i] != 0)},
+           {"distance", d.distance},
+           {"closest", vec_json(d.closest)},
+           {"triangle", d.triangle}});
     }
     j["points"] = std::move(rows);
     out << j.dump(2) << '\n';
