@@ -14,6 +14,8 @@
 //   world_frame        a World of 40 generated shapes: set_poses + collide_all, 12 frames
 //   scene_exact_frame  Scene::run_frame (exact) over a 20-object scene of real meshes, 24 frames
 //   maco_frame         Scene::run_frame (MACO, one SceneMemory) over the generated line, 6 frames
+//   model_load         Model::from_bytes of a saved 20 000-triangle torus and of Wuson: the reader's
+//                      checks, most of them the check that every volume holds its subtree
 //
 // Run alone (without valgrind) it runs the same work and prints each section's result checksum,
 // so that a count change can be told apart from an answer change.
@@ -126,6 +128,9 @@ int run() {
   line.seed = 1;
   const Scene line_scene = shared::make_scene(shared::generate_production_line(line));
 
+  const std::vector<std::vector<std::uint8_t>> saved = {
+      Model(make_torus(1.0, 0.3, 200, 50)).to_bytes(), env.to_bytes()};
+
   CALLGRIND_START_INSTRUMENTATION;
 
   std::size_t colliding = 0;
@@ -186,6 +191,14 @@ int run() {
     SceneMemory memory;
     for (std::size_t f = 0; f < line_scene.description().frames; ++f) {
       s = s * 31 + scene_sum(line_scene.run_frame(f, maco, &memory));
+    }
+    return s;
+  });
+  section("model_load", [&] {
+    std::uint64_t s = 0;
+    for (const std::vector<std::uint8_t>& bytes : saved) {
+      const Model m = Model::from_bytes(bytes);
+      s = s * 31 + m.nodes().size() * 1009u + m.stats().depth;
     }
     return s;
   });
