@@ -14,8 +14,8 @@
 //   world_frame        a World of 40 generated shapes: set_poses + collide_all, 12 frames
 //   scene_exact_frame  Scene::run_frame (exact) over a 20-object scene of real meshes, 24 frames
 //   maco_frame         Scene::run_frame (MACO, one SceneMemory) over the generated line, 6 frames
-//   model_load         Model::from_bytes of a saved 20 000-triangle torus and of Wuson: the reader's
-//                      checks, most of them the check that every volume holds its subtree
+//   model_load         Model::from_bytes of a saved 20 000-triangle torus and of Wuson (the
+//                      reader's checks, most of all that every volume holds its subtree)
 //
 // Run alone (without valgrind) it runs the same work and prints each section's result checksum,
 // so that a count change can be told apart from an answer change.
