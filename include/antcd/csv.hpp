@@ -12,7 +12,7 @@
 // belongs to one thread.
 #pragma once
 
-#include <antcd/export.hpp>
+#include <antcd/io_export.hpp>
 #include <antcd/math.hpp>
 
 #include <filesystem>
@@ -25,12 +25,12 @@ namespace antcd {
 
 /// Opens `path` for reading, binary. Throws antcd::Error "<path>: <what> ..." when it is missing,
 /// not a regular file (a directory, device, FIFO or socket) or cannot be opened.
-ANTCD_API std::ifstream open_regular_file(const std::filesystem::path& path,
+ANTCD_IO_API std::ifstream open_regular_file(const std::filesystem::path& path,
                                           const std::string& what);
 
 /// The lines of a stream, each at most `max_length` bytes (without its line break). A trailing
 /// '\r' is dropped; NUL and other bytes are kept as they are.
-class ANTCD_API CsvLines {
+class ANTCD_IO_API CsvLines {
  public:
   /// Longest line limit a reader may ask for (the buffer is allocated once, this size).
   static constexpr std::size_t kLargestLimit = 1 << 16;
@@ -61,8 +61,8 @@ inline constexpr std::size_t kMaxPointsLine = 1024;
 /// numbers, each finite); blank lines and lines starting with '#' are skipped, and so is a first
 /// line that holds no number (a header). Throws antcd::Error naming `source` and the line: a line
 /// that is not three finite numbers, a line longer than kMaxPointsLine, no point at all.
-ANTCD_API std::vector<Vec3> read_points_csv(std::istream& in, const std::string& source);
+ANTCD_IO_API std::vector<Vec3> read_points_csv(std::istream& in, const std::string& source);
 /// The same from a file (a regular file only, see open_regular_file); errors name `path`.
-ANTCD_API std::vector<Vec3> read_points_csv(const std::filesystem::path& path);
+ANTCD_IO_API std::vector<Vec3> read_points_csv(const std::filesystem::path& path);
 
 }  // namespace antcd

@@ -13,8 +13,11 @@
 
 #include <antcd/export.hpp>
 
+#include <charconv>
+#include <cstdio>
 #include <stdexcept>
 #include <string>
+#include <system_error>
 #include <utility>
 
 namespace antcd {
@@ -49,5 +52,27 @@ class ANTCD_API ArgumentError : public Error {
  public:
   using Error::Error;
 };
+
+/// Appends the text of `x` that reads back as exactly the same double ("1.5", "-1", "inf", "nan"), for
+/// the numbers messages quote (each front end quotes them the same way): std::to_chars, the
+/// shortest such text, where the standard library has it for floating point; otherwise "%.17g",
+/// which also round-trips (libc++ 14, e.g. Emscripten 3.1's, lacks floating-point to_chars).
+inline void append_number_text(std::string& out, double x) {
+  char buf[32];
+#if defined(__cpp_lib_to_chars) && __cpp_lib_to_chars >= 201611L
+  const auto [end, ec] = std::to_chars(buf, buf + sizeof buf, x);
+  out.append(buf, ec == std::errc{} ? end : buf);
+#else
+  const int n = std::snprintf(buf, sizeof buf, "%.17g", x);
+  out.append(buf, n > 0 && n < static_cast<int>(sizeof buf) ? static_cast<std::size_t>(n) : 0);
+#endif
+}
+
+/// append_number_text into a new string ("?" in the impossible case of no text).
+[[nodiscard]] inline std::string number_text(double x) {
+  std::string text;
+  append_number_text(text, x);
+  return text.empty() ? std::string("?") : text;
+}
 
 }  // namespace antcd

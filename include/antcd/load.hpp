@@ -1,11 +1,12 @@
 // antcd/load.hpp — reading mesh files (OBJ, STL, PLY, OFF, glTF and the other formats assimp
 // reads) into a Mesh. Part of the antcd::io library (link antcd::io; it links the core, and uses
-// assimp and tinyobjloader privately): the core library antcd::antcd reads no files.
+// assimp and tinyobjloader privately): the core library antcd::antcd reads no mesh file (it reads
+// and writes only its own model files, Model::load and Model::save, through antcd/file.hpp).
 // Thread safety: load_mesh may be called from several threads at once (each call has its own
 // importer).
 #pragma once
 
-#include <antcd/export.hpp>
+#include <antcd/io_export.hpp>
 #include <antcd/mesh.hpp>
 
 #include <filesystem>
@@ -22,6 +23,6 @@ namespace antcd {
 /// (docs/guarantees.md).
 /// Throws MeshError (naming the path) when the file is missing, is not a readable mesh, holds no
 /// triangle, has non-finite coordinates or out-of-range indices.
-ANTCD_API Mesh load_mesh(const std::filesystem::path& path);
+ANTCD_IO_API Mesh load_mesh(const std::filesystem::path& path);
 
 }  // namespace antcd

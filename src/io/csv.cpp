@@ -1,6 +1,9 @@
 // Line-based text files (antcd/csv.hpp): the bounded line reader and the points reader.
 #include <antcd/csv.hpp>
 #include <antcd/error.hpp>
+#include <antcd/file.hpp>
+
+#include "io/polygon_soup.hpp"
 
 #include <charconv>
 #include <cmath>
@@ -10,13 +13,8 @@
 namespace antcd {
 
 std::ifstream open_regular_file(const std::filesystem::path& path, const std::string& what) {
-  std::error_code ec;
-  const auto status = std::filesystem::status(path, ec);
-  if (ec || !std::filesystem::exists(status)) {
-    throw Error(path.string() + ": cannot open " + what + " (no such file)");
-  }
-  if (!std::filesystem::is_regular_file(status)) {
-    throw Error(path.string() + ": " + what + " is not a regular file");
+  if (const std::string problem = file_problem(path); !problem.empty()) {
+    throw Error(path.string() + ": cannot open the " + what + ": " + problem);
   }
   std::ifstream in(path, std::ios::binary);
   if (!in) throw Error(path.string() + ": cannot open " + what);
@@ -51,18 +49,6 @@ bool CsvLines::next(std::string& line) {
   return true;
 }
 
-namespace {
-
-/// One finite decimal number filling all of `token` (an optional '+' or '-', no hex, no blanks).
-bool finite_number(std::string_view token, Scalar& value) {
-  if (!token.empty() && token.front() == '+') token.remove_prefix(1);
-  if (token.empty()) return false;
-  const auto [end, ec] = std::from_chars(token.data(), token.data() + token.size(), value);
-  return ec == std::errc() && end == token.data() + token.size() && std::isfinite(value);
-}
-
-}  // namespace
-
 std::vector<Vec3> read_points_csv(std::istream& in, const std::string& source) {
   CsvLines lines(in, source, kMaxPointsLine);
   std::vector<Vec3> points;
@@ -88,7 +74,7 @@ std::vector<Vec3> read_points_csv(std::istream& in, const std::string& source) {
     Vec3 p;
     numeric = numeric && count == 3;
     for (std::size_t k = 0; numeric && k < 3; ++k) {
-      numeric = finite_number(fields[k], p[static_cast<Eigen::Index>(k)]);
+      numeric = detail::parse_coordinate(fields[k], p[static_cast<Eigen::Index>(k)]) == std::errc{};
     }
     if (!numeric) {
       if (points.empty() && lines.number() == 1) continue;  // header

@@ -1,6 +1,6 @@
 // Mesh basics: bounds, degenerate-triangle count, validation, OBJ output, merge and transform.
 #include <antcd/geometry.hpp>
-#include <antcd/io.hpp>
+#include <antcd/file.hpp>
 #include <antcd/mesh.hpp>
 
 #include <array>
@@ -10,7 +10,6 @@
 #include <string>
 #include <system_error>
 
-#include "util/number_text.hpp"
 
 namespace antcd {
 
@@ -84,11 +83,11 @@ void save_obj(const Mesh& mesh, const std::filesystem::path& path) {
   text += " triangles\n";
   for (const Vec3& v : mesh.vertices) {
     text += "v ";
-    detail::append_double(text, v.x());
+    append_number_text(text, v.x());
     text += ' ';
-    detail::append_double(text, v.y());
+    append_number_text(text, v.y());
     text += ' ';
-    detail::append_double(text, v.z());
+    append_number_text(text, v.z());
     text += '\n';
   }
   for (const TriangleIndices& t : mesh.triangles) {

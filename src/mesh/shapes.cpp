@@ -213,9 +213,9 @@ Mesh make_torus(Scalar major, Scalar minor, int major_segments, int minor_segmen
   require_length("make_torus", "minor", minor);
   if (!(minor < major)) {
     // With minor >= major the tube reaches the axis: the inner ring collapses or self-intersects.
-    throw antcd::ArgumentError("antcd::make_torus: minor radius (" + detail::format_number(minor) +
+    throw antcd::ArgumentError("antcd::make_torus: minor radius (" + number_text(minor) +
                                ") must be smaller than major radius (" +
-                               detail::format_number(major) + ")");
+                               number_text(major) + ")");
   }
   require_count("make_torus", "major_segments", major_segments, 3);
   require_count("make_torus", "minor_segments", minor_segments, 3);

@@ -31,7 +31,7 @@ void detail::validate_search(const SearchRequest& r, const char* caller) {
   detail::require_bound(caller, "stop.max_seconds", s.max_seconds);
   for (const double mark : r.progress_marks) {
     if (!(mark > 0 && mark <= 1)) {
-      detail::argument_error(caller, "progress_marks", "in (0, 1]", detail::format_number(mark));
+      detail::argument_error(caller, "progress_marks", "in (0, 1]", number_text(mark));
     }
   }
   switch (r.method) {
@@ -68,7 +68,7 @@ void detail::validate_search(const SearchRequest& r, const char* caller) {
       detail::require_in_range(caller, "ga.crossover", p.crossover, 0, 1, false, "[0, 1]");
       if (!(p.mutation <= 1)) {
         detail::argument_error(caller, "ga.mutation", "<= 1 (negative: automatic)",
-                               detail::format_number(p.mutation));
+                               number_text(p.mutation));
       }
       break;
     }

@@ -15,16 +15,8 @@
 #include <string_view>
 #include <utility>
 
-#include "util/number_text.hpp"
 
 namespace antcd::detail {
-
-/// Text that reads back as `x` ("1.5", "-1", "inf", "nan"; util/number_text.hpp).
-inline std::string format_number(double x) {
-  std::string text;
-  append_double(text, x);
-  return text.empty() ? std::string("?") : text;
-}
 
 [[noreturn]] inline void argument_error(std::string_view function, std::string_view argument,
                                         std::string_view requirement, std::string_view got) {
@@ -36,34 +28,34 @@ inline std::string format_number(double x) {
 
 /// finite
 inline void require_finite(std::string_view function, std::string_view argument, Scalar value) {
-  if (!std::isfinite(value)) argument_error(function, argument, "finite", format_number(value));
+  if (!std::isfinite(value)) argument_error(function, argument, "finite", number_text(value));
 }
 
 /// finite and >= 0
 inline void require_non_negative(std::string_view function, std::string_view argument,
                                  Scalar value) {
   if (!(value >= 0) || !std::isfinite(value)) {
-    argument_error(function, argument, "finite and >= 0", format_number(value));
+    argument_error(function, argument, "finite and >= 0", number_text(value));
   }
 }
 
 /// finite and > 0
 inline void require_positive(std::string_view function, std::string_view argument, Scalar value) {
   if (!(value > 0) || !std::isfinite(value)) {
-    argument_error(function, argument, "finite and > 0", format_number(value));
+    argument_error(function, argument, "finite and > 0", number_text(value));
   }
 }
 
 /// >= 0, +inf allowed (a bound that may be absent)
 inline void require_bound(std::string_view function, std::string_view argument, Scalar value) {
-  if (!(value >= 0)) argument_error(function, argument, ">= 0 (or +inf)", format_number(value));
+  if (!(value >= 0)) argument_error(function, argument, ">= 0 (or +inf)", number_text(value));
 }
 
 /// in [lo, hi) (half_open) or [lo, hi]; `range` is how the message writes it, e.g. "[0, pi]"
 inline void require_in_range(std::string_view function, std::string_view argument, Scalar value,
                              Scalar lo, Scalar hi, bool half_open, std::string_view range) {
   if (!(value >= lo && (half_open ? value < hi : value <= hi))) {
-    argument_error(function, argument, std::string("in ").append(range), format_number(value));
+    argument_error(function, argument, std::string("in ").append(range), number_text(value));
   }
 }
 

@@ -134,8 +134,8 @@ Vec3 checked_ray_direction(const Ray& ray, const char* function) {
   if (!ray.direction.allFinite() || ray.direction.squaredNorm() == 0) {
     const Vec3& d = ray.direction;
     detail::argument_error(fn, "ray.direction", "finite and non-zero",
-                           "(" + detail::format_number(d.x()) + ", " +
-                               detail::format_number(d.y()) + ", " + detail::format_number(d.z()) +
+                           "(" + number_text(d.x()) + ", " +
+                               number_text(d.y()) + ", " + number_text(d.z()) +
                                ")");
   }
   detail::require_bound(fn, "ray.max_distance", ray.max_distance);

@@ -23,7 +23,7 @@
 #include <unistd.h>
 #include <antcd/bvh.hpp>
 #include <antcd/collide.hpp>
-#include <antcd/io.hpp>
+#include <antcd/file.hpp>
 #include <antcd/load.hpp>
 #include <antcd/mesh.hpp>
 #include <antcd/scene.hpp>
@@ -858,8 +858,8 @@ TEST_F(Cli, HostilePointsFiles) {
   expect_usage_failure({"points", "tet.obj", "spaces.csv"}, "spaces.csv:2: line longer");
   expect_usage_failure({"points", "tet.obj", "nul.csv"}, "nul.csv:2");
   expect_usage_failure({"points", "tet.obj", "binary.csv"}, "binary.csv");
-  expect_usage_failure({"points", "tet.obj", "fifo.csv"}, "fifo.csv: points file is not a regular");
-  expect_usage_failure({"points", "tet.obj", "/dev/zero"}, "/dev/zero: points file is not a");
+  expect_usage_failure({"points", "tet.obj", "fifo.csv"}, "fifo.csv: cannot open the points file: is not a regular file");
+  expect_usage_failure({"points", "tet.obj", "/dev/zero"}, "/dev/zero: cannot open the points file: is not a regular file");
 }
 
 TEST_F(Cli, ThirdPartyMessagesStayOffStderr) {

@@ -226,7 +226,7 @@ TEST(LoadMesh, BinaryStlCubeJoinsCorners) {
 }
 
 TEST(LoadMesh, BinaryStlNativeReaderKeepsFileOrderAndJoinsOnlyEqualPositions) {
-  // Binary STL is read without assimp (src/mesh/stl_binary.cpp): vertices numbered in order of
+  // Binary STL is read without assimp (src/io/stl_binary.cpp): vertices numbered in order of
   // first use, corners in file order, -0 and +0 joined, positions 1e-6 apart kept apart (assimp
   // joined corners closer than 1e-5), a facet with two equal corners kept (zero area), and a
   // header starting with "solid" still read as binary when the size says so.
@@ -382,7 +382,7 @@ TEST(LoadMeshErrors, MissingFile) {
 
 TEST(LoadMeshErrors, Directory) {
   const auto dir = fresh_temp_dir("err_directory");
-  expect_load_error(dir, "is a directory, not a mesh file");
+  expect_load_error(dir, "is a directory");
 }
 
 TEST(LoadMeshErrors, EmptyFile) {

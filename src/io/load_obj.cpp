@@ -12,7 +12,9 @@
 //   the coordinates are those std::from_chars gives for the same tokens: the nearest double. When
 //   the two readings do not pair up (a different vertex count, or a value further apart than
 //   rounding explains) tinyobjloader's values are kept.
-#include "mesh/polygon_soup.hpp"
+#include <antcd/file.hpp>
+
+#include "io/polygon_soup.hpp"
 
 #include <tiny_obj_loader.h>
 
@@ -53,7 +55,7 @@ void check_face_line(std::string_view line, std::size_t line_number, const std::
         (ec == std::errc{} && (value > INT32_MAX || value < -INT32_MAX))) {
       throw MeshError(source, "the face on line " + std::to_string(line_number) +
                                   " has a vertex index out of range: '" +
-                                  one_line(std::string(index.substr(0, 40))) + "'");
+                                  printable_line(std::string(index.substr(0, 40))) + "'");
     }
   }
 }
@@ -96,11 +98,11 @@ std::vector<Vec3> read_vertex_lines(std::string_view text, const std::string& so
       const std::errc ec = parse_coordinate(token, p[k]);
       if (ec == std::errc::result_out_of_range) {
         throw MeshError(source, where + " has a non-finite coordinate '" +
-                                    one_line(std::string(token.substr(0, 40))) + "'");
+                                    printable_line(std::string(token.substr(0, 40))) + "'");
       }
       if (ec != std::errc{}) {
         throw MeshError(source, where + " has a coordinate that is not a number: '" +
-                                    one_line(std::string(token.substr(0, 40))) + "'");
+                                    printable_line(std::string(token.substr(0, 40))) + "'");
       }
     }
   }
@@ -127,7 +129,7 @@ PolygonSoup read_obj(const std::filesystem::path& path, const std::string& sourc
                           /*triangulate=*/false, /*default_vcols_fallback=*/false);
   }
   if (!ok) {
-    std::string why = one_line(errors);
+    std::string why = printable_line(errors);
     if (why.empty()) why = "tinyobjloader gave no reason";
     throw MeshError(source, "not a readable mesh: " + why);
   }

@@ -1,6 +1,8 @@
 // From a polygon soup read in double precision to a Mesh: format dispatch, triangulation, the
 // used points in order of first use, identical positions joined.
-#include "mesh/polygon_soup.hpp"
+#include <antcd/file.hpp>
+
+#include "io/polygon_soup.hpp"
 
 #include <algorithm>
 #include <array>
@@ -138,19 +140,9 @@ std::errc parse_coordinate(std::string_view token, double& value) {
   return {};
 }
 
-std::string one_line(std::string text) {
-  for (char& c : text) {
-    if (c == '\n' || c == '\r' || c == '\t' || c == '\v' || c == '\f') c = ' ';
-  }
-  const auto first = text.find_first_not_of(' ');
-  if (first == std::string::npos) return {};
-  const auto last = text.find_last_not_of(' ');
-  return text.substr(first, last - first + 1);
-}
-
 std::string read_whole_file(const std::filesystem::path& path, const std::string& source) {
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw MeshError(source, "cannot be opened: " + one_line(std::strerror(errno)));
+  if (!in) throw MeshError(source, "cannot be opened: " + printable_line(std::strerror(errno)));
   std::ostringstream buffer;
   buffer << in.rdbuf();
   if (in.bad()) throw MeshError(source, "cannot be read");

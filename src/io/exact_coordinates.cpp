@@ -1,9 +1,9 @@
 // OFF and PLY vertex coordinates in double precision, read along the layout assimp 5.2's OFF and
 // PLY readers follow (exact_coordinates.hpp); and the OFF face-count check.
-#include "mesh/exact_coordinates.hpp"
+#include "io/exact_coordinates.hpp"
 
-#include "mesh/ply_layout.hpp"
-#include "mesh/polygon_soup.hpp"
+#include "io/ply_layout.hpp"
+#include "io/polygon_soup.hpp"
 
 #include <algorithm>
 #include <array>

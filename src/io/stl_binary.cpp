@@ -1,11 +1,12 @@
 // Binary STL read natively (stl_binary.hpp). Facets are read in blocks and their corners joined
 // on the fly through an open-addressing table of vertex indices, so the peak memory is the mesh
 // plus 4 to 8 bytes per vertex for the table, and one block of the file.
-#include "mesh/stl_binary.hpp"
+#include "io/stl_binary.hpp"
 
-#include "mesh/polygon_soup.hpp"
+#include "io/polygon_soup.hpp"
 #include "util/huge_pages.hpp"
 
+#include <antcd/file.hpp>
 #include <antcd/error.hpp>
 
 #include <array>
@@ -108,7 +109,7 @@ bool is_binary_stl(std::string_view head, std::uintmax_t size) {
 
 Mesh read_binary_stl(const std::filesystem::path& path, const std::string& source) {
   const std::unique_ptr<std::FILE, FileCloser> file(std::fopen(path.c_str(), "rb"));
-  if (!file) throw MeshError(source, "cannot be opened: " + one_line(std::strerror(errno)));
+  if (!file) throw MeshError(source, "cannot be opened: " + printable_line(std::strerror(errno)));
   std::array<unsigned char, kHeaderBytes> header{};
   if (std::fread(header.data(), 1, header.size(), file.get()) != header.size()) {
     throw MeshError(source, "cannot be read: the binary STL header is cut short");

@@ -15,13 +15,14 @@
 // the OpenDDL parser inside the OpenGEX reader writes "nullptr returned by creating DDLNode." to
 // stderr for OpenGEX/empty_camera.ogex, past assimp's logger.
 #include <antcd/bvh.hpp>
+#include <antcd/file.hpp>
 #include <antcd/load.hpp>
 #include <antcd/mesh.hpp>
 
-#include "mesh/exact_coordinates.hpp"
-#include "mesh/ply_layout.hpp"
-#include "mesh/stl_binary.hpp"
-#include "mesh/polygon_soup.hpp"
+#include "io/exact_coordinates.hpp"
+#include "io/ply_layout.hpp"
+#include "io/stl_binary.hpp"
+#include "io/polygon_soup.hpp"
 
 #include <assimp/config.h>
 #include <assimp/mesh.h>
@@ -51,7 +52,6 @@
 namespace antcd {
 namespace {
 
-using detail::one_line;
 using Affine = Eigen::Matrix<Scalar, 4, 4>;
 
 /// assimp's matrices are row-major with the translation in the fourth column, the same
@@ -341,19 +341,10 @@ std::optional<Mesh> mesh_with_exact_coordinates(const aiScene& scene, std::vecto
 Mesh load_mesh(const std::filesystem::path& path) {
   const std::string source = path.string();
 
+  if (const std::string problem = file_problem(path); !problem.empty()) {
+    throw MeshError(source, problem);
+  }
   std::error_code ec;
-  const auto status = std::filesystem::status(path, ec);
-  if (status.type() == std::filesystem::file_type::not_found) {
-    throw MeshError(source, "no such file");
-  }
-  if (ec) throw MeshError(source, "cannot be accessed: " + one_line(ec.message()));
-  if (status.type() == std::filesystem::file_type::directory) {
-    throw MeshError(source, "is a directory, not a mesh file");
-  }
-  // Devices, FIFOs and sockets could block or never end.
-  if (status.type() != std::filesystem::file_type::regular) {
-    throw MeshError(source, "is not a regular file");
-  }
   // A saved Model (bvh.hpp): its mesh, exactly as it was saved.
   if (is_model_path(path)) return Model::load(path).mesh();
   // The first bytes, for the checks assimp does not make (and a clear message when unreadable).
@@ -363,10 +354,10 @@ Mesh load_mesh(const std::filesystem::path& path) {
     head_size = std::fread(head.data(), 1, head.size(), file);
     std::fclose(file);
   } else {
-    throw MeshError(source, "cannot be opened: " + one_line(std::strerror(errno)));
+    throw MeshError(source, "cannot be opened: " + printable_line(std::strerror(errno)));
   }
   const std::uintmax_t size = std::filesystem::file_size(path, ec);
-  if (ec) throw MeshError(source, "cannot be accessed: " + one_line(ec.message()));
+  if (ec) throw MeshError(source, "cannot be accessed: " + printable_line(ec.message()));
   if (size == 0) throw MeshError(source, "not a readable mesh: the file is empty");
   if (const std::string problem =
           implausible_off_header(std::string_view(head.data(), head_size), size);
@@ -465,10 +456,10 @@ Mesh load_mesh(const std::filesystem::path& path) {
   } catch (const std::bad_alloc&) {
     throw MeshError(source, "not a readable mesh: out of memory while reading it");
   } catch (const std::exception& e) {
-    throw MeshError(source, "not a readable mesh: " + one_line(e.what()));
+    throw MeshError(source, "not a readable mesh: " + printable_line(e.what()));
   }
   if (scene == nullptr) {
-    std::string why = one_line(importer.GetErrorString());
+    std::string why = printable_line(importer.GetErrorString());
     if (why.empty()) why = "assimp gave no reason";
     throw MeshError(source, "not a readable mesh: " + why);
   }

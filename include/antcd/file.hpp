@@ -1,4 +1,6 @@
-// antcd/io.hpp — small file helpers shared by the library and its tools.
+// antcd/file.hpp — the core's file helpers (atomic writes, whole-file reads, folders, printable
+// error lines), shared by the library (model files) and its tools. Mesh and text file readers are
+// antcd::io's (antcd/load.hpp, antcd/csv.hpp).
 #pragma once
 
 #include <antcd/export.hpp>
@@ -13,6 +15,12 @@ namespace antcd {
 /// renamed over `path`. A reader sees the old file or the whole new one, never a part; on failure
 /// the temporary file is removed and antcd::Error is thrown naming `path`.
 ANTCD_API void write_file_atomic(const std::filesystem::path& path, std::string_view contents);
+
+/// Why `path` cannot be read as a regular file, as a phrase to follow its name: "no such file",
+/// "is a directory", "is not a regular file (a device, FIFO or socket)" or "cannot be accessed:
+/// <reason>"; empty when it is a regular file. The one check of every file reader (read_file and
+/// so Model::load, load_mesh, the CSV readers): a device or a pipe could read forever or block.
+ANTCD_API std::string file_problem(const std::filesystem::path& path);
 
 /// Reads a whole file. Throws antcd::Error naming `path` if it is missing, a directory, not a
 /// regular file (a device or a pipe, which could read forever or block) or unreadable.

@@ -1,5 +1,5 @@
 #include <antcd/error.hpp>
-#include <antcd/io.hpp>
+#include <antcd/file.hpp>
 
 #include "util/huge_pages.hpp"
 
@@ -99,14 +99,31 @@ void write_file_atomic(const std::filesystem::path& path, std::string_view conte
   committed = true;
 }
 
-std::string read_file(const std::filesystem::path& path) {
+std::string file_problem(const std::filesystem::path& path) {
   std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) throw Error(path.string() + ": is a directory");
-  if (!std::filesystem::exists(path, ec)) throw Error(path.string() + ": no such file");
-  // Devices and pipes (/dev/zero, a FIFO with no writer) would read forever or block.
-  if (!std::filesystem::is_regular_file(path, ec)) {
-    throw Error(path.string() + ": is not a regular file");
+  const auto status = std::filesystem::status(path, ec);
+  switch (status.type()) {
+    case std::filesystem::file_type::regular:
+      return {};
+    case std::filesystem::file_type::not_found:
+      return "no such file";
+    case std::filesystem::file_type::directory:
+      return "is a directory";
+    case std::filesystem::file_type::none:
+    case std::filesystem::file_type::unknown:
+      if (ec) return "cannot be accessed: " + printable_line(ec.message());
+      return "cannot be accessed";
+    default:
+      // Devices and pipes (/dev/zero, a FIFO with no writer) would read forever or block.
+      return "is not a regular file (a device, FIFO or socket)";
   }
+}
+
+std::string read_file(const std::filesystem::path& path) {
+  if (const std::string problem = file_problem(path); !problem.empty()) {
+    throw Error(path.string() + ": " + problem);
+  }
+  std::error_code ec;
   std::ifstream in(path, std::ios::binary);
   if (!in) throw Error(path.string() + ": cannot open for reading");
   // Read in one piece into a string of the file's size (a large model file is read once, not

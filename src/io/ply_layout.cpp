@@ -1,5 +1,5 @@
 // The PLY header and the walk over its body that load.cpp runs before assimp (ply_layout.hpp).
-#include "mesh/ply_layout.hpp"
+#include "io/ply_layout.hpp"
 
 #include <algorithm>
 #include <array>

@@ -59,7 +59,4 @@ std::string read_whole_file(const std::filesystem::path& path, const std::string
 /// after it. Shared by every text reader, so all of them round the same way.
 std::errc parse_coordinate(std::string_view token, double& value);
 
-/// One line, no surrounding blanks: library messages sometimes carry newlines.
-std::string one_line(std::string text);
-
 }  // namespace antcd::detail
