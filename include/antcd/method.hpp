@@ -1,8 +1,9 @@
-// antcd/method.hpp — the detection methods and their names, one table for the library and its
-// tools.
+// antcd/method.hpp — the detection methods of the paper's comparison and their names, one table
+// for the libraries and their tools. Part of antcd::random: the random searches select their
+// engine by it (SearchRequest::method), and the scene runner (antcd::scene) runs each of them.
 #pragma once
 
-#include <antcd/export.hpp>
+#include <antcd/random_export.hpp>
 
 #include <string_view>
 
@@ -26,13 +27,13 @@ constexpr bool is_search_method(Method m) { return m != Method::Exact && m != Me
 
 /// The method's name on command lines and in files: "exact", "sphere-obb", "aco", "maco", "pso",
 /// "ga", "exhaustive", "grid".
-ANTCD_API std::string_view method_name(Method m);
+ANTCD_RANDOM_API std::string_view method_name(Method m);
 
 /// The method's name in tables and reports: "Exact", "Sphere-OBB", "ACO", "MACO", "PSO", "GA",
-/// "Exhaustive".
-ANTCD_API std::string_view method_label(Method m);
+/// "Exhaustive", "Grid".
+ANTCD_RANDOM_API std::string_view method_label(Method m);
 
 /// The method named `name` (see method_name). Throws ArgumentError listing the accepted names.
-ANTCD_API Method parse_method(std::string_view name);
+ANTCD_RANDOM_API Method parse_method(std::string_view name);
 
 }  // namespace antcd

@@ -9,7 +9,7 @@
 // - "poses" holds one pose (a static object) or exactly "frames" poses.
 // - "scale" is optional, uniform, > 0, default 1; it scales the mesh about its own origin before
 //   the pose is applied.
-// - Names are unique and non-empty. Quaternions within 1e-3 of unit length are normalised; others
+// - Names are unique and non-empty. Quaternions within tolerance::kUnitQuaternion (1e-3) of unit length are normalised; others
 //   are an error. Every error names the scene file and the object.
 //
 // Engine: one Model per distinct (mesh file, scale), shared by the objects that use it, and one
@@ -30,7 +30,7 @@
 #pragma once
 
 #include <antcd/bvh.hpp>
-#include <antcd/export.hpp>
+#include <antcd/scene_export.hpp>
 #include <antcd/mesh.hpp>
 #include <antcd/method.hpp>
 #include <antcd/random.hpp>
@@ -65,14 +65,14 @@ struct SceneDescription {
 
 /// Parses a scene from JSON text. `source` names the input in errors; relative mesh paths are
 /// resolved against `base_dir`. Mesh files are not opened here. Throws SceneError.
-ANTCD_API SceneDescription parse_scene(std::string_view json_text, const std::filesystem::path& base_dir,
+ANTCD_SCENE_API SceneDescription parse_scene(std::string_view json_text, const std::filesystem::path& base_dir,
                              const std::string& source);
 /// Reads and parses a scene file. Throws SceneError.
-ANTCD_API SceneDescription load_scene(const std::filesystem::path& path);
+ANTCD_SCENE_API SceneDescription load_scene(const std::filesystem::path& path);
 /// Serialises a scene (mesh paths as in mesh_text) and writes it atomically. Throws Error.
-ANTCD_API void save_scene(const SceneDescription& scene, const std::filesystem::path& path);
+ANTCD_SCENE_API void save_scene(const SceneDescription& scene, const std::filesystem::path& path);
 /// The JSON text save_scene writes.
-ANTCD_API std::string scene_to_json(const SceneDescription& scene);
+ANTCD_SCENE_API std::string scene_to_json(const SceneDescription& scene);
 
 struct SceneQuery {
   Method method = Method::Exact;
@@ -112,7 +112,7 @@ struct SceneQuery {
 /// Scene::run_frame passes random_detect as DetectRequest::search.seed (without a frame budget,
 /// random_detect with it, the scene's other settings and the pair's memory gives the same verdict
 /// and evaluations as the frame).
-ANTCD_API std::uint64_t scene_pair_seed(std::uint64_t seed, std::size_t frame, std::uint32_t i,
+ANTCD_SCENE_API std::uint64_t scene_pair_seed(std::uint64_t seed, std::size_t frame, std::uint32_t i,
                                         std::uint32_t j);
 
 /// What the random methods carry from frame to frame, per object pair: the colony's pheromone,
@@ -159,12 +159,12 @@ struct FrameResult {
   std::vector<Vec3> contact_points;
 };
 
-class ANTCD_API Scene {
+class ANTCD_SCENE_API Scene {
  public:
   /// Loads every mesh (once per distinct file and scale) and builds the hierarchies.
   /// Throws MeshError / SceneError naming the object whose mesh failed, and SceneError naming the
-  /// object and frame of a pose that is not rigid (every pose is checked here, once: the frames
-  /// hand them to the World unchecked).
+  /// object and frame of a pose that is not rigid (every pose is checked here, so a frame never
+  /// fails on one).
   explicit Scene(SceneDescription description, const BuildOptions& options = {});
   /// The meshes come from `mesh_source` instead of files: it is called once per distinct
   /// (SceneObject::mesh, scale) with the first object that uses that mesh, and returns the mesh
@@ -187,12 +187,19 @@ class ANTCD_API Scene {
   /// The broad phase of one frame alone: the object pairs (i < j, sorted) whose root bounding
   /// volumes (sphere, then OBB) are within `delta` — the pairs run_frame hands to the narrow phase.
   /// For narrow phases built outside the library. Throws ArgumentError for a frame >= frames or a
-  /// negative or non-finite delta. Thread-safe.
+  /// negative or non-finite delta. Const as run_frame is (below).
   [[nodiscard]] std::vector<std::pair<std::uint32_t, std::uint32_t>> broad_phase(
       std::size_t frame, Scalar delta) const;
 
   /// Runs one frame. Throws ArgumentError for a frame >= frames or a bad query.
   /// `memory` (random methods; may be null) carries the colonies from frame to frame.
+  /// What `const` means here: the description and the models never change, and the answer
+  /// depends on (frame, query, memory) alone, never on the frames run before. The call does
+  /// mutate state the Scene keeps for speed: its World (moved to the frame's poses, under a mutex
+  /// that serialises the broad phase of concurrent calls) and the exact method's per-pair
+  /// witnesses from the last frame (PairWitness, used by one call at a time; a concurrent call
+  /// runs without them). So calls from several threads are safe, and frame after frame on one
+  /// thread is the fast order.
   [[nodiscard]] FrameResult run_frame(std::size_t frame, const SceneQuery& query,
                                       SceneMemory* memory = nullptr) const;
 

@@ -1,8 +1,9 @@
-// random_detect(): the section-4 query of one model pair (detect.hpp), run in one step.
-#include "random/detect.hpp"
-#include "util/check.hpp"
-
+// random_detect() and PairDetection (antcd/random.hpp): the section-4 query of one model pair, in
+// steps or in one call.
 #include <antcd/error.hpp>
+#include <antcd/random.hpp>
+
+#include "util/check.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -10,10 +11,10 @@
 
 #include "random/recorder.hpp"
 
-namespace antcd::detail {
+namespace antcd {
 
-void validate_detect(const DetectRequest& request, const char* caller) {
-  validate_search(request.search, caller);
+void check_detect_request(const DetectRequest& request, const char* caller) {
+  detail::validate_search(request.search, caller);
   detail::require_non_negative(caller, "delta", request.delta);
   detail::require_at_least(caller, "samples_per_side", request.samples_per_side, 1);
 }
@@ -22,6 +23,7 @@ PairDetection::PairDetection(const Model& a, const Transform& pose_a, const Mode
                              const Transform& pose_b, const DetectRequest& request,
                              ColonyMemory* memory)
     : a_(a), b_(b), pose_a_(pose_a), pose_b_(pose_b), request_(request), memory_(memory) {
+  check_detect_request(request_, "random_detect");
   const bool all = request_.all_witnesses || request_.count_truth;
   if (memory_ != nullptr && request_.search.verdict == Verdict::Witness && !all &&
       !memory_->witnesses.empty()) {
@@ -115,15 +117,10 @@ DetectResult PairDetection::finish() {
   return out_;
 }
 
-}  // namespace antcd::detail
-
-namespace antcd {
-
 DetectResult random_detect(const Model& a, const Transform& pose_a, const Model& b,
                            const Transform& pose_b, const DetectRequest& request,
                            ColonyMemory* memory) {
-  detail::validate_detect(request, "random_detect");
-  detail::PairDetection detection(a, pose_a, b, pose_b, request, memory);
+  PairDetection detection(a, pose_a, b, pose_b, request, memory);
   if (detection.pending()) detection.step(true);
   return detection.finish();
 }

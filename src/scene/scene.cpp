@@ -15,13 +15,10 @@
 #include <mutex>
 #include <stdexcept>
 
-#include "exact/coherent.hpp"
-#include "random/detect.hpp"
 #include "scene/pair_query.hpp"
 #include "util/check.hpp"
 #include "util/parallel.hpp"
-#include "util/pose_check.hpp"
-#include "world/world_access.hpp"
+#include <antcd/pose.hpp>
 
 namespace antcd {
 
@@ -34,15 +31,15 @@ struct Scene::Broad {
   std::vector<std::uint32_t> moving;
   std::vector<ObjectId> moving_ids;
   std::vector<Transform> moving_poses;
-  /// The World's tree pairs of a frame (room reused from frame to frame).
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> tree_pairs;
+  /// The World's candidate pairs of a frame (room reused from frame to frame).
+  std::vector<ObjectPair> frame_pairs;
 
-  /// The exact method's per-pair hints from frame to frame (detail::PairWitness), one per
+  /// The exact method's per-pair hints from frame to frame (PairWitness), one per
   /// candidate pair of the last frame that used them, sorted by pair. A frame that finds them in
   /// use by another run_frame call runs without (the hints change no verdict).
   std::mutex witnesses_mutex;
-  std::vector<std::pair<std::uint64_t, detail::PairWitness>> witnesses;
-  std::vector<std::pair<std::uint64_t, detail::PairWitness>> spare_witnesses;
+  std::vector<std::pair<std::uint64_t, PairWitness>> witnesses;
+  std::vector<std::pair<std::uint64_t, PairWitness>> spare_witnesses;
 
   /// Lines `witnesses` up with `cand` (sorted pairs): entry k is pair cand[k]'s, kept from the
   /// last frame when the pair was a candidate there, else new. Hold witnesses_mutex.
@@ -55,22 +52,24 @@ struct Scene::Broad {
       if (old < witnesses.size() && witnesses[old].first == key) {
         spare_witnesses.emplace_back(key, witnesses[old].second);
       } else {
-        spare_witnesses.emplace_back(key, detail::PairWitness{});
+        spare_witnesses.emplace_back(key, PairWitness{});
       }
     }
     std::swap(witnesses, spare_witnesses);
   }
 
-  /// The frame's poses into the World (the moving objects' only; checked when the scene was
-  /// built), then its candidate pairs into `out`: one caller at a time (the World's mutations must
-  /// not overlap its queries).
+  /// The frame's poses into the World (the moving objects' only), then its candidate pairs into
+  /// `out` as object indices: one caller at a time (the World's mutations must not overlap its
+  /// queries).
   void candidates(const std::vector<SceneObject>& objects, std::size_t frame, Scalar delta,
                   std::vector<std::pair<std::uint32_t, std::uint32_t>>& out) {
     const std::lock_guard<std::mutex> lock(mutex);
     moving_poses.clear();
     for (const std::uint32_t i : moving) moving_poses.push_back(objects[i].pose(frame));
-    detail::WorldAccess::set_checked_poses(world, moving_ids, moving_poses);
-    detail::WorldAccess::candidate_slots(world, delta, out, tree_pairs);
+    world.set_poses(moving_ids, moving_poses);
+    world.candidate_pairs(delta, frame_pairs);
+    out.clear();
+    for (const ObjectPair& p : frame_pairs) out.emplace_back(p.a.slot, p.b.slot);
   }
 
   /// Continuous: the World to the poses of frame - 1 (frame 0: frame 0), then the swept broad
@@ -147,9 +146,8 @@ Scene::Scene(SceneDescription description,
   for (std::size_t i = 0; i < description_.objects.size(); ++i) {
     const SceneObject& o = description_.objects[i];
     for (std::size_t k = 0; k < o.poses.size(); ++k) {
-      Scalar err = 0;
-      if (const char* problem = detail::pose_problem(o.poses[k], err)) {
-        throw SceneError("object '" + o.name + "': pose " + std::to_string(k) + " " + problem);
+      if (const PoseCheck c = check_pose(o.poses[k]); !c.rigid()) {
+        throw SceneError("object '" + o.name + "': pose " + std::to_string(k) + " " + c.problem());
       }
     }
     broad_->ids.push_back(broad_->world.add(models_[model_index_[i]], o.pose(0), {o.name}));
@@ -193,7 +191,7 @@ FrameResult Scene::run_frame(std::size_t frame, const SceneQuery& query,
     DetectRequest request = query.random;
     request.delta = query.delta;
     request.search.method = query.method;
-    detail::validate_detect(request, "scene query");
+    check_detect_request(request, "scene query");
     detail::require_non_negative("scene query", "frame_seconds", query.frame_seconds);
   }
   const auto start = std::chrono::steady_clock::now();
@@ -217,7 +215,7 @@ FrameResult Scene::run_frame(std::size_t frame, const SceneQuery& query,
     const auto hit = [&](std::size_t k, CollisionResult& scratch) {
       const auto [i, j] = cand[k];
       if (hints.owns_lock()) {
-        return detail::collide_coherent(model_of(i), pose(i), model_of(j), pose(j), request,
+        return collide(model_of(i), pose(i), model_of(j), pose(j), request,
                                         scratch, broad_->witnesses[k].second);
       }
       return collide(model_of(i), pose(i), model_of(j), pose(j), request, scratch);

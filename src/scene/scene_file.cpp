@@ -1,6 +1,7 @@
 // The antcd-scene/1 file format: parsing with one clear error per violation, and writing.
-#include <antcd/io.hpp>
+#include <antcd/file.hpp>
 #include <antcd/scene.hpp>
+#include <antcd/tolerances.hpp>
 
 #include <nlohmann/json.hpp>
 
@@ -85,9 +86,10 @@ class Parser {
       const Scalar y = number(q[2], where, "rotation_wxyz");
       const Scalar z = number(q[3], where, "rotation_wxyz");
       const Scalar norm = std::sqrt(w * w + x * x + y * y + z * z);
-      if (std::abs(norm - 1) > 1e-3) {
+      if (!(std::abs(norm - 1) <= tolerance::kUnitQuaternion)) {
         std::ostringstream msg;
-        msg << "quaternion has length " << norm << ", expected 1 (within 1e-3)";
+        msg << "quaternion has length " << norm << ", expected 1 (within "
+            << tolerance::kUnitQuaternion << ")";
         fail(where, msg.str());
       }
       t.rotation = Quat(w / norm, x / norm, y / norm, z / norm).toRotationMatrix();

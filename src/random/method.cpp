@@ -1,4 +1,4 @@
-// The method name table.
+// The method name table (antcd/method.hpp).
 #include <antcd/error.hpp>
 #include <antcd/method.hpp>
 
