@@ -112,4 +112,27 @@ ANTCD_API bool collide(const Model& a, const Transform& pose_a, const Model& b,
 ANTCD_API CollisionResult collide(const Model& a, const Transform& pose_a, const Model& b,
                                   const Transform& pose_b, const CollisionRequest& request = {});
 
+/// Where the last boolean query of two models found its contact (leaf node indices), for queries
+/// of the same object pair frame after frame. A hint only: the verdict never depends on it; the
+/// work does (two objects that touched last frame and moved little still touch there). A witness
+/// of other models is dropped. One witness per object pair; not shared between threads.
+struct PairWitness {
+  const Model* a = nullptr;  ///< the models the leaves index
+  const Model* b = nullptr;
+  bool valid = false;
+  std::uint32_t leaf_a = 0;
+  std::uint32_t leaf_b = 0;
+};
+
+/// collide(a, pose_a, b, pose_b, request, result) starting from `witness` (temporal coherence),
+/// which it then updates: the leaf pair of the last contact is tested first, and the hierarchies
+/// are walked from the root when none of its triangles collides. For a boolean request
+/// (all_contacts false, manifold_points 0) the verdict (colliding, contained, surface_only) is
+/// collide()'s; the one contact reported may be another colliding triangle pair, and the
+/// traversal statistics differ. Any other request is answered by collide() itself and leaves the
+/// witness as it was. Allocation-free for a boolean request; errors as collide().
+ANTCD_API bool collide(const Model& a, const Transform& pose_a, const Model& b,
+                       const Transform& pose_b, const CollisionRequest& request,
+                       CollisionResult& result, PairWitness& witness);
+
 }  // namespace antcd

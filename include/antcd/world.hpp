@@ -49,7 +49,6 @@
 namespace antcd {
 
 namespace detail {
-struct WorldAccess;  // src/world/world_access.hpp: the scene runner's entries (not public API)
 }  // namespace detail
 
 /// A handle to an object of a World. Compares and orders by (slot, generation).
@@ -207,6 +206,11 @@ class ANTCD_API World {
   /// Broad phase only: the admitted pairs whose root bounding volumes (sphere and OBB) are within
   /// `delta` >= 0, sorted. A superset of the colliding pairs at that delta.
   [[nodiscard]] std::vector<ObjectPair> candidate_pairs(Scalar delta = 0) const;
+  /// candidate_pairs(delta) written into `out` (cleared first, its storage reused): the same pairs
+  /// in the same order, for a caller that asks every frame (the scene runner). Allocation-free once
+  /// `out` and this thread's working storage have grown to the frame's size. Const and
+  /// thread-safe like candidate_pairs, given a distinct `out` per thread.
+  void candidate_pairs(Scalar delta, std::vector<ObjectPair>& out) const;
   /// Every admitted pair that collides under `request` (delta, all contacts or boolean), sorted.
   [[nodiscard]] std::vector<PairContacts> collide_all(const CollisionRequest& request = {}) const;
   /// The admitted pairs whose meshes come within `distance` >= 0 of each other, sorted.
@@ -270,7 +274,6 @@ class ANTCD_API World {
   struct Impl;
 
  private:
-  friend struct detail::WorldAccess;
   std::unique_ptr<Impl> impl_;
 };
 

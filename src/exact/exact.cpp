@@ -2,9 +2,8 @@
 #include <antcd/collide.hpp>
 
 #include "bvh/traverse.hpp"
-#include "exact/coherent.hpp"
 #include "exact/manifold.hpp"
-#include "exact/volume.hpp"
+#include "points/point_index.hpp"
 #include "geometry/penetration.hpp"
 #include "util/check.hpp"
 
@@ -142,7 +141,7 @@ bool collide_walk(const Model& a, const Transform& pose_a, const Model& b, const
       // vertex of each tells (a vertex on the other surface would have been a surface contact).
       const Vec3 va_in_b = frame.b_to_a.inverse().apply(a.leaf_corners()(0, 0));
       const Vec3 vb_in_a = frame.b_to_a.apply(b.leaf_corners()(0, 0));
-      result.contained = detail::inside_closed(b, va_in_b) || detail::inside_closed(a, vb_in_a);
+      result.contained = detail::inside_solid(b, va_in_b) || detail::inside_solid(a, vb_in_a);
       result.colliding = result.contained;
     }
   }
@@ -165,15 +164,16 @@ bool collide(const Model& a, const Transform& pose_a, const Model& b, const Tran
                       });
 }
 
-bool detail::collide_coherent(const Model& a, const Transform& pose_a, const Model& b,
-                              const Transform& pose_b, const CollisionRequest& request,
-                              CollisionResult& result, PairWitness& witness) {
-  assert(!request.all_contacts && request.manifold_points == 0);
+bool collide(const Model& a, const Transform& pose_a, const Model& b, const Transform& pose_b,
+             const CollisionRequest& request, CollisionResult& result, PairWitness& witness) {
+  if (request.all_contacts || request.manifold_points != 0) {
+    return collide(a, pose_a, b, pose_b, request, result);
+  }
   if (witness.a != &a || witness.b != &b) witness = {&a, &b, false, 0, 0};
   // A front of the last walk (Ehmann and Lin's generalised front tracking) was tried as well: on
   // the generated VR scenes (docs/performance.md) it visited more node pairs than a walk from the
   // root, since a front only deepens while objects approach and leave it again.
-  const auto walk = [&](const PairFrame& frame, auto& on_leaf, std::size_t) {
+  const auto walk = [&](const detail::PairFrame& frame, auto& on_leaf, std::size_t) {
     constexpr std::uint32_t kAll = ~std::uint32_t{0};  // every triangle of both leaves
     const bool tried = witness.valid;
     if (tried && on_leaf(witness.leaf_a, witness.leaf_b, kAll, kAll)) {
@@ -182,7 +182,7 @@ bool detail::collide_coherent(const Model& a, const Transform& pose_a, const Mod
       return stats;
     }
     witness.valid = false;
-    TraversalStats stats = dual_traverse<true, kFaces>(
+    TraversalStats stats = detail::dual_traverse<true, kFaces>(
         a, b, frame,
         [&](std::uint32_t la, std::uint32_t lb, std::uint32_t live_a, std::uint32_t live_b) {
           if (!on_leaf(la, lb, live_a, live_b)) return false;

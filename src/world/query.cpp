@@ -15,7 +15,6 @@
 #include "util/parallel.hpp"
 #include "util/portable.hpp"
 #include "world/ray_check.hpp"
-#include "world/world_access.hpp"
 #include "world/world_impl.hpp"
 
 namespace antcd {
@@ -160,10 +159,16 @@ std::vector<ObjectPair> World::candidate_pairs(Scalar delta) const {
   return out;
 }
 
-void detail::WorldAccess::candidate_slots(const World& world, Scalar delta,
-                                          std::vector<SlotPair>& out,
-                                          std::vector<SlotPair>& scratch) {
-  world.impl_->candidate_slots(delta, out, scratch);
+void World::candidate_pairs(Scalar delta, std::vector<ObjectPair>& out) const {
+  detail::require_non_negative("World::candidate_pairs", "delta", delta);
+  // Working storage per thread, kept between calls (so a caller asking every frame allocates only
+  // while the frames grow); nothing of it outlives a call's answer.
+  thread_local std::vector<SlotPair> slots;
+  thread_local std::vector<SlotPair> scratch;
+  impl_->candidate_slots(delta, slots, scratch);
+  out.clear();
+  out.reserve(slots.size());
+  for (const auto& [i, j] : slots) out.push_back({impl_->id_of(i), impl_->id_of(j)});
 }
 
 void World::Impl::candidate_slots(Scalar delta, std::vector<SlotPair>& out,

@@ -1,4 +1,4 @@
-// The scene runner's frame-to-frame boolean query (src/exact/coherent.hpp) against collide().
+// The frame-to-frame boolean query (collide() with a PairWitness, antcd/collide.hpp) against collide().
 #include <antcd/collide.hpp>
 #include <antcd/geometry.hpp>
 #include <antcd/load.hpp>
@@ -9,7 +9,6 @@
 #include <cmath>
 #include <string>
 
-#include "exact/coherent.hpp"
 #include "support/test_support.hpp"
 
 namespace antcd {
@@ -36,7 +35,7 @@ TEST(CoherentCollide, SweepMatchesCollideStepByStep) {
                      "spider");
   const Model wuson(test::unit_size(load_mesh(test::assimp_model("OFF/Wuson.off"))), {}, "wuson");
   for (const Scalar delta : {0.0, 0.02}) {
-    detail::PairWitness witness;
+    PairWitness witness;
     CollisionResult coherent;
     CollisionResult plain;
     int colliding = 0;
@@ -49,7 +48,7 @@ TEST(CoherentCollide, SweepMatchesCollideStepByStep) {
           Transform::from_axis_angle(Vec3(1, 2, 3), 2.0 * u, Vec3(-1.6 + 3.2 * u, 0.1, 0.05));
       const CollisionRequest request{delta, false, 0};
       const std::string what = "delta " + std::to_string(delta) + " step " + std::to_string(s);
-      const bool hit = detail::collide_coherent(spider, pa, wuson, pb, request, coherent, witness);
+      const bool hit = collide(spider, pa, wuson, pb, request, coherent, witness);
       ASSERT_EQ(hit, collide(spider, pa, wuson, pb, request, plain)) << what;
       ASSERT_EQ(coherent.colliding, hit) << what;
       if (!hit) continue;
@@ -69,30 +68,30 @@ TEST(CoherentCollide, StaleWitnessesAndVolumes) {
   const Model big(make_sphere(1.0, 24, 12), {}, "big");
   const Model small(make_sphere(0.2, 12, 6), {}, "small");
   const Model box(make_box(Vec3(0.5, 0.5, 0.5), 2), {}, "box");
-  detail::PairWitness witness;
+  PairWitness witness;
   CollisionResult r;
   CollisionRequest request;
   // Touching surfaces leave a witness of (big, small).
   const Transform at_rim{Mat3::Identity(), Vec3(1.1, 0, 0)};
-  ASSERT_TRUE(detail::collide_coherent(big, Transform{}, small, at_rim, request, r, witness));
+  ASSERT_TRUE(collide(big, Transform{}, small, at_rim, request, r, witness));
   ASSERT_TRUE(witness.valid);
   // Then other models, with the stale witness: the same verdicts as collide().
   for (const Scalar x : {0.0, 0.5, 0.9, 1.7}) {
     const Transform pb{Mat3::Identity(), Vec3(x, 0.1, 0)};
     CollisionResult plain;
-    EXPECT_EQ(detail::collide_coherent(box, Transform{}, small, pb, request, r, witness),
+    EXPECT_EQ(collide(box, Transform{}, small, pb, request, r, witness),
               collide(box, Transform{}, small, pb, request, plain))
         << x;
   }
   // Small wholly inside big: no surface contact, a solid one with volume.
   request.volume = true;
   witness = {};
-  ASSERT_TRUE(detail::collide_coherent(big, Transform{}, small, at_rim, request, r, witness));
+  ASSERT_TRUE(collide(big, Transform{}, small, at_rim, request, r, witness));
   const Transform inside{Mat3::Identity(), Vec3(0.3, 0, 0)};
-  EXPECT_TRUE(detail::collide_coherent(big, Transform{}, small, inside, request, r, witness));
+  EXPECT_TRUE(collide(big, Transform{}, small, inside, request, r, witness));
   EXPECT_TRUE(r.contained);
   request.volume = false;
-  EXPECT_FALSE(detail::collide_coherent(big, Transform{}, small, inside, request, r, witness));
+  EXPECT_FALSE(collide(big, Transform{}, small, inside, request, r, witness));
 }
 
 }  // namespace

@@ -2,6 +2,7 @@
 // groups, masks, ignored pairs, removals), each answer must be the pair of least (distance, a, b)
 // that distance() on every admitted pair gives, with the same distance to the last bit.
 #include <antcd/distance.hpp>
+#include <antcd/penetration.hpp>
 #include <antcd/world.hpp>
 
 #include <gtest/gtest.h>
@@ -47,8 +48,9 @@ std::optional<NearestPair> brute_force(const std::vector<Candidate>& pairs, bool
   std::optional<NearestPair> best;
   for (const Candidate& c : pairs) {
     DistanceRequest request;
-    request.signed_distance = signed_distance && c.ma->is_closed() && c.mb->is_closed();
-    const DistanceResult r = distance(*c.ma, c.pa, *c.mb, c.pb, request);
+    const DistanceResult r = signed_distance && c.ma->is_closed() && c.mb->is_closed()
+                                 ? antcd::signed_distance(*c.ma, c.pa, *c.mb, c.pb, request)
+                                 : distance(*c.ma, c.pa, *c.mb, c.pb, request);
     if (!best ||
         std::tie(r.distance, c.a, c.b) < std::tie(best->result.distance, best->a, best->b)) {
       best = NearestPair{c.a, c.b, r};

@@ -1,5 +1,5 @@
-// The scene runner's World entries (src/world/world_access.hpp): set_checked_poses leaves the World
-// as set_poses does, and candidate_slots answers candidate_pairs' pairs, with reused buffers.
+// World::candidate_pairs into a reused buffer (the scene runner's call every frame) answers what the
+// allocating call does, frame after frame, with stale content and storage from earlier frames.
 #include <antcd/geometry.hpp>
 #include <antcd/world.hpp>
 
@@ -11,23 +11,16 @@
 #include <vector>
 
 #include "support/test_support.hpp"
-#include "world/world_access.hpp"
 
 namespace antcd {
 namespace {
 
-using SlotPairs = std::vector<std::pair<std::uint32_t, std::uint32_t>>;
-
-SlotPairs slots_of(const std::vector<ObjectPair>& pairs) {
-  SlotPairs out;
-  for (const ObjectPair& p : pairs) out.emplace_back(p.a.slot, p.b.slot);
-  return out;
-}
+ObjectId ids_stale() { return ObjectId{7, 3}; }
 
 // Frames that move a few objects a little (the tree's removal and insertion path), most of them
-// (the refit path) and some across the world (jumps): the checked and unchecked worlds agree on
-// every query, and candidate_slots equals candidate_pairs with the buffers of earlier frames.
-TEST(WorldAccess, UncheckedPosesAndSlotPairsMatchThePublicCalls) {
+// (the refit path) and some across the world (jumps): two worlds given the same poses agree on
+// every query, and the buffered call equals candidate_pairs with the buffers of earlier frames.
+TEST(WorldCandidateBuffer, ReusedBufferAnswersAsTheAllocatingCall) {
   const std::vector<std::shared_ptr<const Model>> models = {
       std::make_shared<const Model>(make_sphere(0.5, 12, 6)),
       std::make_shared<const Model>(make_box(Vec3(0.6, 0.2, 0.3), 2)),
@@ -43,8 +36,7 @@ TEST(WorldAccess, UncheckedPosesAndSlotPairsMatchThePublicCalls) {
     ids.push_back(checked.add(models[i % models.size()], poses.back()));
     ASSERT_EQ(unchecked.add(models[i % models.size()], poses.back()), ids.back());
   }
-  SlotPairs out{{7, 9}};  // stale content: cleared by the call
-  SlotPairs scratch{{1, 2}, {3, 4}};
+  std::vector<ObjectPair> out{{ids_stale(), ids_stale()}};  // stale content: cleared by the call
   std::size_t total = 0;
   for (int frame = 0; frame < 24; ++frame) {
     std::vector<ObjectId> moved;
@@ -65,12 +57,12 @@ TEST(WorldAccess, UncheckedPosesAndSlotPairsMatchThePublicCalls) {
       moved_poses.push_back(p);
     }
     checked.set_poses(moved, moved_poses);
-    detail::WorldAccess::set_checked_poses(unchecked, moved, moved_poses);
+    unchecked.set_poses(moved, moved_poses);
     for (const Scalar delta : {0.0, 0.04}) {
       const std::vector<ObjectPair> expected = checked.candidate_pairs(delta);
       ASSERT_EQ(unchecked.candidate_pairs(delta), expected) << "frame " << frame;
-      detail::WorldAccess::candidate_slots(unchecked, delta, out, scratch);
-      ASSERT_EQ(out, slots_of(expected)) << "frame " << frame << " delta " << delta;
+      unchecked.candidate_pairs(delta, out);
+      ASSERT_EQ(out, expected) << "frame " << frame << " delta " << delta;
       ASSERT_EQ(checked.collide_all({delta}).size(), unchecked.collide_all({delta}).size());
       total += expected.size();
     }
