@@ -23,6 +23,7 @@
 // The numbers only mean something in one run on an otherwise idle machine; quote ratios of the two
 // engines measured in the same run.
 #include <antcd/distance.hpp>
+#include <antcd/penetration.hpp>
 #include <antcd/load.hpp>
 #include <antcd/world.hpp>
 
@@ -458,8 +459,9 @@ Scalar nearest_scan(const World& world, const NearestRequest& request) {
       const Model& b = world.model(ids[j]);
       DistanceRequest r;
       r.upper_bound = std::max<Scalar>(best, 0);
-      r.signed_distance = request.signed_distance && a.is_closed() && b.is_closed();
-      const DistanceResult d = distance(a, world.pose(ids[i]), b, world.pose(ids[j]), r);
+      const DistanceResult d = request.signed_distance && a.is_closed() && b.is_closed()
+                                   ? signed_distance(a, world.pose(ids[i]), b, world.pose(ids[j]), r)
+                                   : distance(a, world.pose(ids[i]), b, world.pose(ids[j]), r);
       if (!d.beyond_upper_bound) best = std::min(best, d.distance);
     }
   }

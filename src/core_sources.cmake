@@ -6,7 +6,7 @@ set(ANTCD_CORE_SOURCES
   geometry/predicates.cpp
   geometry/intersection.cpp
   geometry/distance.cpp
-  geometry/winding.cpp
+  geometry/solid_angle.cpp
   geometry/penetration.cpp
   geometry/obb.cpp
   geometry/obb_fit.cpp
@@ -19,17 +19,17 @@ set(ANTCD_CORE_SOURCES
   bvh/refit.cpp
   bvh/model_file.cpp
   exact/exact.cpp
-  exact/volume.cpp
   exact/manifold.cpp
   distance/distance.cpp
   penetration/convex.cpp
   penetration/inside_point.cpp
   penetration/penetration.cpp
+  penetration/signed_distance.cpp
   points/point_index.cpp
   points/point_tree.cpp
   points/solid_grid.cpp
   points/points.cpp
-  util/io.cpp
+  util/file.cpp
   world/world.cpp
   world/query.cpp
   world/raycast.cpp

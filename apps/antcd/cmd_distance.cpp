@@ -1,5 +1,6 @@
 // antcd distance A B: minimum distance between two posed meshes, with closest points.
 #include <antcd/distance.hpp>
+#include <antcd/penetration.hpp>
 
 #include <nlohmann/json.hpp>
 
@@ -42,9 +43,9 @@ int run_distance(const DistanceOptions& o) {
   request.upper_bound = o.upper_bound;
   request.abs_tolerance = o.abs_tolerance;
   request.rel_tolerance = o.rel_tolerance;
-  request.signed_distance = o.signed_distance;
   const Stopwatch clock;
-  const DistanceResult r = distance(a, pa, b, pb, request);
+  const DistanceResult r = o.signed_distance ? signed_distance(a, pa, b, pb, request)
+                                             : distance(a, pa, b, pb, request);
   const double query_ms = clock.ms();
   const bool found = std::isfinite(r.distance);
 

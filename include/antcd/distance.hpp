@@ -10,16 +10,9 @@
 //   A mesh wholly inside another is at a positive distance: this is a surface query.
 // - Frames: each Model's geometry is in its own frame; poses map it to the world. The closest
 //   points are in WORLD coordinates; triangle indices are indices into each Model's mesh.
-// - Units: mesh units; distances are never negative (no penetration depth here) unless
-//   DistanceRequest::signed_distance asks for the signed distance of two solids.
-// - Signed distance (DistanceRequest::signed_distance, both models closed): the distance between
-//   the surfaces when the solids are apart, 0 when they touch without interior overlap, and -PD
-//   when their interiors overlap, PD the penetration depth of antcd/penetration.hpp (FCL's
-//   convention for its convex shapes): the exact value for convex pairs, else the certified
-//   upper bound of PD once converged (so -PD >= distance; lower_bound is then -upper too, and
-//   approximate says whether it was exact). Nested solids (surfaces apart, one inside the other)
-//   overlap. point_a / point_b are then penetration()'s points. An open model is an
-//   ArgumentError naming it.
+// - Units: mesh units; distances are never negative (no penetration depth here). The signed
+//   distance of two solids, negative when they overlap, is antcd::signed_distance
+//   (antcd/penetration.hpp), which composes this query with the penetration depth.
 //
 // Accuracy
 // - Exact mode (no tolerance): the triangle pair reported is a pair of minimum distance up to the
@@ -53,10 +46,6 @@ struct DistanceRequest {
   /// abs_tolerance >= 0, 0 <= rel_tolerance < 1. Both 0 (default): exact search.
   Scalar abs_tolerance = 0;
   Scalar rel_tolerance = 0;
-  /// Signed distance of two closed models (see the header comment): negative (-penetration depth)
-  /// when the solids overlap. The depth is refined to max(abs_tolerance, rel_tolerance * depth),
-  /// or to 1 % when both are 0.
-  bool signed_distance = false;
 };
 
 struct DistanceResult {
@@ -83,9 +72,8 @@ struct DistanceResult {
   std::uint64_t triangle_tests = 0;  ///< exact triangle–triangle distances computed
 };
 
-/// Minimum distance between the surfaces of two posed models (signed on request). Throws
-/// ArgumentError when a request field is out of range (negative or NaN bound or tolerance,
-/// rel_tolerance >= 1), or signed_distance is asked of an open model.
+/// Minimum distance between the surfaces of two posed models. Throws ArgumentError when a request
+/// field is out of range (negative or NaN bound or tolerance, rel_tolerance >= 1).
 ANTCD_API DistanceResult distance(const Model& a, const Transform& pose_a, const Model& b,
                                   const Transform& pose_b, const DistanceRequest& request = {});
 

@@ -59,6 +59,7 @@
 #pragma once
 
 #include <antcd/bvh.hpp>
+#include <antcd/distance.hpp>
 #include <antcd/error.hpp>
 #include <antcd/export.hpp>
 
@@ -108,6 +109,19 @@ struct PenetrationResult {
 ANTCD_API PenetrationResult penetration(const Model& a, const Transform& pose_a, const Model& b,
                                         const Transform& pose_b,
                                         const PenetrationRequest& request = {});
+
+/// Signed distance of two closed posed models: the distance between the surfaces (distance()) when
+/// the solids are apart, 0 when they touch without interior overlap, and -PD when their interiors
+/// overlap, PD the penetration depth above (FCL's convention for its convex shapes): the exact
+/// value for convex pairs, else the certified upper bound of PD once converged (so -PD >= the
+/// true signed distance; lower_bound is then -upper too, and approximate says whether it was
+/// exact). Nested solids (surfaces apart, one inside the other) overlap; point_a / point_b are then
+/// penetration()'s points. The depth is refined to max(request.abs_tolerance,
+/// request.rel_tolerance * depth), or to 1 % when both are 0. Throws ArgumentError naming a model
+/// that is not closed, or a request field out of range (as distance()). Const and thread-safe.
+ANTCD_API DistanceResult signed_distance(const Model& a, const Transform& pose_a, const Model& b,
+                                         const Transform& pose_b,
+                                         const DistanceRequest& request = {});
 
 /// Whether a closed model is convex (the test of the header comment, exact predicates). False for
 /// an open model.

@@ -1,5 +1,6 @@
 // python/src/bind_distance.cpp — antcd.distance and its DistanceResult.
 #include <antcd/distance.hpp>
+#include <antcd/penetration.hpp>
 
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
@@ -65,14 +66,14 @@ void bind_distance(py::module_& m) {
         }
         DistanceRequest request;
         request.upper_bound = upper_bound;
-        request.signed_distance = signed_distance;
         request.abs_tolerance = to_non_negative(abs_tolerance, "abs_tolerance");
         request.rel_tolerance = to_non_negative(rel_tolerance, "rel_tolerance");
         if (request.rel_tolerance >= 1) {
           throw py::value_error("rel_tolerance must be < 1, got " + std::to_string(rel_tolerance));
         }
         py::gil_scoped_release release;
-        return distance(a, pa, b, pb, request);
+        return signed_distance ? antcd::signed_distance(a, pa, b, pb, request)
+                               : distance(a, pa, b, pb, request);
       },
       py::arg("a"), py::arg("pose_a"), py::arg("b"), py::arg("pose_b"), py::kw_only(),
       py::arg("upper_bound") = std::numeric_limits<double>::infinity(),

@@ -10,8 +10,6 @@
 // request's upper bound; the smallest bound pruned below the best distance is kept, which makes
 // DistanceResult::lower_bound a proof.
 #include <antcd/distance.hpp>
-#include <antcd/penetration.hpp>
-#include <antcd/points.hpp>
 
 #include "bvh/traverse.hpp"
 #include "distance/node_bound.hpp"
@@ -292,53 +290,18 @@ DistanceResult surface_distance(const Model& a, const Transform& pose_a, const M
   return result;
 }
 
-// One of two closed models whose surfaces are apart lies inside the other: a vertex of one is
-// inside the other (then all are).
-bool nested(const Model& a, const Transform& pose_a, const Model& b, const Transform& pose_b) {
-  const Vec3 pa[1] = {pose_a.apply(a.leaf_corners()(0, 0))};
-  const Vec3 pb[1] = {pose_b.apply(b.leaf_corners()(0, 0))};
-  return contains(b, pose_b, pa)[0] != 0 || contains(a, pose_a, pb)[0] != 0;
-}
-
 }  // namespace
 
 DistanceResult distance(const Model& a, const Transform& pose_a, const Model& b,
                         const Transform& pose_b, const DistanceRequest& request) {
   check_request(request);
-  if (request.signed_distance) {
-    for (const Model* m : {&a, &b}) {
-      if (!m->is_closed()) {
-        throw ArgumentError("distance: signed_distance needs closed models; model '" + m->source() +
-                            "' is not closed");
-      }
-    }
-  }
-  DistanceResult result = surface_distance(a, pose_a, b, pose_b, request, nullptr);
-  if (!request.signed_distance) return result;
-  if (!result.intersecting && !nested(a, pose_a, b, pose_b)) return result;
-  PenetrationRequest pr;
-  if (request.abs_tolerance > 0 || request.rel_tolerance > 0) {
-    pr.abs_tolerance = request.abs_tolerance;
-    pr.rel_tolerance = request.rel_tolerance;
-  }
-  const PenetrationResult pd = penetration(a, pose_a, b, pose_b, pr);
-  if (!pd.overlapping) return result;  // touching: distance 0
-  result.distance = -pd.upper;
-  result.lower_bound = -pd.upper;
-  result.approximate = !pd.exact;
-  result.beyond_upper_bound = false;
-  result.point_a = pd.point_a;
-  result.point_b = pd.point_b;
-  return result;
+  return surface_distance(a, pose_a, b, pose_b, request, nullptr);
 }
 
 DistanceResult detail::seeded_distance(const Model& a, const Transform& pose_a, const Model& b,
                                        const Transform& pose_b, const DistanceRequest& request,
                                        const DistanceSeed& seed) {
   check_request(request);
-  if (request.signed_distance) {
-    throw ArgumentError("seeded_distance: signed_distance is not supported");
-  }
   const bool usable = seed.distance > 0 && seed.distance < kInf;
   return surface_distance(a, pose_a, b, pose_b, request, usable ? &seed : nullptr);
 }

@@ -223,14 +223,13 @@ struct ConvexEntry {
 };
 
 const ConvexEntry& convex_entry(const Model& model) {
-  ModelCache& cache = ModelCacheAccess::cache(model);
-  std::call_once(cache.convex_once, [&] {
-    auto entry = std::make_shared<ConvexEntry>();
-    entry->convex = build_polytope(model, &entry->shape);
-    if (!entry->convex) entry->shape = {};
-    cache.convex = std::move(entry);
+  static const std::size_t slot = new_cache_slot();
+  return derived<ConvexEntry>(model, slot, [&] {
+    ConvexEntry entry;
+    entry.convex = build_polytope(model, &entry.shape);
+    if (!entry.convex) entry.shape = {};
+    return entry;
   });
-  return *static_cast<const ConvexEntry*>(cache.convex.get());
 }
 
 }  // namespace

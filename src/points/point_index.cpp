@@ -179,11 +179,8 @@ PointIndex build_point_index(const Model& model) {
 }
 
 const PointIndex& point_index(const Model& model) {
-  ModelCache& cache = ModelCacheAccess::cache(model);
-  std::call_once(cache.point_index_once, [&] {
-    cache.point_index = std::make_shared<const PointIndex>(build_point_index(model));
-  });
-  return *static_cast<const PointIndex*>(cache.point_index.get());
+  static const std::size_t slot = new_cache_slot();
+  return derived<PointIndex>(model, slot, [&] { return build_point_index(model); });
 }
 
 int winding_number(const Model& model, const PointIndex& index, const Vec3& p) {

@@ -55,4 +55,10 @@ inline std::uint8_t solid_state(const PointIndex& index, const Vec3& p) {
   return index.grid.classify(p);
 }
 
+/// Whether p (model frame) lies inside the solid of a closed model: contains()'s answer for that
+/// one point (antcd/points.hpp says how the sign is read), without its argument checks and without
+/// allocating once the model's point data exist. The library's one point-in-solid test: collide()'s
+/// volume test and the penetration layer's nested solids use it too. The model must be closed.
+bool inside_solid(const Model& model, const Vec3& p);
+
 }  // namespace antcd::detail

@@ -86,11 +86,8 @@ PointTree build_point_tree(const Model& model) {
 }
 
 const PointTree& point_tree(const Model& model) {
-  ModelCache& cache = ModelCacheAccess::cache(model);
-  std::call_once(cache.point_tree_once, [&] {
-    cache.point_tree = std::make_shared<const PointTree>(build_point_tree(model));
-  });
-  return *static_cast<const PointTree*>(cache.point_tree.get());
+  static const std::size_t slot = new_cache_slot();
+  return derived<PointTree>(model, slot, [&] { return build_point_tree(model); });
 }
 
 namespace {

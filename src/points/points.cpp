@@ -51,6 +51,21 @@ std::vector<Vec3> to_model_frame(const Transform& pose, std::span<const Vec3> po
   return local;
 }
 
+// contains()'s answer for one point p (model frame) into `inside`; returns the descent's hint for
+// the next point (its closest leaf triangle, or `hint` when the grid decided).
+std::uint32_t inside_at(const Model& model, const detail::PointIndex& index,
+                        const detail::PointTree& tree, const Vec3& p, std::uint32_t hint,
+                        bool& inside) {
+  const std::uint8_t state = detail::solid_state(index, p);
+  if (state != detail::SolidGrid::kSurface) {
+    inside = state == detail::SolidGrid::kInside;
+    return hint;
+  }
+  const detail::ClosestPoint c = detail::closest_point(model, tree, p, hint);
+  inside = c.distance_squared > 0 && detail::inside_from_closest(model, index, p, c);
+  return c.leaf_triangle;
+}
+
 }  // namespace
 
 std::vector<std::uint8_t> contains(const Model& model, const Transform& pose,
@@ -66,17 +81,18 @@ std::vector<std::uint8_t> contains(const Model& model, const Transform& pose,
   const detail::PointTree& tree = detail::point_tree(model);
   const std::vector<Vec3> local = to_model_frame(pose, points);
   for_each_point(local, [&](std::size_t i, std::uint32_t hint) {
-    const Vec3& p = local[i];
-    const std::uint8_t state = detail::solid_state(index, p);
-    if (state != detail::SolidGrid::kSurface) {
-      inside[i] = state == detail::SolidGrid::kInside ? 1 : 0;
-      return hint;
-    }
-    const detail::ClosestPoint c = detail::closest_point(model, tree, p, hint);
-    inside[i] = c.distance_squared > 0 && detail::inside_from_closest(model, index, p, c) ? 1 : 0;
-    return c.leaf_triangle;
+    bool in = false;
+    hint = inside_at(model, index, tree, local[i], hint, in);
+    inside[i] = in ? 1 : 0;
+    return hint;
   });
   return inside;
+}
+
+bool detail::inside_solid(const Model& model, const Vec3& p) {
+  bool in = false;
+  inside_at(model, point_index(model), point_tree(model), p, 0, in);
+  return in;
 }
 
 SignedDistanceResult signed_distance(const Model& model, const Transform& pose,

@@ -7,6 +7,7 @@
 // exceed the distance of the pairs below them and pruning is strict, so every pair that could tie
 // with the best is measured: the answer is the least (distance, a, b), whatever the tree's shape.
 #include <antcd/distance.hpp>
+#include <antcd/penetration.hpp>
 #include <antcd/error.hpp>
 #include <antcd/world.hpp>
 
@@ -151,8 +152,9 @@ std::optional<NearestPair> measure(ObjectId a, const Model& ma, const Transform&
                                    const NearestRequest& request, Scalar upper_bound) {
   DistanceRequest dr;
   dr.upper_bound = upper_bound;
-  dr.signed_distance = request.signed_distance && ma.is_closed() && mb.is_closed();
-  DistanceResult r = distance(ma, pa, mb, pb, dr);
+  DistanceResult r = request.signed_distance && ma.is_closed() && mb.is_closed()
+                         ? signed_distance(ma, pa, mb, pb, dr)
+                         : distance(ma, pa, mb, pb, dr);
   if (r.beyond_upper_bound || !std::isfinite(r.distance)) return std::nullopt;
   return NearestPair{a, b, std::move(r)};
 }

@@ -398,11 +398,6 @@ TEST(SeededDistance, AnySeedPairKeepsTheGuaranteesOfDistance) {
   std::cout << "node pairs seeded with the closest pair " << seeded_pairs << ", unseeded "
             << unseeded_pairs << '\n';
   EXPECT_LT(seeded_pairs, unseeded_pairs);
-  DistanceRequest signed_req;
-  signed_req.signed_distance = true;
-  EXPECT_THROW((void)detail::seeded_distance(a, Transform::identity(), b, Transform::identity(),
-                                             signed_req, {}),
-               ArgumentError);
 }
 
 TEST(Sweep, RejectsBadArguments) {

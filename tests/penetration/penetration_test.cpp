@@ -277,33 +277,32 @@ namespace {
 TEST(SignedDistance, NegativePenetrationDepthWhenSolidsOverlap) {
   const Model a(make_box(Vec3(1, 1, 1), 2), {}, "a");
   DistanceRequest req;
-  req.signed_distance = true;
   // Overlapping by 0.3 (convex: exact).
   DistanceResult r =
-      distance(a, Transform::identity(), a, Transform(Mat3::Identity(), Vec3(1.7, 0.3, 0.2)), req);
+      signed_distance(a, Transform::identity(), a, Transform(Mat3::Identity(), Vec3(1.7, 0.3, 0.2)), req);
   EXPECT_NEAR(r.distance, -0.3, 1e-12);
   EXPECT_LE(r.lower_bound, r.distance);
   // Apart by 0.5: the surface distance.
-  r = distance(a, Transform::identity(), a, Transform(Mat3::Identity(), Vec3(2.5, 0, 0)), req);
+  r = signed_distance(a, Transform::identity(), a, Transform(Mat3::Identity(), Vec3(2.5, 0, 0)), req);
   EXPECT_NEAR(r.distance, 0.5, 1e-12);
   // Touching face on face: 0.
-  r = distance(a, Transform::identity(), a, Transform(Mat3::Identity(), Vec3(2, 0.5, 0)), req);
+  r = signed_distance(a, Transform::identity(), a, Transform(Mat3::Identity(), Vec3(2, 0.5, 0)), req);
   EXPECT_EQ(r.distance, 0);
   // Nested (surfaces 0.8 apart): -(0.2 + 1) = -1.2, general solids (a torus is not convex).
   const Model small(make_box(Vec3(0.2, 0.2, 0.2)));
-  r = distance(small, Transform::identity(), a, Transform::identity(), req);
+  r = signed_distance(small, Transform::identity(), a, Transform::identity(), req);
   EXPECT_NEAR(r.distance, -1.2, 1e-12);
   const Model torus(make_torus(2, 0.5, 32, 16));
-  r = distance(torus, Transform(Mat3::Identity(), Vec3(0, 0, 0.35)), a,
-               Transform(Mat3::Identity(), Vec3(2, 0, -1)), req);
+  r = signed_distance(torus, Transform(Mat3::Identity(), Vec3(0, 0, 0.35)), a,
+                      Transform(Mat3::Identity(), Vec3(2, 0, -1)), req);
   EXPECT_LT(r.distance, 0);
   EXPECT_TRUE(r.approximate);
-  // Unsigned by default.
+  // distance() is the unsigned surface distance.
   r = distance(small, Transform::identity(), a, Transform::identity());
   EXPECT_NEAR(r.distance, 0.8, 1e-12);
   Mesh open = make_box(Vec3(1, 1, 1));
   open.triangles.pop_back();
-  EXPECT_THROW((void)distance(Model(open, {}, "open"), Transform::identity(), a,
+  EXPECT_THROW((void)signed_distance(Model(open, {}, "open"), Transform::identity(), a,
                               Transform(Mat3::Identity(), Vec3(5, 0, 0)), req),
                ArgumentError);
 }

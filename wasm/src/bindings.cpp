@@ -12,6 +12,7 @@
 //   message lastError() gives.
 //   Contacts are records of kContactStride doubles (see write_contact).
 // - Handles of World objects are doubles: slot + generation * 2^32 (exact below 2^53).
+#include <antcd/pose.hpp>
 #include <antcd/collide.hpp>
 #include <antcd/distance.hpp>
 #include <antcd/error.hpp>
@@ -33,8 +34,6 @@
 #include <string>
 #include <vector>
 
-#include "util/number_text.hpp"
-#include "util/pose_check.hpp"
 
 namespace {
 
@@ -54,12 +53,6 @@ bool g_checked_valid[kPoseSlots] = {};
 std::vector<double> g_out;
 std::string g_error;
 CollisionResult g_collision;
-
-std::string text(double v) {
-  std::string out;
-  detail::append_double(out, v);
-  return out;
-}
 
 int fail(const std::string& message) {
   g_error = message;
@@ -92,15 +85,10 @@ Transform pose_at(int k, const char* function, const char* what) {
     for (int i = 0; i < 16; ++i) same &= m[i] == checked[i];  // a NaN is never equal
     if (same) return t;
   }
-  const double row_error = std::abs(m[3]) + std::abs(m[7]) + std::abs(m[11]) + std::abs(m[15] - 1);
-  Scalar err = 0;
-  const char* problem = detail::pose_problem(t, err);
-  if (problem == nullptr && !(row_error <= detail::kPoseTolerance)) {
-    problem = "is not a rigid motion (last row of the matrix is not 0, 0, 0, 1)";
-  }
-  if (problem != nullptr) {
+  const PoseCheck c = check_pose(t, m[3], m[7], m[11], m[15]);
+  if (!c.rigid()) {
     g_checked_valid[k] = false;
-    throw ArgumentError(std::string(function) + ": " + what + " " + problem);
+    throw ArgumentError(std::string(function) + ": " + what + " " + c.problem());
   }
   std::copy(m, m + 16, checked);
   g_checked_valid[k] = true;
@@ -131,7 +119,7 @@ double* out_resize(std::size_t n) {
 // An integer in [1, 2^32) given as a JS number; throws ArgumentError naming it.
 std::uint32_t positive_count(double v, const char* name) {
   if (!(v >= 1 && v <= 4294967295.0) || v != std::floor(v)) {
-    throw ArgumentError(std::string(name) + " " + text(v) + " is not an integer in [1, 2^32)");
+    throw ArgumentError(std::string(name) + " " + number_text(v) + " is not an integer in [1, 2^32)");
   }
   return static_cast<std::uint32_t>(v);
 }
@@ -143,7 +131,7 @@ CollisionRequest collision_request(bool all_contacts, double delta, bool normals
   r.delta = delta;
   r.contact_normals = normals;
   if (!(max_contacts >= 0) || max_contacts != std::floor(max_contacts)) {
-    throw ArgumentError("maxContacts " + text(max_contacts) + " is not a non-negative integer");
+    throw ArgumentError("maxContacts " + number_text(max_contacts) + " is not a non-negative integer");
   }
   r.max_contacts = static_cast<std::size_t>(max_contacts);
   return r;
@@ -310,12 +298,12 @@ extern "C" EMSCRIPTEN_KEEPALIVE int antcd_distance(int a, int b, double upper_bo
     r.upper_bound = upper_bound;
     r.abs_tolerance = abs_tolerance;
     r.rel_tolerance = rel_tolerance;
-    r.signed_distance = signed_distance != 0;
     const Model& ma = *model_ref(a, "a");
     const Model& mb = *model_ref(b, "b");
     const Transform pa = pose_at(0, "distance", "poseA");
     const Transform pb = pose_at(1, "distance", "poseB");
-    const DistanceResult d = antcd::distance(ma, pa, mb, pb, r);
+    const DistanceResult d = signed_distance != 0 ? antcd::signed_distance(ma, pa, mb, pb, r)
+                                                  : antcd::distance(ma, pa, mb, pb, r);
     double* out = out_resize(11);
     out[0] = d.distance;
     out[1] = d.lower_bound;
@@ -479,14 +467,14 @@ class WasmWorld {
  private:
   static std::uint32_t filter_bits(double v, const char* what) {
     if (!(v >= 0 && v <= 4294967295.0) || v != std::floor(v)) {
-      throw ArgumentError(std::string(what) + " " + text(v) + " is not an integer in [0, 2^32)");
+      throw ArgumentError(std::string(what) + " " + number_text(v) + " is not an integer in [0, 2^32)");
     }
     return static_cast<std::uint32_t>(v);
   }
   static ObjectId id_of(double handle, const char* function) {
     if (!(handle >= 0 && handle < kMaxGeneration * kGenerationScale) ||
         handle != std::floor(handle)) {
-      throw ArgumentError(std::string(function) + ": " + text(handle) + " is not an object handle");
+      throw ArgumentError(std::string(function) + ": " + number_text(handle) + " is not an object handle");
     }
     const double gen = std::floor(handle / kGenerationScale);
     return ObjectId{static_cast<std::uint32_t>(handle - gen * kGenerationScale),

@@ -1,4 +1,4 @@
-// Solid angle of a triangle seen from a point, and the winding number of a closed surface.
+// Solid angle of a triangle seen from a point (geometry::solid_angle): the winding number's term.
 #include <antcd/geometry.hpp>
 
 #include <cmath>
