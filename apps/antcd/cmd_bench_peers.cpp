@@ -1,7 +1,7 @@
 // antcd bench peers: antcd against FCL and Bullet on the same scenes and mesh pairs
 // (experiments/peers/peers_bench.hpp). Built with the peers only when FCL and Bullet were found
 // (ANTCD_HAVE_PEERS); otherwise the command exists and says what is missing.
-#include <antcd/io.hpp>
+#include <antcd/file.hpp>
 
 #include <iostream>
 #include <memory>

@@ -1,5 +1,5 @@
 // antcd run / scene generate / compare: scenes in motion and their metrics.
-#include <antcd/io.hpp>
+#include <antcd/file.hpp>
 #include <antcd/scene.hpp>
 
 #include <unistd.h>

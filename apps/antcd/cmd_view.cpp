@@ -1,6 +1,6 @@
 // antcd view: a scene and its run results in the browser viewer (viewer/), as one self-contained
 // HTML file or served on 127.0.0.1.
-#include <antcd/io.hpp>
+#include <antcd/file.hpp>
 
 #include <cstdio>
 #include <memory>

@@ -3,7 +3,7 @@
 #include "lab.hpp"
 
 #include <antcd/error.hpp>
-#include <antcd/io.hpp>
+#include <antcd/file.hpp>
 #include <antcd/version.hpp>
 
 #include <cstdio>
@@ -14,7 +14,7 @@
 namespace {
 
 int fail(const std::string& message) {
-  // Printable and bounded: the message may quote file content or names (antcd/io.hpp).
+  // Printable and bounded: the message may quote file content or names (antcd/file.hpp).
   std::cerr << "error: " << antcd::printable_line(message) << '\n';
   return 2;
 }

@@ -1,7 +1,7 @@
 #include "view_page.hpp"
 
 #include <antcd/collide.hpp>
-#include <antcd/io.hpp>
+#include <antcd/file.hpp>
 #include <antcd/mesh.hpp>
 #include <antcd/scene.hpp>
 

@@ -1,6 +1,6 @@
 #include "paper/gnuplot.hpp"
 
-#include <antcd/io.hpp>
+#include <antcd/file.hpp>
 #include <antcd/mesh.hpp>
 
 #include <fcntl.h>

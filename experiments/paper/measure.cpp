@@ -19,7 +19,7 @@
 
 #include <antcd/collide.hpp>
 #include <antcd/error.hpp>
-#include <antcd/io.hpp>
+#include <antcd/file.hpp>
 #include <antcd/random.hpp>
 #include <antcd/scene.hpp>
 

@@ -1,6 +1,6 @@
 #include "peers/generated_scenes.hpp"
 
-#include <antcd/io.hpp>
+#include <antcd/file.hpp>
 
 #include <unistd.h>
 

@@ -1,6 +1,6 @@
 // BOX-DNN and BOX-LSTM networks, their training and their model files (see classifier.hpp). The
 // only translation unit of antcd that includes libtorch's headers.
-#include <antcd/io.hpp>
+#include <antcd/file.hpp>
 #include <antcd/rng.hpp>
 #include <antcd_learned/classifier.hpp>
 

@@ -1,6 +1,6 @@
 // python/src/module.cpp — the extension module antcd._antcd (re-exported by the antcd package).
 #include <antcd/error.hpp>
-#include <antcd/io.hpp>
+#include <antcd/file.hpp>
 #include <antcd/version.hpp>
 
 #include <pybind11/pybind11.h>

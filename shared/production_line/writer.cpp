@@ -2,7 +2,7 @@
 #include "shared/production_line.hpp"
 
 #include <antcd/error.hpp>
-#include <antcd/io.hpp>
+#include <antcd/file.hpp>
 #include <antcd/mesh.hpp>
 #include <antcd/scene.hpp>
 

@@ -11,7 +11,7 @@
 // exists.
 #include <antcd/bvh.hpp>
 #include <antcd/geometry.hpp>
-#include <antcd/io.hpp>
+#include <antcd/file.hpp>
 #include <antcd/tolerances.hpp>
 
 #include "bvh/model_cache.hpp"

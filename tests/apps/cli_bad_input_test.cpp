@@ -14,7 +14,7 @@
 #include <utility>
 #include <vector>
 
-#include <antcd/io.hpp>
+#include <antcd/file.hpp>
 
 #include "support/cli_run.hpp"
 #include "support/test_support.hpp"

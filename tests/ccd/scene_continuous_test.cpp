@@ -2,7 +2,7 @@
 // contact_points; older results still load) and `antcd run --continuous`, on the generated
 // fast thin-sheet scene where per-frame discrete checks tunnel.
 #include <antcd/error.hpp>
-#include <antcd/io.hpp>
+#include <antcd/file.hpp>
 #include <antcd/mesh.hpp>
 #include <antcd/scene.hpp>
 

@@ -3,7 +3,7 @@
 #include "paper/learned.hpp"
 
 #include <gtest/gtest.h>
-#include <antcd/io.hpp>
+#include <antcd/file.hpp>
 #include <antcd/mesh.hpp>
 
 #include <cstdlib>

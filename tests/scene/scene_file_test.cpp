@@ -1,5 +1,5 @@
 // The antcd-scene/1 parser: a valid file, and one clear error per violation.
-#include <antcd/io.hpp>
+#include <antcd/file.hpp>
 #include <antcd/scene.hpp>
 
 #include <gtest/gtest.h>

@@ -3,7 +3,7 @@
 #include "shared/production_line.hpp"
 #include "support/test_support.hpp"
 
-#include <antcd/io.hpp>
+#include <antcd/file.hpp>
 #include <antcd/load.hpp>
 #include <antcd/mesh.hpp>
 #include <antcd/scene.hpp>

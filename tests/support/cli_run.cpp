@@ -7,7 +7,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include <antcd/io.hpp>
+#include <antcd/file.hpp>
 
 #include <algorithm>
 #include <cerrno>
