@@ -2,6 +2,7 @@
 
 #include <antcd/load.hpp>
 #include <antcd/mesh.hpp>
+#include <antcd/tolerances.hpp>
 
 #include <cerrno>
 #include <cmath>
@@ -44,9 +45,9 @@ Transform parse_pose(const std::string& text, const std::string& option) {
   if (values.size() == 3) return Transform{Mat3::Identity(), t};
   const Scalar norm = std::sqrt(values[3] * values[3] + values[4] * values[4] +
                                 values[5] * values[5] + values[6] * values[6]);
-  if (std::abs(norm - 1.0) > 1e-3) {
+  if (!(std::abs(norm - 1.0) <= tolerance::kUnitQuaternion)) {
     throw UsageError(option + ": quaternion (w,x,y,z) has length " + std::to_string(norm) +
-                     ", expected 1 (within 1e-3)");
+                     ", expected 1 (within " + number_text(tolerance::kUnitQuaternion) + ")");
   }
   return Transform::from_quaternion(t, values[3], values[4], values[5], values[6]);
 }

@@ -51,6 +51,11 @@ inline constexpr Scalar kPoint = 1e-10;
 /// printed with 7 digits are accepted; a scale or shear of a millionth is not.
 inline constexpr Scalar kRigid = 1e-6;
 
+/// A quaternion given as text (scene files' rotation_wxyz, the CLI's --pose) is normalised when its
+/// length is within this of 1, and refused otherwise: loose enough for values printed with 4
+/// digits, tight enough that a typo (a missing sign, a digit too many) is caught.
+inline constexpr Scalar kUnitQuaternion = 1e-3;
+
 /// The rounding allowance of a volume test on coordinates of magnitude `scale`.
 [[nodiscard]] inline Scalar volume_allowance(Scalar scale) { return kVolume * scale + kFloor; }
 
@@ -71,11 +76,6 @@ inline constexpr Scalar kRigid = 1e-6;
     }
   }
   return err;
-}
-
-/// Whether `r` is a rotation within kRigid: orthonormal and determinant > 0. False for NaN.
-[[nodiscard]] inline bool is_rotation(const Mat3& r) {
-  return orthonormality_error(r) <= kRigid && r.determinant() > 0;
 }
 
 }  // namespace antcd::tolerance

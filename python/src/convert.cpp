@@ -1,6 +1,7 @@
 // python/src/convert.cpp — see convert.hpp.
 #include "convert.hpp"
 
+#include <antcd/pose.hpp>
 #include <antcd/tolerances.hpp>
 
 #include <algorithm>
@@ -62,13 +63,8 @@ Transform rigid(const double* r, std::ptrdiff_t r_row, const double* t, std::str
     for (int j = 0; j < 3; ++j) out.rotation(i, j) = r[i * r_row + j];
     out.translation[i] = t[i];
   }
-  const double err = tolerance::orthonormality_error(out.rotation);
-  if (!(err <= tolerance::kRigid)) {
-    throw py::value_error(str(name) + ": rotation is not orthonormal (max |R^T R - I| = " +
-                          std::to_string(err) + "): antcd takes rigid motions only, no scale or shear");
-  }
-  if (out.rotation.determinant() < 0) {
-    throw py::value_error(str(name) + ": rotation has determinant -1 (a reflection), not a rigid motion");
+  if (const PoseCheck c = check_pose(out); !c.rigid()) {
+    throw py::value_error(str(name) + " " + c.problem());
   }
   return out;
 }
@@ -84,26 +80,17 @@ Transform from_homogeneous(const double* d) {
 
 /// What homogeneous() accepts, decided without building a message.
 bool acceptable_homogeneous(const double* d) {
-  for (int k = 0; k < 16; ++k) {
-    if (!std::isfinite(d[k])) return false;
-  }
-  if (std::abs(d[12]) > tolerance::kRigid || std::abs(d[13]) > tolerance::kRigid ||
-      std::abs(d[14]) > tolerance::kRigid || std::abs(d[15] - 1) > tolerance::kRigid) {
-    return false;
-  }
-  const Mat3 r = from_homogeneous(d).rotation;
-  return tolerance::orthonormality_error(r) <= tolerance::kRigid && r.determinant() >= 0;
+  return check_pose(from_homogeneous(d), d[12], d[13], d[14], d[15]).rigid();
 }
 
 /// A row-major 4x4 homogeneous matrix, checked: finite, last row [0, 0, 0, 1], rigid rotation.
 Transform homogeneous(const double* d, std::string_view name) {
   require_finite(d, 16, name);
-  if (std::abs(d[12]) > tolerance::kRigid || std::abs(d[13]) > tolerance::kRigid ||
-      std::abs(d[14]) > tolerance::kRigid || std::abs(d[15] - 1) > tolerance::kRigid) {
-    throw py::value_error(str(name) + ": last row must be [0, 0, 0, 1] (no projective part)");
+  const Transform out = from_homogeneous(d);
+  if (const PoseCheck c = check_pose(out, d[12], d[13], d[14], d[15]); !c.rigid()) {
+    throw py::value_error(str(name) + " " + c.problem());
   }
-  const double t[3] = {d[3], d[7], d[11]};
-  return rigid(d, 4, t, name);
+  return out;
 }
 
 /// The common case on the per-query path: a float64 numpy array of shape (rows, cols) (or (rows,)

@@ -71,7 +71,7 @@ def test_bad_batches_raise(pair):
         antcd.distance_batch(a, b, None, np.eye(4))
     scaled = good.copy()
     scaled[1, :3, :3] *= 2
-    with pytest.raises(ValueError, match=r"poses_b\[1\]: rotation is not orthonormal"):
+    with pytest.raises(ValueError, match=r"poses_b\[1\] is not a rigid motion: rotation is not orthonormal"):
         antcd.distance_batch(a, b, good, scaled)
     nan = good.copy()
     nan[2, 0, 3] = np.nan

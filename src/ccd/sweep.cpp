@@ -21,7 +21,7 @@
 #include "ccd/swept_proximity.hpp"
 #include "distance/seeded.hpp"
 #include "util/check.hpp"
-#include "util/pose_check.hpp"
+#include <antcd/pose.hpp>
 
 namespace antcd {
 namespace {
@@ -71,10 +71,9 @@ constexpr int kBisectDepth = 4;
 /// advancement it saves). 300 settled 5888 sweeps, 1000 settled 5919 and was faster.
 constexpr std::uint32_t kApartBudget = 1000;
 
-void check_pose(const Transform& p, const char* name) {
-  Scalar err = 0;
-  if (const char* problem = detail::pose_problem(p, err)) {
-    throw ArgumentError(std::string("sweep: ") + name + " " + problem);
+void require_rigid(const Transform& p, const char* name) {
+  if (const PoseCheck c = check_pose(p); !c.rigid()) {
+    throw ArgumentError(std::string("sweep: ") + name + " " + c.problem());
   }
 }
 
@@ -147,10 +146,10 @@ Scalar apart_until(const ccd::RigidPair& m, Scalar t, Scalar separation, int dep
 SweepResult sweep(const Model& a, const Transform& pose_a0, const Transform& pose_a1,
                   const Model& b, const Transform& pose_b0, const Transform& pose_b1,
                   const SweepRequest& request) {
-  check_pose(pose_a0, "pose_a0");
-  check_pose(pose_a1, "pose_a1");
-  check_pose(pose_b0, "pose_b0");
-  check_pose(pose_b1, "pose_b1");
+  require_rigid(pose_a0, "pose_a0");
+  require_rigid(pose_a1, "pose_a1");
+  require_rigid(pose_b0, "pose_b0");
+  require_rigid(pose_b1, "pose_b1");
   const Scalar ms = request.min_separation;
   const Scalar tol = request.time_tolerance;
   detail::require_non_negative("sweep", "min_separation", ms);

@@ -15,7 +15,7 @@
 #include "ccd/motion.hpp"
 #include "util/check.hpp"
 #include "util/parallel.hpp"
-#include "util/pose_check.hpp"
+#include <antcd/pose.hpp>
 #include "world/world_impl.hpp"
 
 namespace antcd {
@@ -46,10 +46,9 @@ std::vector<std::size_t> motion_index(const World::Impl& w, std::span<const Obje
                           "] (a continuous motion gives each object one end pose)");
     }
     index[ids[k].slot] = k + 1;
-    Scalar err = 0;
-    if (const char* problem = detail::pose_problem(poses[k], err)) {
+    if (const PoseCheck c = check_pose(poses[k]); !c.rigid()) {
       throw ArgumentError(std::string(function) + ": new_poses[" + std::to_string(k) + "] " +
-                          problem);
+                          c.problem());
     }
   }
   return index;

@@ -11,8 +11,7 @@
 
 #include "util/check.hpp"
 #include "util/parallel.hpp"
-#include "util/pose_check.hpp"
-#include "world/world_access.hpp"
+#include <antcd/pose.hpp>
 #include "world/world_impl.hpp"
 
 namespace antcd {
@@ -31,13 +30,9 @@ std::string object_label(const World::Impl::Object& o, ObjectId id) {
          " " + describe(id);
 }
 
-void check_pose(const Transform& pose, const std::string& function, const std::string& what) {
-  Scalar err = 0;
-  if (const char* problem = detail::pose_problem(pose, err)) {
-    std::ostringstream msg;
-    msg << function << ": " << what << " " << problem;
-    if (err > 0) msg << "; orthonormality error " << err;
-    throw ArgumentError(msg.str());
+void require_rigid(const Transform& pose, const std::string& function, const std::string& what) {
+  if (const PoseCheck c = check_pose(pose); !c.rigid()) {
+    throw ArgumentError(function + ": " + what + " " + c.problem());
   }
 }
 
@@ -100,7 +95,7 @@ ObjectId World::add(std::shared_ptr<const Model> model, const Transform& pose,
   const std::string label =
       options.name.empty() ? std::string("the new object") : "object '" + options.name + "'";
   if (!model) throw ArgumentError("World::add: model is null (" + label + ")");
-  check_pose(pose, "World::add", "pose of " + label);
+  require_rigid(pose, "World::add", "pose of " + label);
   const Transform new_pose = pose;  // `pose` may live in this World (add(m, world.pose(other)))
   Impl& w = *impl_;
   std::uint32_t slot;
@@ -152,10 +147,7 @@ void World::remove(ObjectId id) {
 
 void World::set_pose(ObjectId id, const Transform& pose) {
   const Impl::Object& o = impl_->get(id, "World::set_pose", "id");
-  Scalar err = 0;
-  if (detail::pose_problem(pose, err) != nullptr) {
-    check_pose(pose, "World::set_pose", "pose of " + object_label(o, id));
-  }
+  if (!check_pose(pose).rigid()) require_rigid(pose, "World::set_pose", "pose of " + object_label(o, id));
   set_poses(std::span<const ObjectId>(&id, 1), std::span<const Transform>(&pose, 1));
 }
 
@@ -168,8 +160,7 @@ void World::set_poses(std::span<const ObjectId> ids, std::span<const Transform> 
   // Every argument is checked before anything changes: in parallel on a large batch, then the first
   // bad one (if any) again, on this thread, for its message.
   const auto bad = [&](std::size_t k) {
-    Scalar err = 0;
-    return !w.contains(ids[k]) || detail::pose_problem(poses[k], err) != nullptr;
+    return !w.contains(ids[k]) || !check_pose(poses[k]).rigid();
   };
   std::size_t first_bad = ids.size();
   if (ids.size() < kParallelBatch) {
@@ -190,15 +181,10 @@ void World::set_poses(std::span<const ObjectId> ids, std::span<const Transform> 
   if (first_bad < ids.size()) {
     const std::size_t k = first_bad;
     w.get(ids[k], "World::set_poses", ("ids[" + std::to_string(k) + "]").c_str());
-    check_pose(poses[k], "World::set_poses",
+    require_rigid(poses[k], "World::set_poses",
                "poses[" + std::to_string(k) + "] of " + object_label(w.objects[ids[k].slot], ids[k]));
   }
   w.apply_poses(ids, poses);
-}
-
-void detail::WorldAccess::set_checked_poses(World& world, std::span<const ObjectId> ids,
-                                            std::span<const Transform> poses) {
-  world.impl_->apply_poses(ids, poses);
 }
 
 void World::Impl::apply_poses(std::span<const ObjectId> ids, std::span<const Transform> poses) {

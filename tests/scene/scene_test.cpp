@@ -1,6 +1,6 @@
 // The scene engine against an all-pairs brute-force run, across methods and thread counts.
 #include <antcd/collide.hpp>
-#include <antcd/io.hpp>
+#include <antcd/file.hpp>
 #include <antcd/random.hpp>
 #include <antcd/scene.hpp>
 

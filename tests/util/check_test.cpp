@@ -1,6 +1,7 @@
 // The argument check of util/check.hpp and the named tolerances of antcd/tolerances.hpp: one
 // message format ("<function>: <argument> must be <requirement>, got <value>") from the helpers
 // and from the library calls that use them, and the tolerance functions' definitions.
+#include <antcd/pose.hpp>
 #include <antcd/collide.hpp>
 #include <antcd/distance.hpp>
 #include <antcd/penetration.hpp>
@@ -90,11 +91,26 @@ TEST(Tolerances, Definitions) {
   EXPECT_EQ(tolerance::widened(0), 0);
   const Mat3 turn = Eigen::AngleAxis<Scalar>(0.7, Vec3(1, 2, 3).normalized()).toRotationMatrix();
   EXPECT_LT(tolerance::orthonormality_error(turn), 1e-15);
-  EXPECT_TRUE(tolerance::is_rotation(turn));
-  EXPECT_FALSE(tolerance::is_rotation(-turn));                               // a reflection
-  EXPECT_FALSE(tolerance::is_rotation(turn * (1 + 2 * tolerance::kRigid)));  // a scale
-  EXPECT_TRUE(tolerance::is_rotation(turn * (1 + 0.25 * tolerance::kRigid)));
-  EXPECT_FALSE(tolerance::is_rotation(Mat3::Constant(kNaN)));
+  const auto fault = [](const Mat3& r) { return check_pose(Transform(r, Vec3(1, 2, 3))).fault; };
+  using Fault = PoseCheck::Fault;
+  EXPECT_EQ(fault(turn), Fault::None);
+  EXPECT_EQ(fault(-turn), Fault::Reflection);
+  EXPECT_EQ(fault(turn * (1 + 2 * tolerance::kRigid)), Fault::NotOrthonormal);  // a scale
+  EXPECT_EQ(fault(turn * (1 + 0.25 * tolerance::kRigid)), Fault::None);
+  EXPECT_EQ(fault(Mat3::Constant(kNaN)), Fault::NotFinite);
+  EXPECT_EQ(check_pose(Transform(turn, Vec3(0, kNaN, 0))).fault, Fault::NotFinite);
+  // A 4x4 matrix's last row: within kRigid of (0, 0, 0, 1), else not affine; NaN: not finite.
+  const Transform t(turn, Vec3(1, 2, 3));
+  EXPECT_TRUE(check_pose(t, 0, 0, 0.25 * tolerance::kRigid, 1).rigid());
+  EXPECT_EQ(check_pose(t, 0.1, 0, 0, 1).fault, Fault::NotAffine);
+  EXPECT_EQ(check_pose(t, 0, 0, 0, 2).fault, Fault::NotAffine);
+  EXPECT_EQ(check_pose(t, 0, kNaN, 0, 1).fault, Fault::NotFinite);
+  // Each fault names itself; a rigid pose has no problem.
+  EXPECT_EQ(check_pose(t).problem(), "");
+  EXPECT_NE(check_pose(Transform(-turn, Vec3::Zero())).problem().find("reflection"), std::string::npos);
+  EXPECT_NE(check_pose(Transform(2 * turn, Vec3::Zero())).problem().find("not orthonormal"),
+            std::string::npos);
+  EXPECT_NE(check_pose(t, 0, 0, 0, 2).problem().find("last row"), std::string::npos);
   // The written-out error against its definition, and one NaN entry anywhere propagating.
   Mat3 skew = turn;
   skew(0, 1) += 3e-7;
@@ -106,7 +122,7 @@ TEST(Tolerances, Definitions) {
     Mat3 r = turn;
     r(k % 3, k / 3) = kNaN;
     EXPECT_TRUE(std::isnan(tolerance::orthonormality_error(r))) << k;
-    EXPECT_FALSE(tolerance::is_rotation(r)) << k;
+    EXPECT_EQ(fault(r), Fault::NotFinite) << k;
   }
 }
 
