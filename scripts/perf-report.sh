@@ -45,7 +45,7 @@ for tool in valgrind callgrind_annotate /usr/bin/python3; do
   fi
 done
 if [ ! -f "$build_dir/CMakeCache.txt" ]; then
-  echo "error: no build in $build_dir (configure a Release build first, see README)" >&2
+  echo "error: no build in $build_dir (configure a Release build first: docs/building.md)" >&2
   exit 2
 fi
 if ! grep -q '^CMAKE_BUILD_TYPE:STRING=Release$' "$build_dir/CMakeCache.txt"; then

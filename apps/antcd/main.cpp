@@ -10,6 +10,7 @@
 #include <iostream>
 #include <new>
 #include <string>
+#include <vector>
 
 namespace {
 
@@ -80,6 +81,19 @@ int main(int argc, char** argv) {
     std::cout << version << '\n';
     return 0;
   } catch (const CLI::ParseError& e) {
+    // CLI11 checks what is required (a subcommand, positionals) and converts values before it
+    // reports the arguments it could not place, so `antcd --bogus` said only "A subcommand is
+    // required": name the first such argument, at whatever level it was met.
+    const std::vector<std::string> unplaced = app.remaining(true);
+    if (!unplaced.empty()) {
+      const std::string& arg = unplaced.front();
+      const std::string command = "antcd " + path;  // path: the commands before the first option
+      std::string line =
+          std::string(arg.starts_with('-') ? "unknown option '" : "unexpected argument '") + arg +
+          "'";
+      if (!path.empty()) line += " for '" + command.substr(0, command.size() - 1) + "'";
+      return fail(line + " (see '" + command + "--help')");
+    }
     return fail(e.what());
   } catch (const antcd::cli::UsageError& e) {
     return fail(e.what());
