@@ -76,6 +76,7 @@ void check_pose(const Transform& p, const char* name) {
   if (const char* problem = detail::pose_problem(p, err)) {
     throw ArgumentError(std::string("sweep: ") + name + " " + problem);
   }
+  ccd::require_sweep_translation("sweep", name, p);
 }
 
 /// The larger of the two lower bounds distance() proves: its lower_bound, and its distance less
@@ -152,13 +153,19 @@ SweepResult sweep(const Model& a, const Transform& pose_a0, const Transform& pos
   check_pose(pose_b0, "pose_b0");
   check_pose(pose_b1, "pose_b1");
   const Scalar ms = request.min_separation;
-  const Scalar tol = request.time_tolerance;
   detail::require_non_negative("sweep", "min_separation", ms);
-  detail::require_positive("sweep", "time_tolerance", tol);
+  ccd::require_sweep_range("sweep", "min_separation", "", ms);
+  detail::require_positive("sweep", "time_tolerance", request.time_tolerance);
   detail::require_at_least("sweep", "max_iterations", request.max_iterations, 1);
+  // A window wider than the whole motion decides nothing more than the whole motion (and mu times
+  // a huge tolerance would overflow).
+  const Scalar tol = std::min(request.time_tolerance, Scalar{1});
 
   const Scalar ra = ccd::origin_radius(a);
   const Scalar rb = ccd::origin_radius(b);
+  // A model beyond the range (or with a non-finite root volume: vertices beyond float's range).
+  ccd::require_sweep_range("sweep", "model a", "reach from its origin", ra);
+  ccd::require_sweep_range("sweep", "model b", "reach from its origin", rb);
   const ccd::RigidPair motion = ccd::rigid_pair(a, pose_a0, pose_a1, b, pose_b0, pose_b1);
   const Scalar mu = ccd::motion_bound(motion);
   const Scalar scale = ra + rb + ms + pose_a0.translation.norm() + pose_a1.translation.norm() +
