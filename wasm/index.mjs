@@ -11,7 +11,9 @@
 // throws a JS Error whose message names the argument and the problem. Queries copy their poses into
 // a fixed block of WebAssembly memory and read their answers from a reused one: no WebAssembly
 // allocation per query once the buffers have grown; collides() (the verdict alone) allocates
-// nothing in JS either.
+// nothing in JS either. Every WebAssembly allocation is checked: when memory runs out the call
+// throws an Error saying "out of WebAssembly memory" and the module keeps answering (delete()
+// models and Worlds to make room).
 import factory from './dist/antcd_core.cjs';
 
 const isNode = typeof process !== 'undefined' && process.versions != null && process.versions.node != null;
@@ -44,9 +46,40 @@ function isPose(p) {
 export default async function createAntcd(options = {}) {
   const core = await factory({ wasmBinary: await wasmBytes(options) });
   const poseBase = core.poseBlock() / 8;
+  const utf8 = new TextDecoder();
+  const toUtf8 = new TextEncoder();
 
+  // The NUL-terminated UTF-8 string at address p of WebAssembly memory.
+  function cString(p) {
+    const heap = core.HEAPU8;
+    let end = p;
+    while (heap[end] !== 0) ++end;
+    return utf8.decode(heap.subarray(p, end));
+  }
   function fail(fn) {
-    throw new Error(core.lastError() || `${fn} failed`);
+    throw new Error(cString(core._antcd_last_error()) || `${fn} failed`);
+  }
+  function outOfMemory(fn, what, bytes) {
+    return new Error(`${fn}: out of WebAssembly memory (${what}: ${bytes} bytes; delete() the models and Worlds no longer needed)`);
+  }
+  // n bytes of WebAssembly memory (free with core.freeBytes), or an Error when none are left.
+  function alloc(fn, what, n) {
+    const p = core.allocBytes(Math.max(n, 8));
+    if (p === 0) throw outOfMemory(fn, what, n);
+    return p;
+  }
+  // A string's UTF-8 bytes copied into WebAssembly memory: [address, length] (free the address).
+  function allocString(fn, what, text) {
+    const bytes = toUtf8.encode(text);
+    const p = alloc(fn, what, bytes.length);
+    core.HEAPU8.set(bytes, p);
+    return [p, bytes.length];
+  }
+  // A C++ exception that escaped the bindings (only Embind's own allocations can throw one: a
+  // World's construction) as an Error.
+  function rethrow(fn, e) {
+    if (e instanceof Error) throw e;
+    throw new Error(`${fn}: out of WebAssembly memory (delete() the models and Worlds no longer needed)`);
   }
   function check(fn, rc) {
     if (rc < 0) fail(fn);
@@ -129,23 +162,27 @@ export default async function createAntcd(options = {}) {
         }
       }
       const posBytes = positions.length * (f32 ? 4 : 8);
-      const pPos = core.allocBytes(Math.max(posBytes, 8));
-      const pIdx = core.allocBytes(Math.max(indices.length * 4, 4));
+      let pPos = 0;
+      let pIdx = 0;
+      let pName = 0;
       try {
+        pPos = alloc(`Model ${name}`, 'positions', posBytes);
+        pIdx = alloc(`Model ${name}`, 'indices', indices.length * 4);
+        let nameLength = 0;
+        [pName, nameLength] = allocString(`Model ${name}`, 'name', String(name));
         if (f32) core.HEAPF32.set(positions, pPos / 4);
         else core.HEAPF64.set(positions, pPos / 8);
         core.HEAPU32.set(ix, pIdx / 4);
-        this.id = check('Model', core.modelCreate(pPos, positions.length, f32, pIdx, indices.length, String(name)));
+        this.id = check('Model', core.modelCreate(pPos, positions.length, f32, pIdx, indices.length, pName, nameLength));
       } finally {
-        core.freeBytes(pPos);
-        core.freeBytes(pIdx);
+        for (const p of [pPos, pIdx, pName]) if (p !== 0) core.freeBytes(p);
       }
     }
     get triangleCount() { return info(this)[0]; }
     get vertexCount() { return info(this)[1]; }
     /** Closed and consistently oriented (bounds a solid): volume queries and penetration apply. */
     get isClosed() { return info(this)[2] === 1; }
-    get name() { return core.modelName(modelOf('Model', 'this', this)); }
+    get name() { return cString(core._antcd_model_name(modelOf('Model', 'this', this))); }
     /** { positions: Float64Array, indices: Uint32Array } of the model's mesh. */
     mesh() {
       check('Model.mesh', core.modelMesh(modelOf('Model', 'this', this)));
@@ -170,13 +207,14 @@ export default async function createAntcd(options = {}) {
     }
   }
   const SHAPE = Symbol('shape');
+  const SHAPE_CODES = { box: 0, sphere: 1, cylinder: 2, torus: 3 };
   function shape(kind, a, b, c, n1, n2) {
     const fn = `Model.${kind}`;
     for (const [k, v] of [['size', a], ['size', b], ['size', c]]) number(fn, k, v);
     for (const v of [n1, n2]) {
       if (!Number.isInteger(v) || v < 0 || v > 1e6) throw new Error(`${fn}: segment count ${describe(v)} is not an integer in [0, 1e6]`);
     }
-    return new Model(SHAPE, check(fn, core.modelShape(kind, a, b, c, n1, n2)));
+    return new Model(SHAPE, check(fn, core.modelShape(SHAPE_CODES[kind], a, b, c, n1, n2)));
   }
 
   /** Exact collision of two posed models: { colliding, contacts } (contacts: CONTACT_STRIDE per contact, world frame). */
@@ -260,7 +298,13 @@ export default async function createAntcd(options = {}) {
 
   /** A live set of posed objects; handles are numbers. */
   class World {
-    constructor() { this.core = new core.World(); }
+    constructor() {
+      try {
+        this.core = new core.World();
+      } catch (e) {
+        rethrow('World', e);
+      }
+    }
     #live(fn) {
       if (this.core === null) throw new Error(`${fn}: the World was deleted`);
       return this.core;
@@ -269,11 +313,17 @@ export default async function createAntcd(options = {}) {
     add(model, pose, options = {}) {
       const w = this.#live('World.add');
       const m = modelOf('World.add', 'model', model);
-      writePose(0, pose, 'World.add', 'pose');
-      const h = w.add(m, String(options.name ?? ''), number('World.add', 'group', options.group, 1),
-        number('World.add', 'mask', options.mask, 4294967295));
-      if (h < 0) fail('World.add');
-      return h;
+      const group = number('World.add', 'group', options.group, 1);
+      const mask = number('World.add', 'mask', options.mask, 4294967295);
+      const [pName, nameLength] = allocString('World.add', 'name', String(options.name ?? ''));
+      try {
+        writePose(0, pose, 'World.add', 'pose');
+        const h = w.add(m, pName, nameLength, group, mask);
+        if (h < 0) fail('World.add');
+        return h;
+      } finally {
+        core.freeBytes(pName);
+      }
     }
     remove(handle) {
       check('World.remove', this.#live('World.remove').remove(number('World.remove', 'handle', handle)));

@@ -101,6 +101,14 @@ class LeafCorners {
   std::size_t size_;
 };
 
+/// The most levels a hierarchy has (a lone root counts 1): the build splits at the mean of the
+/// centroids for its first 40 levels (each split leaves at least one triangle per side), then at
+/// the median, halving what is left, so fewer than 2^32 triangles take at most 40 + 32 levels
+/// below the root. Every traversal's stack is sized for this (a pair traversal holds at most
+/// 3 (depth(A) + depth(B)) + 1 pairs: 433 for two trees this deep), and a model file with a deeper
+/// tree is refused (docs/model_file.md).
+inline constexpr std::size_t kMaxTreeLevels = 73;
+
 struct BvhStats {
   std::size_t triangles = 0;             ///< triangles in the mesh
   std::size_t degenerate_triangles = 0;  ///< zero-area triangles left out of the tree

@@ -81,7 +81,9 @@
 // Thread safety: sweep() only reads its Models; any number of threads may sweep the same Models.
 // Errors: ArgumentError for min_separation < 0 or not finite, time_tolerance <= 0 or not finite,
 // max_iterations == 0, a pose with a non-finite entry or a rotation that is not orthonormal
-// (|R^T R - I| > 1e-6) with determinant +1; the message names the argument.
+// (|R^T R - I| > 1e-6) with determinant +1, a translation entry, min_separation or a model's
+// reach from its origin beyond kSweepCoordinateRange (below); the message names the argument.
+// A time_tolerance above 1 acts as 1 (the whole motion).
 #pragma once
 
 #include <antcd/bvh.hpp>
@@ -91,6 +93,18 @@
 #include <cstdint>
 
 namespace antcd {
+
+/// The coordinate range of continuous queries between meshes (sweep(), World::sweep_poses and
+/// World::set_poses_continuous, and the CLI, Python and WebAssembly sweeps over them): every
+/// translation entry of their poses, min_separation and each model's reach from its origin (root
+/// centre + radius) must be at most this in magnitude; larger ones are refused with an
+/// ArgumentError naming the argument. Why 1e100: the certified bounds square and multiply
+/// differences of posed coordinates (a distance is the root of a sum of squares, an orientation a
+/// product of three differences): (2 sqrt(3) 1e100)^3 = 4e301 stays below DBL_MAX (1.8e308) with
+/// room for the few terms summed, where at 1e155 squared distances became +inf and a sweep
+/// through a contact answered a proven miss. (The primitives, ccd::vertex_face and edge_edge,
+/// need no range: their bounds stay conservative for any finite input, see docs/ccd.md.)
+inline constexpr Scalar kSweepCoordinateRange = 1e100;
 
 struct SweepRequest {
   /// Contact distance (mesh units, >= 0).

@@ -67,3 +67,18 @@ def test_bad_input_raises():
         antcd.sweep(cube, None, None, cube, None, None, time_tolerance=0.0)
     with pytest.raises(ValueError, match="pose_b1"):
         antcd.sweep(cube, None, None, cube, None, np.zeros((4, 4)))
+
+
+def test_pass_through_beyond_the_coordinate_range_raises():
+    # Issue 41: at +-1e155 a box passing through a ball answered a proven miss (hit False, lower
+    # bound inf); at +-1e154 the error named distance's abs_tolerance, an option never given.
+    box = antcd.Model(*box_mesh((0.5, 0.5, 0.5)))
+    for s in (1e154, 1e155, 1e200, 1e300, np.finfo(float).max / 2):
+        with pytest.raises(ValueError, match="sweep: pose_a0 translation is beyond the continuous "
+                                             "queries' coordinate range"):
+            antcd.sweep(box, _translation(-s, 0, 0), _translation(s, 0, 0), box, None, None)
+    with pytest.raises(ValueError, match="sweep: min_separation is beyond"):
+        antcd.sweep(box, None, None, box, None, None, min_separation=1e300)
+    for s in (1.0, 1e50, 1e100):
+        r = antcd.sweep(box, _translation(-s, 0, 0), _translation(s, 0, 0), box, None, None)
+        assert r.hit and r.toi <= 0.5

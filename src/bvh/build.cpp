@@ -17,6 +17,7 @@
 #include <cmath>
 #include <span>
 #include <stdexcept>
+#include <string>
 
 #include <memory>
 
@@ -256,6 +257,11 @@ Model::Model(Mesh mesh, const BuildOptions& options, std::string source)
     nodes_.resize(counts.total());
     const Builder builder(tris, options_, counts, nodes_);
     stats_.depth = builder.build_task(0, kept, 0, 0, 0);
+  }
+  // The traversals' stacks are sized for this bound (antcd/bvh.hpp, split.hpp).
+  if (stats_.depth > kMaxTreeLevels) {
+    throw std::logic_error("Model: the build made a tree of " + std::to_string(stats_.depth) +
+                           " levels, more than kMaxTreeLevels");
   }
 
   // The leaf order; the triangles' corners are read through the mesh (LeafCorners).

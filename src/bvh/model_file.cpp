@@ -186,30 +186,60 @@ class Reader {
   std::string name_;
 };
 
+/// Below this magnitude of every vertex coordinate, the build's volumes are finite floats: a box
+/// fitted to points in [-M, M]^3 has half extents of at most sqrt(3) M and its centre is within
+/// 3 M of the origin (sqrt(3) M along each axis), so a sphere about it holding the points has a
+/// radius of at most (3 + sqrt(3)) M, below FLT_MAX (3.4e38) for M <= FLT_MAX / 8. Beyond it a
+/// build may round a radius or an extent up to +inf (node_store.hpp's float_at_least), so a file
+/// may too.
+constexpr Scalar kFiniteVolumeCoordinate = 3.4e38 / 8;
+
 /// Checks the nodes' values and the tree's shape (depth-first order: node 0 the root, an internal
 /// node's left child next to it, its right child after the left subtree; the leaves' triangle
-/// ranges consecutive and covering [0, leaf_count)). Returns the tree's depth in levels.
+/// ranges consecutive and covering [0, leaf_count); at most kMaxTreeLevels levels, the build's
+/// bound, which every traversal's stack is sized for). Iterative: a crafted chain of a million
+/// nodes is refused at the first node too deep. `finite_volumes`: the build's radii and half
+/// extents would all be finite (see kFiniteVolumeCoordinate), so +inf ones are refused too.
+/// Returns the tree's depth in levels.
 std::size_t check_tree(const std::vector<BvhNode>& nodes, std::size_t leaf_count,
-                       std::uint32_t leaf_size, const Reader& in) {
+                       std::uint32_t leaf_size, bool finite_volumes, const Reader& in) {
   const std::size_t n = nodes.size();
   for (std::size_t i = 0; i < n; ++i) {
     const BvhNode& node = nodes[i];
     const bool finite = node.center.allFinite() && node.axis0.allFinite() && node.axis1.allFinite();
     const bool sizes = node.radius >= 0 && node.half[0] >= 0 && node.half[1] >= 0 &&
-                       node.half[2] >= 0;  // +inf allowed (float_at_least), NaN not
+                       node.half[2] >= 0;  // +inf allowed for huge meshes (float_at_least), NaN not
+    const bool bounded =
+        !finite_volumes || (std::isfinite(node.radius) && std::isfinite(node.half[0]) &&
+                            std::isfinite(node.half[1]) && std::isfinite(node.half[2]));
     if (!finite || !sizes) {
       in.fail("node " + std::to_string(i) + " has a non-finite or negative volume");
     }
+    if (!bounded) {
+      in.fail("node " + std::to_string(i) +
+              " has an infinite radius or half extent, which the build makes only for "
+              "coordinates beyond 4.25e37");
+    }
   }
-  std::vector<std::uint32_t> stack{0};
+  struct Visit {
+    std::uint32_t node;
+    std::uint32_t level;  // the root is level 1
+  };
+  std::vector<Visit> stack{{0, 1}};
   std::size_t expected = 0;
   std::size_t next_leaf = 0;
   while (!stack.empty()) {
-    const std::size_t i = stack.back();
+    const Visit visit = stack.back();
+    const std::size_t i = visit.node;
     stack.pop_back();
     if (i != expected) {
       in.fail("the tree is not in depth-first order: node " + std::to_string(i) +
               " comes where node " + std::to_string(expected) + " should");
+    }
+    if (visit.level > kMaxTreeLevels) {
+      in.fail("the tree is deeper than " + std::to_string(kMaxTreeLevels) + " levels (node " +
+              std::to_string(i) + " is at level " + std::to_string(visit.level) +
+              "), more than the build makes");
     }
     ++expected;
     const BvhNode& node = nodes[i];
@@ -229,8 +259,8 @@ std::size_t check_tree(const std::vector<BvhNode>& nodes, std::size_t leaf_count
                 " and " + std::to_string(right) + ", out of range (" + std::to_string(n) +
                 " nodes)");
       }
-      stack.push_back(static_cast<std::uint32_t>(right));
-      stack.push_back(static_cast<std::uint32_t>(i + 1));
+      stack.push_back({static_cast<std::uint32_t>(right), visit.level + 1});
+      stack.push_back({static_cast<std::uint32_t>(i + 1), visit.level + 1});
     }
   }
   if (expected != n || next_leaf != leaf_count) {
@@ -317,8 +347,10 @@ bool holds_points(const BvhNode& node, const Scalar* x, const Scalar* y, const S
   return inside;
 }
 
-/// Checks that every triangle left out of the tree is degenerate, as the build leaves out only
-/// those, that every node's axes are orthonormal, and that its box and its sphere hold every
+/// Checks that every triangle left out of the tree is degenerate and every one in it is not, as
+/// the build leaves out exactly those (a zero-area triangle in a leaf is a segment or a point the
+/// rebuilt model does not have: distance and collide would answer differently), that every node's
+/// axes are orthonormal, and that its box and its sphere hold every
 /// vertex of its subtree's triangles: what every query's pruning relies on (a file whose volumes
 /// were shrunk would make collide() miss contacts and sweep() report late times). Each leaf's
 /// distinct vertices are laid out in leaf order, so that every node's are one run of them, tested
@@ -333,8 +365,13 @@ void check_volumes(const Model& m, const Reader& in) {
   for (std::size_t t = 0; t < in_tree.size(); ++t) {
     const TriangleIndices& tri = mesh.triangles[t];
     const std::vector<Vec3>& v = mesh.vertices;
-    if (!in_tree[t] && !geometry::is_degenerate_triangle(v[tri[0]], v[tri[1]], v[tri[2]])) {
+    const bool degenerate = geometry::is_degenerate_triangle(v[tri[0]], v[tri[1]], v[tri[2]]);
+    if (!in_tree[t] && !degenerate) {
       in.fail("triangle " + std::to_string(t) + " is left out of the tree but is not degenerate");
+    }
+    if (in_tree[t] && degenerate) {
+      in.fail("triangle " + std::to_string(t) +
+              " is in the tree but degenerate (zero area): the build leaves such triangles out");
     }
   }
   // Leaves come in depth-first order, so each node's leaves are consecutive: its run of points is
@@ -505,6 +542,10 @@ struct ModelFile {
       }
     });
     validate_mesh(m.mesh_, name);
+    bool finite_volumes = true;
+    for (const Vec3& v : m.mesh_.vertices) {
+      finite_volumes = finite_volumes && v.cwiseAbs().maxCoeff() <= kFiniteVolumeCoordinate;
+    }
 
     // The closedness recomputed (volume queries rely on it) while the tree is read and checked.
     bool is_closed_now = false;
@@ -523,7 +564,7 @@ struct ModelFile {
         seen[t] = true;
         m.leaf_triangles_[i] = t;
       }
-      m.stats_.depth = check_tree(m.nodes_, nl, m.options_.leaf_size, in);
+      m.stats_.depth = check_tree(m.nodes_, nl, m.options_.leaf_size, finite_volumes, in);
     };
     if (nt >= kParallelCheck) {
       parallel::invoke(closedness, tree);

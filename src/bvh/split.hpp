@@ -1,6 +1,8 @@
 // Private: where a hierarchy node's triangles are cut in two (split.cpp).
 #pragma once
 
+#include <antcd/bvh.hpp>
+
 #include "geometry/obb_fit.hpp"
 
 #include <cstddef>
@@ -11,6 +13,9 @@ namespace antcd::detail {
 /// From this depth on the split point is always the median, so the depth stays below
 /// kMedianDepth + log2(n) + 1 whatever the triangle distribution, and the build O(n log n).
 constexpr std::size_t kMedianDepth = 40;
+// antcd/bvh.hpp's bound on the levels: the root, kMedianDepth levels of mean splits, then at most
+// 32 median halvings of fewer than 2^32 triangles.
+static_assert(kMaxTreeLevels >= 1 + kMedianDepth + 32);
 
 /// Partitions `tris` (at least 2) of a node at `depth` into a left and a right part and returns
 /// the size of the left part (0 < size < tris.size()).

@@ -160,12 +160,14 @@ TraversalStats dual_traverse(const Model& a, const Model& b, const PairFrame& fr
       std::is_invocable_v<OnLeaf&, std::uint32_t, std::uint32_t, std::uint32_t, std::uint32_t>;
   constexpr std::uint32_t kAll = ~std::uint32_t{0};
   // Each step pops one pair and pushes at most two, descending one tree by one level, so the
-  // stack never holds more than depth(A) + depth(B) entries; the build caps each depth far below.
+  // stack never holds more than depth(A) + depth(B) entries; every Model's depth is at most
+  // kMaxTreeLevels (the build's bound; model files with deeper trees are refused).
   struct Item {
     std::uint32_t ia, ib;
     std::uint32_t live_a, live_b;  // see above; kAll when not masked
   };
   std::array<Item, 512> stack;
+  static_assert(std::tuple_size_v<decltype(stack)> >= 2 * kMaxTreeLevels);
   std::size_t top = 0;
   constexpr std::uint32_t kNone = ~std::uint32_t{0};
   // The float face test needs the placed axes in float lanes too.

@@ -3,12 +3,41 @@
 #pragma once
 
 #include <antcd/bvh.hpp>
+#include <antcd/error.hpp>
 #include <antcd/math.hpp>
+#include <antcd/sweep.hpp>
 #include <antcd/tolerances.hpp>
 
 #include <algorithm>
+#include <cmath>
+#include <string>
+#include <string_view>
+
+#include "util/check.hpp"
 
 namespace antcd::ccd {
+
+/// Throws ArgumentError "<function>: <argument>[ <what>] is beyond the continuous queries'
+/// coordinate range (+-1e+100), got <value>" when |value| > kSweepCoordinateRange (or NaN).
+inline void require_sweep_range(std::string_view function, std::string_view argument,
+                                std::string_view what, Scalar value) {
+  if (std::abs(value) <= kSweepCoordinateRange) return;
+  std::string msg(function);
+  msg.append(": ").append(argument);
+  if (!what.empty()) msg.append(" ").append(what);
+  msg.append(" is beyond the continuous queries' coordinate range (+-");
+  msg.append(detail::format_number(kSweepCoordinateRange)).append("), got ");
+  msg.append(detail::format_number(value));
+  throw ArgumentError(msg);
+}
+
+/// require_sweep_range on the largest entry of the pose's translation.
+inline void require_sweep_translation(std::string_view function, std::string_view argument,
+                                      const Transform& pose) {
+  int k = 0;
+  pose.translation.cwiseAbs().maxCoeff(&k);
+  require_sweep_range(function, argument, "translation", pose.translation[k]);
+}
 
 /// Angle of the rotation from r0 to r1 along the shorter arc (the slerp's total angle), rounded up.
 inline Scalar rotation_angle(const Mat3& r0, const Mat3& r1) {

@@ -75,6 +75,7 @@ void require_rigid(const Transform& p, const char* name) {
   if (const PoseCheck c = check_pose(p); !c.rigid()) {
     throw ArgumentError(std::string("sweep: ") + name + " " + c.problem());
   }
+  ccd::require_sweep_translation("sweep", name, p);
 }
 
 /// The larger of the two lower bounds distance() proves: its lower_bound, and its distance less
@@ -151,13 +152,19 @@ SweepResult sweep(const Model& a, const Transform& pose_a0, const Transform& pos
   require_rigid(pose_b0, "pose_b0");
   require_rigid(pose_b1, "pose_b1");
   const Scalar ms = request.min_separation;
-  const Scalar tol = request.time_tolerance;
   detail::require_non_negative("sweep", "min_separation", ms);
-  detail::require_positive("sweep", "time_tolerance", tol);
+  ccd::require_sweep_range("sweep", "min_separation", "", ms);
+  detail::require_positive("sweep", "time_tolerance", request.time_tolerance);
   detail::require_at_least("sweep", "max_iterations", request.max_iterations, 1);
+  // A window wider than the whole motion decides nothing more than the whole motion (and mu times
+  // a huge tolerance would overflow).
+  const Scalar tol = std::min(request.time_tolerance, Scalar{1});
 
   const Scalar ra = ccd::origin_radius(a);
   const Scalar rb = ccd::origin_radius(b);
+  // A model beyond the range (or with a non-finite root volume: vertices beyond float's range).
+  ccd::require_sweep_range("sweep", "model a", "reach from its origin", ra);
+  ccd::require_sweep_range("sweep", "model b", "reach from its origin", rb);
   const ccd::RigidPair motion = ccd::rigid_pair(a, pose_a0, pose_a1, b, pose_b0, pose_b1);
   const Scalar mu = ccd::motion_bound(motion);
   const Scalar scale = ra + rb + ms + pose_a0.translation.norm() + pose_a1.translation.norm() +

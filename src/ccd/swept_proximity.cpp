@@ -72,7 +72,10 @@ bool interval_apart(const RigidPair& m, Scalar t0, Scalar t1, Scalar separation,
   const LeafCorners corners_a = m.a.leaf_corners();
   const LeafCorners corners_b = m.b.leaf_corners();
 
+  // Each step pops one pair and pushes at most two, one level down one tree: at most depth(A) +
+  // depth(B) entries, each depth at most kMaxTreeLevels (antcd/bvh.hpp).
   std::array<std::pair<std::uint32_t, std::uint32_t>, 512> stack;
+  static_assert(std::tuple_size_v<decltype(stack)> >= 2 * kMaxTreeLevels);
   std::size_t top = 0;
   stack[top++] = {0, 0};
   bool apart = true;

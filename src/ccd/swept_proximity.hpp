@@ -34,7 +34,8 @@ struct RigidPair {
 inline RigidPair rigid_pair(const Model& a, const Transform& a0, const Transform& a1,
                             const Model& b, const Transform& b0, const Transform& b1) {
   const Vec3 move = (a1.translation - a0.translation) - (b1.translation - b0.translation);
-  const Scalar speed = tolerance::widened(move.norm());
+  // stableNorm: a motion of 1e-300 has a speed of 1e-300, not the 0 its squares underflow to.
+  const Scalar speed = tolerance::widened(move.stableNorm());
   return {a,
           a0,
           a1,

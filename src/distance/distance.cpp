@@ -244,8 +244,9 @@ DistanceResult surface_distance(const Model& a, const Transform& pose_a, const M
   };
   // Each step pops one pair and pushes at most four, its children one level down in each tree, so
   // the stack holds at most three siblings per level of the current path: 3 (depth(A) + depth(B))
-  // + 1 entries; the build caps each depth at about 40 + log2(triangles), far below.
+  // + 1 entries; every Model's depth is at most kMaxTreeLevels (antcd/bvh.hpp).
   std::array<Item, 512> stack;
+  static_assert(std::tuple_size_v<decltype(stack)> >= 3 * 2 * kMaxTreeLevels + 1);
   std::size_t top = 0;
   MappedNode mapped[2];
   map_node(0, mapped[0]);

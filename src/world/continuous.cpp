@@ -29,9 +29,13 @@ using SlotPair = std::pair<std::uint32_t, std::uint32_t>;
 constexpr std::size_t kParallelSweeps = 8;
 
 /// Checks the arguments of a continuous motion (every one, before anything is computed) and
-/// returns, per slot, the index + 1 of the object's new pose in `poses` (0: it stays put).
+/// returns, per slot, the index + 1 of the object's new pose in `poses` (0: it stays put). With
+/// `sweep_range`, each moved object's translations, new and current, must lie within the sweeps'
+/// coordinate range (tolerance::kSweepCoordinateRange); an object that stays put is checked by
+/// sweep() itself, if a moved one comes near it.
 std::vector<std::size_t> motion_index(const World::Impl& w, std::span<const ObjectId> ids,
-                                      std::span<const Transform> poses, const char* function) {
+                                      std::span<const Transform> poses, const char* function,
+                                      bool sweep_range) {
   if (ids.size() != poses.size()) {
     throw ArgumentError(std::string(function) + ": " + std::to_string(ids.size()) + " ids but " +
                         std::to_string(poses.size()) + " poses");
@@ -49,6 +53,11 @@ std::vector<std::size_t> motion_index(const World::Impl& w, std::span<const Obje
     if (const PoseCheck c = check_pose(poses[k]); !c.rigid()) {
       throw ArgumentError(std::string(function) + ": new_poses[" + std::to_string(k) + "] " +
                           c.problem());
+    }
+    if (sweep_range) {
+      ccd::require_sweep_translation(function, "new_poses[" + std::to_string(k) + "]", poses[k]);
+      ccd::require_sweep_translation(function, arg + "'s current pose",
+                                     w.objects[ids[k].slot].pose);
     }
   }
   return index;
@@ -98,6 +107,7 @@ std::vector<SlotPair> swept_pairs(const World::Impl& w, const std::vector<std::s
 
 void check_request(const SweepRequest& request, const char* function) {
   detail::require_non_negative(function, "request.min_separation", request.min_separation);
+  ccd::require_sweep_range(function, "request.min_separation", "", request.min_separation);
   detail::require_positive(function, "request.time_tolerance", request.time_tolerance);
   detail::require_at_least(function, "request.max_iterations", request.max_iterations, 1);
 }
@@ -110,7 +120,7 @@ std::vector<ObjectPair> World::swept_candidate_pairs(std::span<const ObjectId> i
   const char* function = "World::swept_candidate_pairs";
   detail::require_non_negative(function, "min_separation", min_separation);
   const Impl& w = *impl_;
-  const std::vector<std::size_t> index = motion_index(w, ids, new_poses, function);
+  const std::vector<std::size_t> index = motion_index(w, ids, new_poses, function, false);
   std::vector<ObjectPair> out;
   for (const auto& [i, j] : swept_pairs(w, index, new_poses, min_separation)) {
     out.push_back({w.id_of(i), w.id_of(j)});
@@ -124,7 +134,7 @@ std::vector<PairToi> World::sweep_poses(std::span<const ObjectId> ids,
   const char* function = "World::sweep_poses";
   check_request(request, function);
   const Impl& w = *impl_;
-  const std::vector<std::size_t> index = motion_index(w, ids, new_poses, function);
+  const std::vector<std::size_t> index = motion_index(w, ids, new_poses, function, true);
   const std::vector<SlotPair> pairs = swept_pairs(w, index, new_poses, request.min_separation);
   const auto end_pose = [&](std::uint32_t s) -> const Transform& {
     return index[s] == 0 ? w.objects[s].pose : new_poses[index[s] - 1];

@@ -82,7 +82,10 @@ void walk(const Model& model, const LocalRay& r, const Scalar* s_max, OnHit&& on
   // Rounding allowance for the node tests: relative to the model's size and the ray's distance.
   const Scalar slack =
       tolerance::volume_allowance(root.radius + root.center.norm() + r.origin.norm());
+  // Each step pops a node and pushes its two children: at most one sibling per level of the path
+  // plus one, the depth at most kMaxTreeLevels (antcd/bvh.hpp).
   std::array<std::uint32_t, 256> stack;
+  static_assert(std::tuple_size_v<decltype(stack)> >= kMaxTreeLevels + 1);
   std::size_t top = 0;
   stack[top++] = 0;
   while (top > 0) {

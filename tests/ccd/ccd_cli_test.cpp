@@ -124,5 +124,29 @@ TEST_F(CcdCli, SweepMatchesTheLibrary) {
   EXPECT_NE(bad.err.find("error: --pose-b0"), std::string::npos) << bad.err;
 }
 
+// Issue 41: a pass-through at +-1e155 answered "hit: no (proven ...: inf)"; at +-1e154 the error
+// named distance's abs_tolerance. Beyond the coordinate range: exit 2 naming the pose; within it,
+// the contact at t = 0.5.
+TEST_F(CcdCli, SweepBeyondTheCoordinateRangeIsAnError) {
+  const auto box = test::assimp_model("OBJ/box.obj");
+  for (const std::string s : {"1e154", "1e155", "1e300", "8.98846567431158e307"}) {
+    const auto r = run({"sweep", box.string(), box.string(), "--pose-a0", "-" + s + ",0,0",
+                        "--pose-a1", s + ",0,0"});
+    EXPECT_EQ(r.exit_code, 2) << s << ": " << r.out;
+    EXPECT_EQ(r.err.rfind("error: sweep: pose_a0 translation is beyond the continuous queries' "
+                          "coordinate range",
+                          0),
+              0U)
+        << s << ": " << r.err;
+    EXPECT_EQ(r.out, "") << s;
+  }
+  const auto r = run({"sweep", box.string(), box.string(), "--pose-a0", "-1e100,0,0", "--pose-a1",
+                      "1e100,0,0", "--json"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_TRUE(j["hit"].get<bool>());
+  EXPECT_LE(j["toi"].get<double>(), 0.5);
+}
+
 }  // namespace
 }  // namespace antcd

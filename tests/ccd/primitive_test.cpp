@@ -7,6 +7,8 @@
 #include <algorithm>
 #include <cmath>
 #include <iostream>
+#include <limits>
+#include <optional>
 
 #include "ccd/exact_truth.hpp"
 
@@ -126,6 +128,67 @@ TEST(CcdPrimitive, RejectsBadArguments) {
   } catch (const ArgumentError& e) {
     EXPECT_NE(std::string(e.what()).find("at_t1[2]"), std::string::npos) << e.what();
   }
+}
+
+/// The query with every coordinate times 2^e, or nullopt when a product is not exact (a result
+/// below DBL_MIN would lose bits and change the truth) or overflows.
+std::optional<CcdQuery> scaled_query(const CcdQuery& q, int e) {
+  CcdQuery out = q;
+  out.name = q.name + " * 2^" + std::to_string(e);
+  for (auto* points : {&out.at_t0, &out.at_t1}) {
+    for (Vec3& p : *points) {
+      for (int k = 0; k < 3; ++k) {
+        const Scalar x = std::ldexp(p[k], e);
+        if (!std::isfinite(x) || std::ldexp(x, -e) != p[k]) return std::nullopt;
+        p[k] = x;
+      }
+    }
+  }
+  return out;
+}
+
+// Issue 41 asked whether the primitives, like the mesh sweeps, miss contacts at huge coordinates:
+// they do not (this passed before the mesh sweeps' fix too). Pass-throughs at +-1e154 .. +-DBL_MAX
+// and the degenerate corpus scaled to huge and tiny coordinates keep their exact truth.
+TEST(CcdPrimitive, HugeAndTinyCoordinatesKeepEveryContact) {
+  const Scalar big = std::numeric_limits<Scalar>::max();
+  for (const Scalar s : {1e154, 1e155, 1e200, 1e300, big / 2, big}) {
+    // A vertex from x = -s to x = +s through the face x = 0 at t = 0.5.
+    const std::array<Vec3, 4> t0 = {Vec3(-s, 0.25, 0.25), Vec3(0, 0, 0), Vec3(0, 1, 0),
+                                    Vec3(0, 0, 1)};
+    std::array<Vec3, 4> t1 = t0;
+    t1[0].x() = s;
+    const ccd::PrimitiveResult vf = ccd::vertex_face(t0, t1);
+    EXPECT_TRUE(vf.hit) << "vertex-face at +-" << s;
+    EXPECT_LE(vf.toi, 0.5) << "vertex-face at +-" << s;
+    EXPECT_TRUE(ccd::vertex_face(t0, t1, 1e-3).hit) << "vertex-face, separation, +-" << s;
+    // An edge along y from x = -s to x = +s through an edge along z at the origin.
+    const std::array<Vec3, 4> e0 = {Vec3(-s, -1, 0), Vec3(-s, 1, 0), Vec3(0, 0, -1), Vec3(0, 0, 1)};
+    std::array<Vec3, 4> e1 = e0;
+    e1[0].x() = s;
+    e1[1].x() = s;
+    const ccd::PrimitiveResult ee = ccd::edge_edge(e0, e1);
+    EXPECT_TRUE(ee.hit) << "edge-edge at +-" << s;
+    EXPECT_LE(ee.toi, 0.5) << "edge-edge at +-" << s;
+  }
+  // The degenerate corpus scaled to huge and to tiny coordinates keeps its exact truth.
+  std::vector<CcdQuery> scaled;
+  for (const CcdQuery& q : test::degenerate_corpus()) {
+    Scalar largest = 0;
+    for (const auto* points : {&q.at_t0, &q.at_t1}) {
+      for (const Vec3& p : *points) largest = std::max(largest, p.cwiseAbs().maxCoeff());
+    }
+    if (largest == 0) continue;
+    for (const int target : {1020, 600, 300, -300, -600, -900}) {
+      if (auto s = scaled_query(q, target - std::ilogb(largest))) scaled.push_back(*s);
+    }
+  }
+  ASSERT_GT(scaled.size(), 100U);
+  const Tally tally = check(scaled);
+  EXPECT_EQ(tally.false_negatives, 0);
+  EXPECT_EQ(tally.late, 0);
+  std::cout << "scaled corpus: " << tally.queries << " queries, " << tally.positives
+            << " touching, " << tally.false_positives << " false positives\n";
 }
 
 }  // namespace

@@ -12,12 +12,18 @@
 //   message lastError() gives.
 //   Contacts are records of kContactStride doubles (see write_contact).
 // - Handles of World objects are doubles: slot + generation * 2^32 (exact below 2^53).
-#include <antcd/pose.hpp>
+// - Memory: when WebAssembly memory runs out (malloc returns 0, operator new throws bad_alloc),
+//   every function returns -1 with the message "<function>: out of WebAssembly memory ...",
+//   composed in a fixed buffer without allocating (antcd_last_error() points at it), and nothing
+//   is left half made: the module keeps answering. Strings cross by pointer and length into
+//   buffers the JS side allocated and checked (Embind's own string marshalling would write through
+//   an unchecked malloc).
 #include <antcd/collide.hpp>
 #include <antcd/distance.hpp>
 #include <antcd/error.hpp>
 #include <antcd/mesh.hpp>
 #include <antcd/penetration.hpp>
+#include <antcd/pose.hpp>
 #include <antcd/sweep.hpp>
 #include <antcd/version.hpp>
 #include <antcd/world.hpp>
@@ -29,9 +35,12 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
+#include <cstring>
 #include <exception>
 #include <memory>
+#include <new>
 #include <string>
+#include <string_view>
 #include <vector>
 
 
@@ -51,23 +60,43 @@ double g_poses[kPoseSlots * 16];
 double g_checked[kPoseSlots * 16];
 bool g_checked_valid[kPoseSlots] = {};
 std::vector<double> g_out;
-std::string g_error;
+// The last error message, NUL-terminated (bounded: one printable line).
+constexpr std::size_t kErrorBytes = 512;
+char g_error[kErrorBytes] = {};
 CollisionResult g_collision;
+constexpr const char* kOutOfMemory =
+    "out of WebAssembly memory (delete() the models and Worlds no longer needed)";
 
-int fail(const std::string& message) {
-  g_error = message;
+// Sets the message to the parts' concatenation, truncated to the buffer; allocates nothing (it
+// runs when memory has run out). Returns -1.
+int fail(std::string_view first, std::string_view second = {}, std::string_view third = {}) {
+  std::size_t n = 0;
+  for (const std::string_view part : {first, second, third}) {
+    const std::size_t k = std::min(part.size(), kErrorBytes - 1 - n);
+    std::memcpy(g_error + n, part.data(), k);
+    n += k;
+  }
+  g_error[n] = '\0';
   return -1;
 }
 
+// The message of exception `e` thrown in `function`: "<function>: <what>" (once), or the
+// out-of-memory message; allocates nothing. Returns -1.
+int fail_with(const char* function, const std::exception& e) {
+  if (dynamic_cast<const std::bad_alloc*>(&e) != nullptr) return fail(function, ": ", kOutOfMemory);
+  const std::string_view what = e.what();
+  if (what.rfind(function, 0) == 0) return fail(what);
+  return fail(function, ": ", what);
+}
+
 // Runs `body` (returning an int), turning a thrown antcd or standard exception into -1 and its
-// message. Hot paths do not throw; only argument errors do.
+// message. Hot paths do not throw; only argument errors and exhausted memory do.
 template <class F>
 int guarded(const char* function, F&& body) {
   try {
     return body();
   } catch (const std::exception& e) {
-    const std::string what = e.what();
-    return fail(what.rfind(function, 0) == 0 ? what : std::string(function) + ": " + what);
+    return fail_with(function, e);
   }
 }
 
@@ -167,9 +196,12 @@ const std::shared_ptr<const Model>& model_ref(int id, const char* what) {
 
 // positions: n_coords numbers (float32 when f32, else float64) at `positions`; indices: n_indices
 // uint32 at `indices` (the JS wrapper converted and range-checked the types).
+// name: n_name UTF-8 bytes at `name_bytes`.
 int model_create(std::uintptr_t positions, double n_coords, bool f32, std::uintptr_t indices,
-                 double n_indices, const std::string& name) {
+                 double n_indices, std::uintptr_t name_bytes, double n_name) {
   try {
+    const std::string name(reinterpret_cast<const char*>(name_bytes),
+                           static_cast<std::size_t>(n_name));
     Mesh mesh;
     const auto nv = static_cast<std::size_t>(n_coords) / 3;
     const auto nt = static_cast<std::size_t>(n_indices) / 3;
@@ -189,28 +221,32 @@ int model_create(std::uintptr_t positions, double n_coords, bool f32, std::uintp
       mesh.triangles[i] = {ix[3 * i], ix[3 * i + 1], ix[3 * i + 2]};
     return register_model(std::make_shared<const Model>(std::move(mesh), BuildOptions{}, name));
   } catch (const std::exception& e) {
-    return fail(std::string("Model: ") + e.what());
+    return fail_with("Model", e);
   }
 }
 
 // Models built from the generated shapes of mesh.hpp (the same meshes as the native library's).
-int model_shape(const std::string& kind, double a, double b, double c, int n1, int n2) {
+// kind: 0 box, 1 sphere, 2 cylinder, 3 torus.
+int model_shape(int kind, double a, double b, double c, int n1, int n2) {
+  static constexpr const char* kFunctions[] = {"Model.box", "Model.sphere", "Model.cylinder",
+                                               "Model.torus"};
+  if (kind < 0 || kind > 3) return fail("Model: shape code is not box, sphere, cylinder or torus");
   try {
     Mesh mesh;
-    if (kind == "box") {
+    if (kind == 0) {
       mesh = make_box(Vec3(a, b, c), n1);
-    } else if (kind == "sphere") {
+    } else if (kind == 1) {
       mesh = make_sphere(a, n1, n2);
-    } else if (kind == "cylinder") {
+    } else if (kind == 2) {
       mesh = make_cylinder(a, b, n1, n2);
-    } else if (kind == "torus") {
-      mesh = make_torus(a, b, n1, n2);
     } else {
-      throw ArgumentError("shape '" + kind + "' is not box, sphere, cylinder or torus");
+      mesh = make_torus(a, b, n1, n2);
     }
-    return register_model(std::make_shared<const Model>(std::move(mesh), BuildOptions{}, kind));
+    static constexpr const char* kNames[] = {"box", "sphere", "cylinder", "torus"};
+    return register_model(
+        std::make_shared<const Model>(std::move(mesh), BuildOptions{}, kNames[kind]));
   } catch (const std::exception& e) {
-    return fail(std::string("Model.") + kind + ": " + e.what());
+    return fail_with(kFunctions[kind], e);
   }
 }
 
@@ -250,12 +286,24 @@ int model_info(int id) {
   });
 }
 
-std::string model_name(int id) {
-  return id >= 0 && static_cast<std::size_t>(id) < g_models.size() &&
-                 g_models[static_cast<std::size_t>(id)]
-             ? g_models[static_cast<std::size_t>(id)]->source()
-             : std::string();
+}  // namespace
+
+// The model's name, NUL-terminated UTF-8 (the model's own string: nothing is allocated), or "".
+extern "C" EMSCRIPTEN_KEEPALIVE std::uintptr_t antcd_model_name(int id) {
+  static const char kNone[] = "";
+  return reinterpret_cast<std::uintptr_t>(
+      id >= 0 && static_cast<std::size_t>(id) < g_models.size() &&
+              g_models[static_cast<std::size_t>(id)]
+          ? g_models[static_cast<std::size_t>(id)]->source().c_str()
+          : kNone);
 }
+
+// The last error message, NUL-terminated UTF-8 (a fixed buffer).
+extern "C" EMSCRIPTEN_KEEPALIVE std::uintptr_t antcd_last_error() {
+  return reinterpret_cast<std::uintptr_t>(g_error);
+}
+
+namespace {
 
 // The mesh of a model into the output block: vertex count, triangle count, coordinates, indices.
 int model_mesh(int id) {
@@ -378,12 +426,12 @@ double handle_of(ObjectId id) { return id.slot + id.generation * kGenerationScal
 
 class WasmWorld {
  public:
-  /// Pose 0. Returns the handle, or -1.
-  double add(int model, const std::string& name, double group, double mask) {
+  /// Pose 0; name: n_name UTF-8 bytes at `name_bytes`. Returns the handle, or -1.
+  double add(int model, std::uintptr_t name_bytes, double n_name, double group, double mask) {
     double handle = -1;
     guarded("World.add", [&] {
       ObjectOptions o;
-      o.name = name;
+      o.name.assign(reinterpret_cast<const char*>(name_bytes), static_cast<std::size_t>(n_name));
       o.group = filter_bits(group, "group");
       o.mask = filter_bits(mask, "mask");
       const ObjectId id = world_.add(model_ref(model, "model"), pose_at(0, "World.add", "pose"), o);
@@ -492,7 +540,6 @@ std::uintptr_t alloc_bytes(double n) {
 void free_bytes(std::uintptr_t p) { std::free(reinterpret_cast<void*>(p)); }
 std::uintptr_t pose_block() { return reinterpret_cast<std::uintptr_t>(g_poses); }
 
-std::string last_error() { return g_error; }
 std::string version() { return kVersion; }
 
 }  // namespace
@@ -513,13 +560,11 @@ EMSCRIPTEN_BINDINGS(antcd_core) {
   function("modelMesh", &model_mesh);
   function("modelRelease", &model_release);
   function("modelInfo", &model_info);
-  function("modelName", &model_name);
   function("sweep", &wasm_sweep);
   function("penetration", &wasm_penetration);
   function("allocBytes", &alloc_bytes);
   function("freeBytes", &free_bytes);
   function("poseBlock", &pose_block);
-  function("lastError", &last_error);
   function("version", &version);
   constant("poseSlots", kPoseSlots);
   constant("contactStride", kContactStride);

@@ -180,3 +180,18 @@ test('createAntcd uses the bytes given as wasmBinary (as the live page does)', a
   box.delete();
   await assert.rejects(createAntcd({ wasmBinary: new Uint8Array([0, 97, 115, 109]) }));
 });
+
+test('sweep: translations beyond the coordinate range throw, within it the contact is found', () => {
+  // Issue 41: a box passing through a box at +-1e155 answered hit false (motion bound inf).
+  const box = antcd.Model.box(0.5, 0.5, 0.5);
+  for (const s of [1e154, 1e155, 1e300, Number.MAX_VALUE / 2]) {
+    assert.throws(() => antcd.sweep(box, at(-s), at(s), box, I, I),
+      (e) => e instanceof Error && /^sweep: pose_a0 translation is beyond the continuous queries' coordinate range/.test(e.message),
+      String(s));
+  }
+  assert.throws(() => antcd.sweep(box, I, I, box, I, I, { minSeparation: 1e300 }),
+    (e) => e instanceof Error && /^sweep: min_separation is beyond/.test(e.message));
+  const r = antcd.sweep(box, at(-1e100), at(1e100), box, I, I);
+  assert.ok(r.hit && r.toi <= 0.5);
+  box.delete();
+});
