@@ -17,6 +17,10 @@ struct ModelCache {
   /// Penetration depth (src/penetration/convex.cpp): convexity and the model-frame polytope.
   std::once_flag convex_once;
   std::shared_ptr<const void> convex;
+  /// Self queries (src/self/cone.cpp): boundary data of subtrees, which depends on the triangles
+  /// and the tree's topology only, so Model::refit carries it over. Built once under the mutex.
+  std::mutex self_mutex;
+  std::shared_ptr<const void> self_topology;
 };
 
 struct ModelCacheAccess {
