@@ -151,10 +151,11 @@ class ANTCD_API Model {
   bool refit(std::span<const Vec3> new_vertices, double rebuild_above = 0);
 
   /// How much looser refit() has made the hierarchy since it was last built (or loaded):
-  /// L_now / L_built, where L is the sum over all nodes of their box half extents (x + y + z)
-  /// divided by the root box's. 1 for a built hierarchy; above 1 as refitted internal boxes, kept
-  /// on their old axes and fitted around their children's boxes, grow looser than their
-  /// triangles. (Flat meshes keep L finite: extents, not volumes.)
+  /// L_now / L_built, where L is the sum of the internal nodes' box half extents (x + y + z)
+  /// over the leaves' sum. Leaves are refitted to their vertices; internal boxes keep their old
+  /// axes and are fitted around their children's boxes, so they loosen as the mesh deforms away
+  /// from the shape the tree was built for: L grows. 1 for a built hierarchy. (Extents, not
+  /// volumes: flat meshes keep L finite.)
   [[nodiscard]] double refit_growth() const;
 
   /// Builds the hierarchy afresh for the current vertices (same triangles, options and source):

@@ -79,6 +79,9 @@ struct SelfIntersectionStats {
   /// Pairs between such a subtree and the rest are still tested.
   std::uint64_t cone_culled = 0;
   std::uint64_t cone_tests = 0;  ///< subtrees whose boundary was tested for the cone cull
+  /// Heap bytes of the boundary data the cull keeps with the Model (built on the first call,
+  /// kept by Model::refit; not counted in BvhStats::memory_bytes).
+  std::uint64_t cone_cache_bytes = 0;
 };
 
 struct SelfIntersectionResult {

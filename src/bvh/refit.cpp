@@ -41,13 +41,12 @@ std::array<Vec3, 8> corners(const Obb& box) {
 }  // namespace
 
 double Model::looseness() const {
-  const auto extent = [](const BvhNode& n) {
-    return Scalar{n.half[0]} + Scalar{n.half[1]} + Scalar{n.half[2]};
-  };
-  Scalar sum = 0;
-  for (const BvhNode& node : nodes_) sum += extent(node);
-  const Scalar root = extent(nodes_.front());
-  return root > 0 ? sum / root : 1;
+  Scalar internal = 0, leaves = 0;
+  for (const BvhNode& n : nodes_) {
+    const Scalar e = Scalar{n.half[0]} + Scalar{n.half[1]} + Scalar{n.half[2]};
+    (n.is_leaf() ? leaves : internal) += e;
+  }
+  return leaves > 0 ? internal / leaves : 1;
 }
 
 double Model::refit_growth() const {

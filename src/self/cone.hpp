@@ -12,7 +12,7 @@ namespace antcd::self_detail {
 
 /// Subtrees of at least this many triangles may be culled whole (smaller ones are cheaper to
 /// traverse than to test, and their boundaries would cost memory).
-inline constexpr std::uint32_t kConeMinTriangles = 256;
+inline constexpr std::uint32_t kConeMinTriangles = 64;
 
 /// Position-independent data of the cull, built once per Model (and kept by refit): for each
 /// subtree of at least kConeMinTriangles triangles whose edges are each used by at most two of its

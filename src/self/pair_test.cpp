@@ -19,6 +19,9 @@
 #include "geometry/intersection.hpp"
 #include "geometry/predicates.hpp"
 
+#include <algorithm>
+#include <initializer_list>
+
 namespace antcd::self_detail {
 
 using geometry::detail::orient2d;
@@ -50,6 +53,24 @@ bool folded_flat(const Vec3& u, const Vec3& v, const Vec3& p, const Vec3& q) {
   return false;  // unreachable for a triangle of non-zero area
 }
 
+/// The closed boxes of the point sets are disjoint: exact comparisons, a filter in front of the
+/// exact tests (sets in disjoint boxes cannot meet).
+bool boxes_apart(std::initializer_list<const Vec3*> a, std::initializer_list<const Vec3*> b) {
+  for (int k = 0; k < 3; ++k) {
+    double alo = (*a.begin())->coeff(k), ahi = alo, blo = (*b.begin())->coeff(k), bhi = blo;
+    for (const Vec3* p : a) {
+      alo = std::min(alo, p->coeff(k));
+      ahi = std::max(ahi, p->coeff(k));
+    }
+    for (const Vec3* p : b) {
+      blo = std::min(blo, p->coeff(k));
+      bhi = std::max(bhi, p->coeff(k));
+    }
+    if (ahi < blo || bhi < alo) return true;
+  }
+  return false;
+}
+
 }  // namespace
 
 bool pair_intersects(const Mesh& mesh, std::uint32_t i, std::uint32_t j, int& shared) {
@@ -71,11 +92,17 @@ bool pair_intersects(const Mesh& mesh, std::uint32_t i, std::uint32_t j, int& sh
   const auto pj = [&](int b) -> const Vec3& { return v[tj[static_cast<std::size_t>(b % 3)]]; };
   switch (shared) {
     case 0:
+      if (boxes_apart({&pi(0), &pi(1), &pi(2)}, {&pj(0), &pj(1), &pj(2)})) return false;
       return geometry::triangles_intersect(pi(0), pi(1), pi(2), pj(0), pj(1), pj(2));
     case 1: {
       const int a = ai[0], b = bj[0];
-      return geometry::detail::segment_meets_triangle(pi(a + 1), pi(a + 2), pj(0), pj(1), pj(2)) ||
-             geometry::detail::segment_meets_triangle(pj(b + 1), pj(b + 2), pi(0), pi(1), pi(2));
+      const auto edge_meets = [](const Vec3& p, const Vec3& q, const Vec3& t0, const Vec3& t1,
+                                 const Vec3& t2) {
+        return !boxes_apart({&p, &q}, {&t0, &t1, &t2}) &&
+               geometry::detail::segment_meets_triangle(p, q, t0, t1, t2);
+      };
+      return edge_meets(pi(a + 1), pi(a + 2), pj(0), pj(1), pj(2)) ||
+             edge_meets(pj(b + 1), pj(b + 2), pi(0), pi(1), pi(2));
     }
     case 2: {
       // The unshared corners: the one index of each triangle not matched.

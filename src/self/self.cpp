@@ -216,6 +216,7 @@ SelfIntersectionResult self_intersections(const Model& model,
   cx.margin = tolerance::volume_allowance(Scalar{model.root().radius} + model.root().center.norm());
   if (request.normal_cones) {
     cx.cones = self_detail::cone_topology(model);
+    result.stats.cone_cache_bytes = cx.cones->bytes();
     if (cx.cones->entries.empty()) {
       cx.cones = nullptr;
     } else {
@@ -240,6 +241,7 @@ SelfIntersectionResult self_intersections(const Model& model,
     out.first_only = true;
     run(cx, Work{0, 0, true}, out);
     if (!out.done) test_left_out(cx, left_out, out);
+    out.stats.cone_cache_bytes = result.stats.cone_cache_bytes;
     result.stats = out.stats;
     result.pairs = std::move(out.pairs);
     result.intersecting = !result.pairs.empty();
@@ -273,6 +275,7 @@ SelfIntersectionResult self_intersections(const Model& model,
                            [&](std::size_t k) { run(cx, frontier[k], parts[k]); });
   Collector left;
   test_left_out(cx, left_out, left);
+  serial.stats.cone_cache_bytes = result.stats.cone_cache_bytes;
   result.stats = serial.stats;
   std::size_t total = serial.pairs.size() + left.pairs.size();
   for (const Collector& p : parts) total += p.pairs.size();

@@ -191,6 +191,29 @@ TEST(SelfSheets, RefitAnswersAsAFreshModel) {
   EXPECT_FALSE(self_intersections(model).pairs.empty());
 }
 
+TEST(SelfSheets, RebuildRuleAndNothingChangesOnError) {
+  Model model(test::bent_sheet(60, 20, 1.0));
+  const std::vector<Vec3> before = model.mesh().vertices;
+  EXPECT_EQ(model.refit_growth(), 1.0);
+  std::vector<Vec3> bad = test::looped_sheet(60, 20).vertices;
+  bad[7] = Vec3(std::nan(""), 0, 0);
+  EXPECT_THROW(model.refit(bad), ArgumentError);
+  EXPECT_THROW(model.refit(std::vector<Vec3>(3, Vec3::Zero())), ArgumentError);
+  EXPECT_THROW(model.refit(test::looped_sheet(60, 20).vertices, -1), ArgumentError);
+  EXPECT_EQ(model.mesh().vertices, before);
+  // The loop moves vertices far from where the tree grouped them: the refitted boxes loosen.
+  const Mesh looped = test::looped_sheet(60, 20);
+  EXPECT_FALSE(model.refit(looped.vertices));
+  const double growth = model.refit_growth();
+  EXPECT_GT(growth, 1.0);
+  EXPECT_TRUE(model.refit(looped.vertices, 0.5 * (1 + growth)));  // past the threshold: rebuilt
+  EXPECT_EQ(model.refit_growth(), 1.0);
+  EXPECT_EQ(model.stats().nodes, Model(looped).stats().nodes);
+  EXPECT_EQ(self_intersections(model).pairs, self_intersections(Model(looped)).pairs);
+  model.rebuild();
+  EXPECT_EQ(self_intersections(model).pairs, self_intersections(Model(looped)).pairs);
+}
+
 // ---- self_proximity against brute force over all primitive pairs ----
 
 struct Brute {
