@@ -219,6 +219,38 @@ void deforming_sheet(benchmark::State& state) {
       static_cast<double>(cone_bytes) / model.mesh().triangles.size();
 }
 
+/// The rebuild rule's measurement: a 100k-triangle sheet built flat, then refitted to a twist of
+/// state.range(0) degrees about its long axis (no contact), against a Model built for the twisted
+/// sheet: refit_growth() and the self test's time on each, interleaved per iteration.
+void twisted_sheet(benchmark::State& state) {
+  const Scalar twist = static_cast<Scalar>(state.range(0)) * 3.14159265358979 / 180;
+  const int side = 224;
+  const auto sheet = [side](Scalar angle) {
+    return test::grid_sheet(side, side, [=](int i, int j) {
+      const Scalar x = Scalar(i) / side, y = Scalar(j) / side - 0.5;
+      const Scalar a = angle * x;
+      return Vec3(x, y * std::cos(a), y * std::sin(a));
+    });
+  };
+  Model refitted(sheet(0));
+  const Mesh twisted = sheet(twist);
+  refitted.refit(twisted.vertices);
+  const Model fresh(twisted);
+  double refitted_s = 0, fresh_s = 0;
+  for (auto _ : state) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const SelfIntersectionResult a = self_intersections(refitted);
+    const auto t1 = std::chrono::steady_clock::now();
+    const SelfIntersectionResult b = self_intersections(fresh);
+    const auto t2 = std::chrono::steady_clock::now();
+    if (a.pairs != b.pairs) state.SkipWithError("refitted and fresh models disagree");
+    refitted_s += std::chrono::duration<double>(t1 - t0).count();
+    fresh_s += std::chrono::duration<double>(t2 - t1).count();
+  }
+  state.counters["refit_growth"] = refitted.refit_growth();
+  state.counters["refitted_over_fresh"] = refitted_s / fresh_s;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -250,6 +282,13 @@ int main(int argc, char** argv) {
   }
   benchmark::RegisterBenchmark("deforming sheet", deforming_sheet)
       ->Arg(224)
+      ->Unit(benchmark::kMillisecond);
+  benchmark::RegisterBenchmark("twisted sheet (degrees)", twisted_sheet)
+      ->Arg(15)
+      ->Arg(45)
+      ->Arg(90)
+      ->Arg(180)
+      ->Arg(360)
       ->Unit(benchmark::kMillisecond);
   benchmark::RunSpecifiedBenchmarks();
   benchmark::Shutdown();

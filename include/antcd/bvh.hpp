@@ -155,7 +155,10 @@ class ANTCD_API Model {
   /// over the leaves' sum. Leaves are refitted to their vertices; internal boxes keep their old
   /// axes and are fitted around their children's boxes, so they loosen as the mesh deforms away
   /// from the shape the tree was built for: L grows. 1 for a built hierarchy. (Extents, not
-  /// volumes: flat meshes keep L finite.)
+  /// volumes: flat meshes keep L finite.) Not yet a calibrated predictor of query cost: on the
+  /// twisted 100k sheet of bench/self_bench.cpp (built flat, refitted to a twist of 15-360
+  /// degrees) it read 1.54-1.69 while the self test on the refitted tree cost 0.93-1.37x that on
+  /// a fresh one (one contended run), so no default threshold is set.
   [[nodiscard]] double refit_growth() const;
 
   /// Builds the hierarchy afresh for the current vertices (same triangles, options and source):
