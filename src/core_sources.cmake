@@ -41,3 +41,5 @@ set(ANTCD_CORE_SOURCES
   ccd/swept_proximity.cpp
 )
 set(ANTCD_CORE_TREE_SOURCE world/aabb_tree.cpp)
+# Self-collision of one Model (antcd/self.hpp).
+list(APPEND ANTCD_CORE_SOURCES self/pair_test.cpp self/cone.cpp self/self.cpp self/proximity.cpp)

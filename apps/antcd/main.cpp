@@ -44,6 +44,7 @@ int main(int argc, char** argv) {
   antcd::cli::add_scene_commands(app, code);
   antcd::cli::add_view_command(app, code);
   antcd::cli::add_ccd_commands(app, code);
+  antcd::cli::add_self_commands(app, code);
 #if defined(ANTCD_LAB)
   antcd::cli::add_bench_commands(app, code);
   antcd::cli::add_learn_commands(app, code);

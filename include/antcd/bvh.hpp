@@ -151,7 +151,30 @@ class ANTCD_API Model {
   /// on this Model. Throws ArgumentError (naming the model) for a wrong vertex count, a non-finite
   /// vertex (naming its index), or a triangle of zero area at build time that has an area now (it
   /// is not in the tree: build a new Model). On a throw the Model is unchanged.
-  void refit(std::span<const Vec3> new_vertices);
+  ///
+  /// `rebuild_above` > 0 adds the rebuild rule: when refit_growth() exceeds it after the refit,
+  /// the hierarchy is rebuilt (rebuild()) and refit returns true (false when it was not, or when
+  /// no triangle has an area left to build on: the refitted tree is kept). 0 (the default):
+  /// never. A negative or NaN value throws ArgumentError before anything changes.
+  bool refit(std::span<const Vec3> new_vertices, double rebuild_above = 0);
+
+  /// How much looser refit() has made the hierarchy since it was last built (or loaded):
+  /// L_now / L_built, where L is the sum of the internal nodes' box half extents (x + y + z)
+  /// over the leaves' sum. Leaves are refitted to their vertices; internal boxes keep their old
+  /// axes and are fitted around their children's boxes, so they loosen as the mesh deforms away
+  /// from the shape the tree was built for: L grows. 1 for a built hierarchy. (Extents, not
+  /// volumes: flat meshes keep L finite.) Not yet a calibrated predictor of query cost: on the
+  /// twisted 100k sheet of bench/self_bench.cpp (built flat, refitted to a twist of 15-360
+  /// degrees) it read 1.54-1.69 while the self test on the refitted tree cost 0.93-1.37x that on
+  /// a fresh one (one contended run), so no default threshold is set.
+  [[nodiscard]] double refit_growth() const;
+
+  /// Builds the hierarchy afresh for the current vertices (same triangles, options and source):
+  /// the Model then holds what Model(mesh(), options(), source()) holds. O(n log n). For a
+  /// deforming model whose refitted volumes have grown loose, or whose zero-area triangles have
+  /// gained an area. Throws MeshError as the constructor does (no triangle of non-zero area left);
+  /// on a throw the Model is unchanged. A mutation: not concurrent with queries on this Model.
+  void rebuild();
 
   // ---- Model files (.antcd; the format is docs/model_file.md) ----
   // A model file holds the mesh, the source name, the build options and the built hierarchy,
@@ -193,6 +216,9 @@ class ANTCD_API Model {
   std::vector<std::uint32_t> leaf_triangles_;
   BvhStats stats_;
   bool closed_ = false;
+  /// L of refit_growth() for the hierarchy as built or loaded (0 until first needed).
+  double built_looseness_ = 0;
+  [[nodiscard]] double looseness() const;
   /// Data derived on first use by point queries (antcd/points.hpp), built once under a once-flag
   /// so that concurrent const queries stay safe.
   std::shared_ptr<detail::ModelCache> cache_;

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <limits>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace antcd {
@@ -39,7 +40,25 @@ std::array<Vec3, 8> corners(const Obb& box) {
 
 }  // namespace
 
-void Model::refit(std::span<const Vec3> new_vertices) {
+double Model::looseness() const {
+  Scalar internal = 0, leaves = 0;
+  for (const BvhNode& n : nodes_) {
+    const Scalar e = Scalar{n.half[0]} + Scalar{n.half[1]} + Scalar{n.half[2]};
+    (n.is_leaf() ? leaves : internal) += e;
+  }
+  return leaves > 0 ? internal / leaves : 1;
+}
+
+double Model::refit_growth() const {
+  return built_looseness_ > 0 ? looseness() / built_looseness_ : 1;
+}
+
+void Model::rebuild() {
+  Model fresh(mesh_, options_, source_);
+  *this = std::move(fresh);
+}
+
+bool Model::refit(std::span<const Vec3> new_vertices, double rebuild_above) {
   if (new_vertices.size() != mesh_.vertices.size()) {
     throw ArgumentError(source_ + ": refit: got " + std::to_string(new_vertices.size()) +
                         " vertices, the mesh has " + std::to_string(mesh_.vertices.size()));
@@ -64,6 +83,11 @@ void Model::refit(std::span<const Vec3> new_vertices) {
     }
   }
 
+  if (!(rebuild_above >= 0)) {
+    throw ArgumentError(source_ + ": refit: rebuild_above must be >= 0, got " +
+                        std::to_string(rebuild_above));
+  }
+  if (built_looseness_ == 0) built_looseness_ = looseness();  // as built or loaded
   std::copy(new_vertices.begin(), new_vertices.end(), mesh_.vertices.begin());
   const LeafCorners corners_of = leaf_corners();
   // Children come after their parent in the depth-first layout: refit from the last node back.
@@ -101,8 +125,18 @@ void Model::refit(std::span<const Vec3> new_vertices) {
   }
   stats_.obb_volume_sum = 0;
   for (const BvhNode& node : nodes_) stats_.obb_volume_sum += node.obb().volume();
-  // Data derived from the old positions (point-query pseudo-normals) is dropped.
-  cache_ = std::make_shared<detail::ModelCache>();
+  // Data derived from the old positions (point-query pseudo-normals) is dropped; the self queries'
+  // boundary data depends on the triangles and the tree's topology only, and is kept.
+  cache_ = cache_->after_refit();
+  if (rebuild_above > 0 && refit_growth() > rebuild_above) {
+    try {
+      rebuild();
+    } catch (const MeshError&) {
+      return false;  // no triangle of non-zero area left to build on: keep the refitted tree
+    }
+    return true;
+  }
+  return false;
 }
 
 }  // namespace antcd

@@ -32,6 +32,8 @@ bool within_box(const Vec3& p, const Vec3& a, const Vec3& b, const Projection& p
   return true;
 }
 
+}  // namespace
+
 // Closed segments [a,b] and [c,d] with all four points in one plane, tested in projection.
 bool segments_meet_2d(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d,
                       const Projection& pr, Vec3* point) {
@@ -72,6 +74,8 @@ bool segments_meet_2d(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d
   }
   return true;
 }
+
+namespace {
 
 // Closed triangle abc (in projection) contains p; `o` = orient2d(a, b, c) must be nonzero.
 bool contains_2d(const Vec3& a, const Vec3& b, const Vec3& c, double o, const Vec3& p,
@@ -216,6 +220,16 @@ bool intersect_core(const Plane& pa, const Plane& pb, SideValue (&va)[3], SideVa
     }
   }
   return false;
+}
+
+bool segment_meets_triangle(const Vec3& p, const Vec3& q, const Vec3& a, const Vec3& b,
+                            const Vec3& c) {
+  const Plane pl = make_plane(a, b, c);
+  SideValue dp = side_value(pl, p);
+  SideValue dq = side_value(pl, q);
+  const int sp = side_sign(pl, p, dp);
+  const int sq = side_sign(pl, q, dq);
+  return edge_meets_triangle(p, q, sp, sq, dp, dq, pl, nullptr);
 }
 
 }  // namespace detail

@@ -1,0 +1,118 @@
+// The exact verdict on one triangle pair under the sharing rule of antcd/self.hpp.
+//
+// Why each case is exact (A, B non-degenerate closed triangles):
+// - One shared vertex v. A ∩ B is convex and holds v. If it holds another point, it holds a
+//   segment from v, and the largest such segment ends on the boundary of A or of B away from v:
+//   on the edge of A opposite v (a chord of A from its corner v ends there) or on the edge of B
+//   opposite v. Conversely a point of A's opposite edge in B is not v (A has non-zero area), so
+//   the pair meets beyond v exactly when one opposite edge meets the other triangle.
+// - One shared edge uv. Not coplanar: the planes meet in the line uv, and each triangle meets
+//   that line in uv exactly, so A ∩ B = uv. Coplanar: the triangles are the two sides of uv
+//   (A ∩ B = uv) or overlap near uv, as their third vertices lie on opposite or the same side of
+//   uv in the plane. The side test is a 2-D orientation in a coordinate plane where A's
+//   projection has non-zero area (one exists, decided exactly), which keeps every side.
+// - Three shared vertices: the same point set twice.
+#include "self/pair_test.hpp"
+
+#include <antcd/geometry.hpp>
+
+#include "geometry/intersection.hpp"
+#include "geometry/predicates.hpp"
+
+#include <algorithm>
+#include <initializer_list>
+
+namespace antcd::self_detail {
+
+using geometry::detail::orient2d;
+using geometry::detail::Projection;
+using geometry::detail::sign_of;
+
+std::uint8_t normal_signs(const Vec3& a, const Vec3& b, const Vec3& c) {
+  std::uint8_t bits = 0;
+  for (int k = 0; k < 3; ++k) {
+    // Dropping axis k leaves the cyclic pair (k+1, k+2): the 2-D orientation is n_k.
+    const int s = sign_of(orient2d(a, b, c, Projection(k)));
+    if (s > 0) bits = static_cast<std::uint8_t>(bits | (1u << (2 * k)));
+    if (s < 0) bits = static_cast<std::uint8_t>(bits | (1u << (2 * k + 1)));
+  }
+  return bits;
+}
+
+namespace {
+
+/// Triangles (u, v, p) and (u, v, q) sharing the edge uv: folded flat onto each other.
+bool folded_flat(const Vec3& u, const Vec3& v, const Vec3& p, const Vec3& q) {
+  if (geometry::orient3d(u, v, p, q) != 0) return false;
+  for (int k = 0; k < 3; ++k) {
+    const Projection pr(k);
+    const int sp = sign_of(orient2d(u, v, p, pr));
+    if (sp == 0) continue;  // this projection flattens the plane
+    return sp == sign_of(orient2d(u, v, q, pr));
+  }
+  return false;  // unreachable for a triangle of non-zero area
+}
+
+/// The closed boxes of the point sets are disjoint: exact comparisons, a filter in front of the
+/// exact tests (sets in disjoint boxes cannot meet).
+bool boxes_apart(std::initializer_list<const Vec3*> a, std::initializer_list<const Vec3*> b) {
+  for (int k = 0; k < 3; ++k) {
+    double alo = (*a.begin())->coeff(k), ahi = alo, blo = (*b.begin())->coeff(k), bhi = blo;
+    for (const Vec3* p : a) {
+      alo = std::min(alo, p->coeff(k));
+      ahi = std::max(ahi, p->coeff(k));
+    }
+    for (const Vec3* p : b) {
+      blo = std::min(blo, p->coeff(k));
+      bhi = std::max(bhi, p->coeff(k));
+    }
+    if (ahi < blo || bhi < alo) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+bool pair_intersects(const Mesh& mesh, std::uint32_t i, std::uint32_t j, int& shared) {
+  const TriangleIndices& ti = mesh.triangles[i];
+  const TriangleIndices& tj = mesh.triangles[j];
+  const auto& v = mesh.vertices;
+  int ai[3], bj[3];
+  shared = 0;
+  for (int a = 0; a < 3; ++a) {
+    for (int b = 0; b < 3; ++b) {
+      if (ti[a] == tj[b]) {
+        ai[shared] = a;
+        bj[shared] = b;
+        ++shared;
+      }
+    }
+  }
+  const auto pi = [&](int a) -> const Vec3& { return v[ti[static_cast<std::size_t>(a % 3)]]; };
+  const auto pj = [&](int b) -> const Vec3& { return v[tj[static_cast<std::size_t>(b % 3)]]; };
+  switch (shared) {
+    case 0:
+      if (boxes_apart({&pi(0), &pi(1), &pi(2)}, {&pj(0), &pj(1), &pj(2)})) return false;
+      return geometry::triangles_intersect(pi(0), pi(1), pi(2), pj(0), pj(1), pj(2));
+    case 1: {
+      const int a = ai[0], b = bj[0];
+      const auto edge_meets = [](const Vec3& p, const Vec3& q, const Vec3& t0, const Vec3& t1,
+                                 const Vec3& t2) {
+        return !boxes_apart({&p, &q}, {&t0, &t1, &t2}) &&
+               geometry::detail::segment_meets_triangle(p, q, t0, t1, t2);
+      };
+      return edge_meets(pi(a + 1), pi(a + 2), pj(0), pj(1), pj(2)) ||
+             edge_meets(pj(b + 1), pj(b + 2), pi(0), pi(1), pi(2));
+    }
+    case 2: {
+      // The unshared corners: the one index of each triangle not matched.
+      const int a_free = 3 - ai[0] - ai[1];
+      const int b_free = 3 - bj[0] - bj[1];
+      return folded_flat(pi(ai[0]), pi(ai[1]), pi(a_free), pj(b_free));
+    }
+    default:
+      return true;
+  }
+}
+
+}  // namespace antcd::self_detail

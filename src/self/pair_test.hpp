@@ -1,0 +1,20 @@
+// Private: the exact verdict on one pair of triangles of a mesh under the sharing rule of
+// antcd/self.hpp, and the per-triangle exact facts the self queries start from (pair_test.cpp).
+#pragma once
+
+#include <antcd/mesh.hpp>
+
+#include <cstdint>
+
+namespace antcd::self_detail {
+
+/// Exact facts about one triangle's normal n = (b - a) x (c - a): bit 2k is set when n_k > 0 and
+/// bit 2k + 1 when n_k < 0 (k = 0, 1, 2; exact signs). Zero exactly for a degenerate triangle.
+std::uint8_t normal_signs(const Vec3& a, const Vec3& b, const Vec3& c);
+
+/// Whether triangles i and j (distinct, both of non-zero area) of `mesh` intersect beyond what
+/// their shared vertex indices require (antcd/self.hpp). `shared` is set to the number of vertex
+/// indices they share (0 to 3).
+bool pair_intersects(const Mesh& mesh, std::uint32_t i, std::uint32_t j, int& shared);
+
+}  // namespace antcd::self_detail
