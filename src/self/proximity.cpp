@@ -18,7 +18,7 @@ namespace {
 
 using Edge = std::array<std::uint32_t, 2>;
 
-/// on_leaf_triangle(mesh triangle) for every tree triangle in a leaf whose sphere comes within
+/// on_triangle(mesh triangle) for every tree triangle in a leaf whose sphere comes within
 /// `radius` of `centre`.
 template <class F>
 void near_triangles(const Model& model, const Vec3& centre, Scalar radius,
