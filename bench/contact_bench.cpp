@@ -98,16 +98,16 @@ void args(benchmark::internal::Benchmark* b) {
   b->Arg(10000)->Arg(100000)->Unit(benchmark::kMillisecond);
 }
 
-BENCHMARK_CAPTURE(run, contacts_plain/torus, Shape::Torus, Mode::Plain)->Apply(args);
-BENCHMARK_CAPTURE(run, contacts_normals/torus, Shape::Torus, Mode::Normals)->Apply(args);
-BENCHMARK_CAPTURE(run, contacts_manifold/torus, Shape::Torus, Mode::Manifold)->Apply(args);
-BENCHMARK_CAPTURE(run, contacts_plain/sphere, Shape::Sphere, Mode::Plain)->Apply(args);
-BENCHMARK_CAPTURE(run, contacts_normals/sphere, Shape::Sphere, Mode::Normals)->Apply(args);
-BENCHMARK_CAPTURE(run, contacts_manifold/sphere, Shape::Sphere, Mode::Manifold)->Apply(args);
-BENCHMARK_CAPTURE(run, boolean_plain/torus, Shape::Torus, Mode::Boolean)->Apply(args);
-BENCHMARK_CAPTURE(run, boolean_volume/torus, Shape::Torus, Mode::BooleanVolume)->Apply(args);
-BENCHMARK_CAPTURE(run, boolean_plain/sphere, Shape::Sphere, Mode::Boolean)->Apply(args);
-BENCHMARK_CAPTURE(run, boolean_volume/sphere, Shape::Sphere, Mode::BooleanVolume)->Apply(args);
+BENCHMARK_CAPTURE(run, contacts_plain / torus, Shape::Torus, Mode::Plain)->Apply(args);
+BENCHMARK_CAPTURE(run, contacts_normals / torus, Shape::Torus, Mode::Normals)->Apply(args);
+BENCHMARK_CAPTURE(run, contacts_manifold / torus, Shape::Torus, Mode::Manifold)->Apply(args);
+BENCHMARK_CAPTURE(run, contacts_plain / sphere, Shape::Sphere, Mode::Plain)->Apply(args);
+BENCHMARK_CAPTURE(run, contacts_normals / sphere, Shape::Sphere, Mode::Normals)->Apply(args);
+BENCHMARK_CAPTURE(run, contacts_manifold / sphere, Shape::Sphere, Mode::Manifold)->Apply(args);
+BENCHMARK_CAPTURE(run, boolean_plain / torus, Shape::Torus, Mode::Boolean)->Apply(args);
+BENCHMARK_CAPTURE(run, boolean_volume / torus, Shape::Torus, Mode::BooleanVolume)->Apply(args);
+BENCHMARK_CAPTURE(run, boolean_plain / sphere, Shape::Sphere, Mode::Boolean)->Apply(args);
+BENCHMARK_CAPTURE(run, boolean_volume / sphere, Shape::Sphere, Mode::BooleanVolume)->Apply(args);
 
 }  // namespace
 

@@ -40,7 +40,8 @@ using antcd::Vec3;
 enum class Shape { Sphere, Torus };
 
 antcd::Mesh make_mesh(Shape shape, std::int64_t nominal) {
-  // A sphere with 2k slices and k stacks has 4k(k - 1) triangles, a torus with 2k by k segments 4k².
+  // A sphere with 2k slices and k stacks has 4k(k - 1) triangles, a torus with 2k by k segments
+  // 4k².
   const int k = static_cast<int>(std::lround(std::sqrt(static_cast<double>(nominal) / 4.0)));
   return shape == Shape::Sphere ? antcd::make_sphere(1.0, 2 * k, k)
                                 : antcd::make_torus(1.0, 0.4, 2 * k, k);
@@ -98,7 +99,9 @@ std::unique_ptr<Scene> make_scene(Shape shape, std::int64_t nominal) {
   std::normal_distribution<Scalar> gauss;
   std::uniform_real_distribution<Scalar> uni(0, 1);
   const auto rotation = [&] {
-    return antcd::Quat(gauss(rng), gauss(rng), gauss(rng), gauss(rng)).normalized().toRotationMatrix();
+    return antcd::Quat(gauss(rng), gauss(rng), gauss(rng), gauss(rng))
+        .normalized()
+        .toRotationMatrix();
   };
   for (int i = 0; i < kPoses; ++i) {
     antcd::Transform a, b;
@@ -167,18 +170,18 @@ void distance_query(benchmark::State& state) {
     state.counters["node_pairs"] = nodes / kPoses;
     state.counters["triangle_tests"] = triangles / kPoses;
   }
-  state.counters["per_query"] = benchmark::Counter(
-      static_cast<double>(state.iterations()) * kPoses,
-      benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+  state.counters["per_query"] =
+      benchmark::Counter(static_cast<double>(state.iterations()) * kPoses,
+                         benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
 }
 
-#define ANTCD_DISTANCE_BENCH(peer, shape, name)                                            \
-  BENCHMARK(distance_query<peer, shape>)                                                   \
-      ->Name(name)                                                                         \
-      ->Arg(1'000)                                                                         \
-      ->Arg(10'000)                                                                        \
-      ->Arg(100'000)                                                                       \
-      ->Arg(1'000'000)                                                                     \
+#define ANTCD_DISTANCE_BENCH(peer, shape, name) \
+  BENCHMARK(distance_query<peer, shape>)        \
+      ->Name(name)                              \
+      ->Arg(1'000)                              \
+      ->Arg(10'000)                             \
+      ->Arg(100'000)                            \
+      ->Arg(1'000'000)                          \
       ->Unit(benchmark::kMicrosecond)
 
 ANTCD_DISTANCE_BENCH(Peer::Antcd, Shape::Sphere, "distance_antcd/sphere");

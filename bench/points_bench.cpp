@@ -76,7 +76,8 @@ struct Fixture {
       for (const antcd::Vec3& p : points[d]) cgal_points[d].emplace_back(p.x(), p.y(), p.z());
     }
     std::vector<SurfaceMesh::Vertex_index> v;
-    for (const antcd::Vec3& p : mesh.vertices) v.push_back(sm.add_vertex(K::Point_3(p.x(), p.y(), p.z())));
+    for (const antcd::Vec3& p : mesh.vertices)
+      v.push_back(sm.add_vertex(K::Point_3(p.x(), p.y(), p.z())));
     for (const auto& t : mesh.triangles) sm.add_face(v[t[0]], v[t[1]], v[t[2]]);
   }
 };

@@ -23,8 +23,8 @@
 // The numbers only mean something in one run on an otherwise idle machine; quote ratios of the two
 // engines measured in the same run.
 #include <antcd/distance.hpp>
-#include <antcd/penetration.hpp>
 #include <antcd/load.hpp>
+#include <antcd/penetration.hpp>
 #include <antcd/world.hpp>
 
 #include <benchmark/benchmark.h>
@@ -34,9 +34,9 @@
 #include <fcl/narrowphase/collision.h>
 #include <fcl/narrowphase/collision_object.h>
 #include <malloc.h>
-#include <time.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
+#include <time.h>
 
 #include <algorithm>
 #include <chrono>
@@ -92,7 +92,8 @@ struct Motion {
     Vec3 p = start[i] + f * velocity[i];
     for (int k = 0; k < 3; ++k) p[k] = p[k] - side * std::floor(p[k] / side + 0.5);
     Transform t;
-    t.rotation = (Eigen::AngleAxis<Scalar>(spin[i] * f, axis[i]) * orientation[i]).toRotationMatrix();
+    t.rotation =
+        (Eigen::AngleAxis<Scalar>(spin[i] * f, axis[i]) * orientation[i]).toRotationMatrix();
     t.translation = p;
     return t;
   }
@@ -117,8 +118,7 @@ fcl::Transform3d to_fcl(const Transform& t) {
 }
 
 const std::vector<Mesh>& small_meshes() {
-  static const std::vector<Mesh> meshes{make_box(Vec3(0.4, 0.25, 0.2), 1),
-                                        make_sphere(0.35, 8, 4)};
+  static const std::vector<Mesh> meshes{make_box(Vec3(0.4, 0.25, 0.2), 1), make_sphere(0.35, 8, 4)};
   return meshes;
 }
 
@@ -187,8 +187,8 @@ void world_frame_antcd(benchmark::State& state) {
       static_cast<double>(colliding) / static_cast<double>(frame);
   state.counters["candidates_last_frame"] = static_cast<double>(candidates);
   state.counters["world_heap_MB"] = static_cast<double>(bytes) / 1e6;
-  state.counters["world_bytes_per_object"] = static_cast<double>(world.memory_bytes()) /
-                                             static_cast<double>(n);
+  state.counters["world_bytes_per_object"] =
+      static_cast<double>(world.memory_bytes()) / static_cast<double>(n);
 }
 
 struct FclData {
@@ -218,8 +218,8 @@ bool fcl_callback(fcl::CollisionObjectd* a, fcl::CollisionObjectd* b, void* data
 // One FCL frame: every object moved to its pose at `frame`, the manager updated, then all pairs
 // collided into `data` (the same per-frame work as World::set_poses + collide_all).
 void fcl_frame(const std::vector<std::unique_ptr<fcl::CollisionObjectd>>& objects,
-               fcl::BroadPhaseCollisionManagerd& manager, const Motion& motion,
-               std::size_t frame, FclData& data) {
+               fcl::BroadPhaseCollisionManagerd& manager, const Motion& motion, std::size_t frame,
+               FclData& data) {
   for (std::size_t i = 0; i < objects.size(); ++i) {
     objects[i]->setTransform(to_fcl(motion.pose(i, frame)));
     objects[i]->computeAABB();
@@ -276,7 +276,8 @@ void world_frame_fcl(benchmark::State& state) {
   std::size_t colliding = 0;
   std::size_t tested = 0;
   const auto& expected = expected_pairs(n);
-  std::size_t checked = 0;  // frames compared with antcd's pairs (none when antcd's run was filtered out)
+  std::size_t checked =
+      0;  // frames compared with antcd's pairs (none when antcd's run was filtered out)
   for (auto _ : state) {
     ++frame;
     FclData data;
@@ -286,12 +287,14 @@ void world_frame_fcl(benchmark::State& state) {
     if (frame <= expected.size()) {
       state.PauseTiming();
       std::sort(data.pairs.begin(), data.pairs.end());
-      const std::string difference = first_difference(data.pairs, expected[frame - 1], motion, frame);
+      const std::string difference =
+          first_difference(data.pairs, expected[frame - 1], motion, frame);
       ++checked;
       state.ResumeTiming();
       if (!difference.empty()) {
         std::cerr << "world_frame_fcl/" << n << ": " << difference << "\n";
-        state.SkipWithError("FCL and antcd disagree on the colliding pairs of a frame (see stderr)");
+        state.SkipWithError(
+            "FCL and antcd disagree on the colliding pairs of a frame (see stderr)");
         break;
       }
     }
@@ -459,9 +462,10 @@ Scalar nearest_scan(const World& world, const NearestRequest& request) {
       const Model& b = world.model(ids[j]);
       DistanceRequest r;
       r.upper_bound = std::max<Scalar>(best, 0);
-      const DistanceResult d = request.signed_distance && a.is_closed() && b.is_closed()
-                                   ? signed_distance(a, world.pose(ids[i]), b, world.pose(ids[j]), r)
-                                   : distance(a, world.pose(ids[i]), b, world.pose(ids[j]), r);
+      const DistanceResult d =
+          request.signed_distance && a.is_closed() && b.is_closed()
+              ? signed_distance(a, world.pose(ids[i]), b, world.pose(ids[j]), r)
+              : distance(a, world.pose(ids[i]), b, world.pose(ids[j]), r);
       if (!d.beyond_upper_bound) best = std::min(best, d.distance);
     }
   }
@@ -507,10 +511,42 @@ void nearest(benchmark::State& state) {
 }  // namespace
 
 BENCHMARK(nearest)->Args({1000, 0})->Args({1000, 1})->Unit(benchmark::kMillisecond)->Iterations(5);
-BENCHMARK(world_frame_antcd)->Args({10000, 0})->Args({100000, 0})->Args({10000, 1})->Args({100000, 1})->Unit(benchmark::kMillisecond)->Iterations(8)->Repetitions(3)->ReportAggregatesOnly(true);
-BENCHMARK(world_frame_fcl)->Arg(10000)->Arg(100000)->Unit(benchmark::kMillisecond)->Iterations(8)->Repetitions(3)->ReportAggregatesOnly(true);
-BENCHMARK(world_interleaved)->Arg(10000)->Arg(100000)->Unit(benchmark::kMillisecond)->Iterations(15);
-BENCHMARK(dense_threads)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->MinTime(1.0)->Repetitions(3)->ReportAggregatesOnly(true)->UseRealTime();
-BENCHMARK(parallel_control)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->MinTime(1.0)->Repetitions(3)->ReportAggregatesOnly(true)->UseRealTime();
+BENCHMARK(world_frame_antcd)
+    ->Args({10000, 0})
+    ->Args({100000, 0})
+    ->Args({10000, 1})
+    ->Args({100000, 1})
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(8)
+    ->Repetitions(3)
+    ->ReportAggregatesOnly(true);
+BENCHMARK(world_frame_fcl)
+    ->Arg(10000)
+    ->Arg(100000)
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(8)
+    ->Repetitions(3)
+    ->ReportAggregatesOnly(true);
+BENCHMARK(world_interleaved)
+    ->Arg(10000)
+    ->Arg(100000)
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(15);
+BENCHMARK(dense_threads)
+    ->Arg(1)
+    ->Arg(2)
+    ->Unit(benchmark::kMillisecond)
+    ->MinTime(1.0)
+    ->Repetitions(3)
+    ->ReportAggregatesOnly(true)
+    ->UseRealTime();
+BENCHMARK(parallel_control)
+    ->Arg(1)
+    ->Arg(2)
+    ->Unit(benchmark::kMillisecond)
+    ->MinTime(1.0)
+    ->Repetitions(3)
+    ->ReportAggregatesOnly(true)
+    ->UseRealTime();
 
 BENCHMARK_MAIN();

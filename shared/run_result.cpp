@@ -263,11 +263,13 @@ RunResult parse_run_result(std::string_view text, const std::string& source) {
     out.threads = root["threads"].get<int>();
   if (root.contains("verdict") && root["verdict"].is_string())
     out.verdict = root["verdict"].get<std::string>();
-  if (root.contains("memory") && root["memory"].is_boolean()) out.memory = root["memory"].get<bool>();
+  if (root.contains("memory") && root["memory"].is_boolean())
+    out.memory = root["memory"].get<bool>();
   if (root.contains("leaf_scan") && root["leaf_scan"].is_boolean()) {
     out.leaf_scan = root["leaf_scan"].get<bool>();
   }
-  if (root.contains("volume") && root["volume"].is_boolean()) out.volume = root["volume"].get<bool>();
+  if (root.contains("volume") && root["volume"].is_boolean())
+    out.volume = root["volume"].get<bool>();
   if (root.contains("continuous") && root["continuous"].is_boolean()) {
     out.continuous = root["continuous"].get<bool>();
   }

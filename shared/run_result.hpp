@@ -57,10 +57,10 @@ struct RunResult {
   double delta = 0;
   std::uint64_t seed = 0;
   int threads = 1;
-  std::string verdict;  ///< random methods: "witness" or "paper-centroid"; empty otherwise
-  bool memory = false;  ///< random methods: colonies carried from frame to frame (SceneMemory)
-  bool leaf_scan = false;  ///< random methods: AntParams::scan_covered_spaces
-  bool volume = false;  ///< SceneQuery::volume was set
+  std::string verdict;      ///< random methods: "witness" or "paper-centroid"; empty otherwise
+  bool memory = false;      ///< random methods: colonies carried from frame to frame (SceneMemory)
+  bool leaf_scan = false;   ///< random methods: AntParams::scan_covered_spaces
+  bool volume = false;      ///< SceneQuery::volume was set
   bool continuous = false;  ///< SceneQuery::continuous was set
   double build_ms = 0;
   double total_ms = 0;  ///< sum of the frames' time_ms

@@ -69,7 +69,8 @@ class QuietStderr {
 /// Loads a mesh (std::cerr quiet meanwhile) and builds its hierarchy; errors name the file. A
 /// model file (".antcd", Model::save) is loaded as saved: `options` do not apply to it.
 Model load_model(const std::filesystem::path& path, const BuildOptions& options);
-/// Prints "warning: SOURCE: N zero-area triangle(s) ignored" on stderr when the model left some out.
+/// Prints "warning: SOURCE: N zero-area triangle(s) ignored" on stderr when the model left some
+/// out.
 void warn_degenerate(const Model& model);
 
 /// Option check for --delta and friends: a finite decimal number >= 0 (no hex).
@@ -112,8 +113,8 @@ bool is_learned_method(const std::string& method);
 /// its training delta `delta`). Throws UsageError / antcd::Error (model file problems, or antcd
 /// built without libtorch).
 shared::RunResult run_learned(const Scene& scene, const std::string& scene_name,
-                                   const std::string& method, const std::string& model_path,
-                                   double delta,
-                                   const std::function<void(std::size_t, std::size_t)>& progress);
+                              const std::string& method, const std::string& model_path,
+                              double delta,
+                              const std::function<void(std::size_t, std::size_t)>& progress);
 
 }  // namespace antcd::cli

@@ -1,6 +1,7 @@
 // antcd bench: benchmark suites. `bench paper` reproduces the experiments of the paper's section 5
-// (experiments/paper/paper_bench.hpp). Each suite registers itself on the `bench` command through an
-// add_bench_*_command(CLI::App& bench, int& code) function; add new suites in add_bench_commands.
+// (experiments/paper/paper_bench.hpp). Each suite registers itself on the `bench` command through
+// an add_bench_*_command(CLI::App& bench, int& code) function; add new suites in
+// add_bench_commands.
 #include <iostream>
 #include <memory>
 #include <string>

@@ -61,7 +61,7 @@ void print_progress(const char* label, std::size_t done, std::size_t total) {
 }
 
 shared::RunResult run(const Scene& scene, const SceneQuery& query, const std::string& name,
-                           const char* label, std::size_t frame_step = 1) {
+                      const char* label, std::size_t frame_step = 1) {
   std::function<void(std::size_t, std::size_t)> progress;
   if (isatty(STDERR_FILENO) != 0) {
     progress = [label](std::size_t done, std::size_t total) { print_progress(label, done, total); };
@@ -195,7 +195,8 @@ int run_demo(const DemoOptions& o) {
       static_cast<unsigned long long>(evaluations));
   if (ab_frames > 0) {
     std::printf(
-        "maco A/B (share of the sampled feature spaces' colliding feature pairs, each confirmed by\n"
+        "maco A/B (share of the sampled feature spaces' colliding feature pairs, each confirmed "
+        "by\n"
         "the exact test, found in N iterations, %zu evenly spaced frames): %.4f (%llu of %llu)\n",
         ab_frames,
         truth_features > 0 ? static_cast<double>(hits) / static_cast<double>(truth_features) : 1.0,

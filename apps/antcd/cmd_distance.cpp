@@ -44,8 +44,8 @@ int run_distance(const DistanceOptions& o) {
   request.abs_tolerance = o.abs_tolerance;
   request.rel_tolerance = o.rel_tolerance;
   const Stopwatch clock;
-  const DistanceResult r = o.signed_distance ? signed_distance(a, pa, b, pb, request)
-                                             : distance(a, pa, b, pb, request);
+  const DistanceResult r =
+      o.signed_distance ? signed_distance(a, pa, b, pb, request) : distance(a, pa, b, pb, request);
   const double query_ms = clock.ms();
   const bool found = std::isfinite(r.distance);
 

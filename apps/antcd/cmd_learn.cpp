@@ -85,9 +85,9 @@ bool is_learned_method(const std::string& method) {
 }
 
 shared::RunResult run_learned(const Scene& scene, const std::string& scene_name,
-                                   const std::string& method, const std::string& model_path,
-                                   double delta,
-                                   const std::function<void(std::size_t, std::size_t)>& progress) {
+                              const std::string& method, const std::string& model_path,
+                              double delta,
+                              const std::function<void(std::size_t, std::size_t)>& progress) {
 #ifdef ANTCD_HAVE_LEARNED
   if (model_path.empty()) throw UsageError("--method " + method + " needs --model MODEL.pt");
   const learned::Classifier model = learned::Classifier::load(model_path);

@@ -90,9 +90,11 @@ int run_points(const PointsOptions& o) {
     for (std::size_t i = 0; i < points.size(); ++i) {
       const PointDistance& d = sd.points[i];
       out << points[i].x() << ',' << points[i].y() << ',' << points[i].z() << ','
-          << (inside.empty() ? "" : inside[i] != 0 ? "1" : "0") << ',' << d.distance << ','
-          << d.closest.x() << ',' << d.closest.y() << ',' << d.closest.z() << ',' << d.triangle
-          << '\n';
+          << (inside.empty()   ? ""
+              : inside[i] != 0 ? "1"
+                               : "0")
+          << ',' << d.distance << ',' << d.closest.x() << ',' << d.closest.y() << ','
+          << d.closest.z() << ',' << d.triangle << '\n';
     }
     std::fprintf(stderr, "%zu points against %s (%zu triangles): %.3f ms\n", points.size(),
                  o.mesh.c_str(), model.stats().triangles, query_ms);

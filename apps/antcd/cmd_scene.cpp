@@ -227,8 +227,8 @@ void add_scene_commands(CLI::App& app, int& code) {
   cmd->add_option("--method", run->method,
                   "exact | sphere-obb | aco | maco | pso | ga | box-dnn | box-lstm (the last two "
                   "need --model)")
-      ->check(CLI::IsMember({"exact", "sphere-obb", "aco", "maco", "pso", "ga", "box-dnn",
-                             "box-lstm"}));
+      ->check(CLI::IsMember(
+          {"exact", "sphere-obb", "aco", "maco", "pso", "ga", "box-dnn", "box-lstm"}));
   cmd->add_option("--delta", run->delta, "Collision threshold δ in mesh units")
       ->check(non_negative_finite());
   cmd->add_option("--feature-delta", run->feature_delta,
@@ -247,9 +247,10 @@ void add_scene_commands(CLI::App& app, int& code) {
   cmd->add_flag("--search-all", run->search_all,
                 "Random methods: run every search for its N iterations instead of stopping at "
                 "the first colliding feature pair (same verdicts; feature_hits counts them all)");
-  cmd->add_option("--verdict", run->verdict,
-                  "Random methods: witness (the exact triangle test confirms each reported pair) or "
-                  "paper-centroid (the paper's centroid threshold, a proximity test)");
+  cmd->add_option(
+      "--verdict", run->verdict,
+      "Random methods: witness (the exact triangle test confirms each reported pair) or "
+      "paper-centroid (the paper's centroid threshold, a proximity test)");
   cmd->add_option(
          "--frame-evaluations", run->frame_evaluations,
          "Random methods: fitness evaluations shared by a frame's candidate pairs (anytime "

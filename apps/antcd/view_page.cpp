@@ -105,8 +105,7 @@ json pack_result(const shared::RunResult& r, const std::filesystem::path& path,
   for (const shared::FrameRecord& f : r.frames) {
     if (f.frame >= scene.frames) {
       throw UsageError(src + ": frame " + std::to_string(f.frame) + " out of range (" +
-                       scene_path.string() + " has " + std::to_string(scene.frames) +
-                       " frames)");
+                       scene_path.string() + " has " + std::to_string(scene.frames) + " frames)");
     }
     if (!seen.insert(f.frame).second) {
       throw UsageError(src + ": frame " + std::to_string(f.frame) + " listed twice");
@@ -124,7 +123,8 @@ json pack_result(const shared::RunResult& r, const std::filesystem::path& path,
         throw UsageError(src + ": frame " + std::to_string(f.frame) + ": pair (" + a + ", " + b +
                          ") names one object twice");
       }
-      fp.push_back(json::array({std::min(ia->second, ib->second), std::max(ia->second, ib->second)}));
+      fp.push_back(
+          json::array({std::min(ia->second, ib->second), std::max(ia->second, ib->second)}));
     }
     frames.push_back(f.frame);
     pairs.push_back(std::move(fp));
@@ -163,7 +163,8 @@ json pack_contacts(const Scene& scene, const json& results, double delta, std::s
   for (const json& r : results) {
     for (std::size_t k = 0; k < r["frames"].size(); ++k) {
       auto& set = pairs_at[r["frames"][k].get<std::size_t>()];
-      for (const json& p : r["pairs"][k]) set.emplace(p[0].get<std::uint32_t>(), p[1].get<std::uint32_t>());
+      for (const json& p : r["pairs"][k])
+        set.emplace(p[0].get<std::uint32_t>(), p[1].get<std::uint32_t>());
     }
   }
   const auto& objects = scene.description().objects;
@@ -281,12 +282,9 @@ ViewPayload build_view_payload(const ViewInputs& inputs) {
     results.push_back(pack_result(r.run, r.source, scene, inputs.scene, index_of));
   }
 
-  json root{{"format", "antcd-view/1"},
-            {"scene", out.title},
-            {"frames", scene.frames},
-            {"colours", colour_index.size()},
-            {"meshes", meshes},
-            {"objects", objects},
+  json root{{"format", "antcd-view/1"}, {"scene", out.title},
+            {"frames", scene.frames},   {"colours", colour_index.size()},
+            {"meshes", meshes},         {"objects", objects},
             {"results", results}};
   if (inputs.live) root["live"] = true;
   out.live = inputs.live;
@@ -348,7 +346,9 @@ std::string base64_encode(const std::string& bytes) {
   std::string out;
   out.reserve((bytes.size() + 2) / 3 * 4);
   std::size_t i = 0;
-  const auto byte = [&](std::size_t k) { return static_cast<std::uint32_t>(static_cast<unsigned char>(bytes[k])); };
+  const auto byte = [&](std::size_t k) {
+    return static_cast<std::uint32_t>(static_cast<unsigned char>(bytes[k]));
+  };
   for (; i + 3 <= bytes.size(); i += 3) {
     const std::uint32_t v = (byte(i) << 16) | (byte(i + 1) << 8) | byte(i + 2);
     out += alphabet[(v >> 18) & 63];
@@ -388,11 +388,20 @@ std::string html_escape(const std::string& text) {
   std::string out;
   for (char c : text) {
     switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      default: out += c;
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      default:
+        out += c;
     }
   }
   return out;
@@ -423,8 +432,9 @@ std::string render_page(const ViewPayload& payload, const std::string& bundle_js
   page += "<script type=\"application/json\" id=\"antcd-view-data\">" +
           json_for_script(payload.json) + "</script>\n";
   if (served) {
-    page += "<script type=\"application/octet-stream\" id=\"antcd-view-blob\" "
-            "data-src=\"antcd-view.bin\"></script>\n";
+    page +=
+        "<script type=\"application/octet-stream\" id=\"antcd-view-blob\" "
+        "data-src=\"antcd-view.bin\"></script>\n";
   } else {
     page += "<script type=\"application/octet-stream\" id=\"antcd-view-blob\">";
     page += base64_encode(payload.blob);

@@ -44,8 +44,8 @@ constexpr std::size_t kMaxClients = 16;
 
 bool send_all(int fd, std::string_view data) {
   while (!data.empty()) {
-    const ssize_t n = ::send(fd, data.data(), std::min<std::size_t>(data.size(), 1 << 20),
-                             MSG_NOSIGNAL);
+    const ssize_t n =
+        ::send(fd, data.data(), std::min<std::size_t>(data.size(), 1 << 20), MSG_NOSIGNAL);
     if (n < 0 && errno == EINTR && g_stop == 0) continue;
     if (n <= 0) return false;
     data.remove_prefix(static_cast<std::size_t>(n));
@@ -53,8 +53,8 @@ bool send_all(int fd, std::string_view data) {
   return true;
 }
 
-void respond(int fd, int status, const char* reason, const std::string& type,
-             std::string_view body, bool head) {
+void respond(int fd, int status, const char* reason, const std::string& type, std::string_view body,
+             bool head) {
   const std::string header = "HTTP/1.0 " + std::to_string(status) + " " + reason +
                              "\r\nContent-Type: " + type +
                              "\r\nContent-Length: " + std::to_string(body.size()) +
@@ -115,8 +115,8 @@ int serve_files(const ServedFile* files, std::size_t count, std::uint16_t port) 
   addr.sin_port = htons(port);
   addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
   if (::bind(server.fd, reinterpret_cast<sockaddr*>(&addr), sizeof addr) != 0) {
-    throw UsageError("--port " + std::to_string(port) + ": cannot listen on 127.0.0.1: " +
-                     std::strerror(errno));
+    throw UsageError("--port " + std::to_string(port) +
+                     ": cannot listen on 127.0.0.1: " + std::strerror(errno));
   }
   if (::listen(server.fd, 16) != 0) {
     throw UsageError(std::string("--serve: listen: ") + std::strerror(errno));
@@ -125,12 +125,12 @@ int serve_files(const ServedFile* files, std::size_t count, std::uint16_t port) 
   ::getsockname(server.fd, reinterpret_cast<sockaddr*>(&addr), &len);
 
   g_stop = 0;
-  struct sigaction action{};
+  struct sigaction action {};
   action.sa_handler = on_signal;
   sigemptyset(&action.sa_mask);
   action.sa_flags = 0;  // no SA_RESTART: a blocked poll or recv returns EINTR at once
-  struct sigaction old_int{};
-  struct sigaction old_term{};
+  struct sigaction old_int {};
+  struct sigaction old_term {};
   ::sigaction(SIGINT, &action, &old_int);
   ::sigaction(SIGTERM, &action, &old_term);
 

@@ -13,7 +13,7 @@ namespace antcd::experiments::peers_bench {
 
 enum class Clearance { Deep, Shallow, Touching, Separated };
 inline constexpr std::array<Clearance, 4> kClearances = {Clearance::Deep, Clearance::Shallow,
-                                                  Clearance::Touching, Clearance::Separated};
+                                                         Clearance::Touching, Clearance::Separated};
 
 const char* clearance_name(Clearance c);
 /// How B is placed from the contact distance s*, e.g. "s = 0.7 s*".

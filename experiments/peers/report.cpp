@@ -101,8 +101,7 @@ void write_scenes(std::ostream& md, const std::vector<SceneRun>& scene_runs,
     const Series* base = run.find("antcd exact", "boolean");
     md << "### Scene `" << run.name << "`\n\n"
        << run.description << ". " << run.objects << " objects (" << run.moving << " moving), "
-       << run.models << " distinct meshes, " << run.triangles << " triangles in all, "
-       << run.frames
+       << run.models << " distinct meshes, " << run.triangles << " triangles in all, " << run.frames
        << " frames; antcd: " << num(base->candidates / static_cast<double>(run.frames))
        << " candidate pairs and " << num(run.colliding / static_cast<double>(run.frames))
        << " colliding object pairs per frame (mean), "
@@ -256,10 +255,10 @@ void write_pairs(std::ostream& md, const std::vector<PairCell>& cells, std::size
       worst_all = ra;
       worst_all_at = std::to_string(c.triangles) + " " + clearance_name(c.clearance);
     }
-    md << "| " << c.triangles << " | " << clearance_name(c.clearance) << " | "
-       << c.colliding_antcd << " / " << c.colliding_fcl << " of " << c.poses << " | "
-       << c.triangle_pairs_antcd << " / " << c.triangle_pairs_fcl << " | "
-       << num(median(c.antcd_bool_us)) << " | " << num(median(c.fcl_bool_us)) << " | "
+    md << "| " << c.triangles << " | " << clearance_name(c.clearance) << " | " << c.colliding_antcd
+       << " / " << c.colliding_fcl << " of " << c.poses << " | " << c.triangle_pairs_antcd << " / "
+       << c.triangle_pairs_fcl << " | " << num(median(c.antcd_bool_us)) << " | "
+       << num(median(c.fcl_bool_us)) << " | "
        << ratio(median(c.antcd_bool_us), median(c.fcl_bool_us)) << " | "
        << num(median(c.antcd_all_us)) << " | " << num(median(c.fcl_all_us)) << " | "
        << ratio(median(c.antcd_all_us), median(c.fcl_all_us)) << " | " << c.disagreements
@@ -296,9 +295,9 @@ void write_build(std::ostream& md, const std::vector<BuildRow>& builds, bool qui
   for (const BuildRow& b : builds) {
     worst_build = std::max(worst_build, b.antcd_ms / b.fcl_obbrss_ms);
     worst_mem = std::max(worst_mem, b.antcd_bytes_per_tri / b.fcl_obbrss_bytes_per_tri);
-    md << "| " << b.triangles << " | " << num(b.antcd_ms) << " | " << num(b.fcl_obbrss_ms)
-       << " | " << ratio(b.antcd_ms, b.fcl_obbrss_ms) << " | " << num(b.fcl_obb_ms) << " | "
-       << b.antcd_nodes << " | " << b.fcl_bvs << " | " << num(b.antcd_bytes_per_tri) << " | "
+    md << "| " << b.triangles << " | " << num(b.antcd_ms) << " | " << num(b.fcl_obbrss_ms) << " | "
+       << ratio(b.antcd_ms, b.fcl_obbrss_ms) << " | " << num(b.fcl_obb_ms) << " | " << b.antcd_nodes
+       << " | " << b.fcl_bvs << " | " << num(b.antcd_bytes_per_tri) << " | "
        << num(b.fcl_obbrss_bytes_per_tri) << " | "
        << ratio(b.antcd_bytes_per_tri, b.fcl_obbrss_bytes_per_tri) << " | "
        << num(b.fcl_obb_bytes_per_tri) << " |\n";
@@ -354,9 +353,8 @@ void write_scale(std::ostream& md, const std::vector<ScaleRow>& rows, std::size_
     md << "| " << r.objects << " | " << r.vertices_option << " | " << r.triangles << " | "
        << r.models << " | " << num(r.model_mib) << " | " << num(r.build_ms) << " | "
        << num(r.candidates) << " | " << num(r.colliding) << " | " << num(r.median_ms) << " | "
-       << num(r.p99_ms) << " | "
-       << (r.candidates > 0 ? num(1e3 * r.median_ms / r.candidates) : "—") << " | "
-       << num(r.rss_mib) << " |\n";
+       << num(r.p99_ms) << " | " << (r.candidates > 0 ? num(1e3 * r.median_ms / r.candidates) : "—")
+       << " | " << num(r.rss_mib) << " |\n";
     sc << r.objects << ',' << r.vertices_option << ',' << r.triangles << ',' << r.models << ','
        << r.frames << ',' << r.candidates << ',' << r.colliding << ',' << r.median_ms << ','
        << r.p99_ms << ',' << r.build_ms << ',' << r.model_mib << ',' << r.rss_mib << '\n';

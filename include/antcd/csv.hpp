@@ -26,7 +26,7 @@ namespace antcd {
 /// Opens `path` for reading, binary. Throws antcd::Error "<path>: <what> ..." when it is missing,
 /// not a regular file (a directory, device, FIFO or socket) or cannot be opened.
 ANTCD_IO_API std::ifstream open_regular_file(const std::filesystem::path& path,
-                                          const std::string& what);
+                                             const std::string& what);
 
 /// The lines of a stream, each at most `max_length` bytes (without its line break). A trailing
 /// '\r' is dropped; NUL and other bytes are kept as they are.

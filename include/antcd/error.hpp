@@ -53,8 +53,8 @@ class ANTCD_API ArgumentError : public Error {
   using Error::Error;
 };
 
-/// Appends the text of `x` that reads back as exactly the same double ("1.5", "-1", "inf", "nan"), for
-/// the numbers messages quote (each front end quotes them the same way): std::to_chars, the
+/// Appends the text of `x` that reads back as exactly the same double ("1.5", "-1", "inf", "nan"),
+/// for the numbers messages quote (each front end quotes them the same way): std::to_chars, the
 /// shortest such text, where the standard library has it for floating point; otherwise "%.17g",
 /// which also round-trips (libc++ 14, e.g. Emscripten 3.1's, lacks floating-point to_chars).
 inline void append_number_text(std::string& out, double x) {

@@ -98,18 +98,17 @@ struct TrianglePenetration {
 ///   triangles: A's face normal, B's face normal and the 9 cross products of an edge of A with an
 ///   edge of B (the face normals of the Minkowski difference A - B, so the minimum over them is
 ///   the exact penetration depth). Moving A by d along n, or B by d along -n, leaves them touching;
-///   any more separates them; every translation shorter than d leaves them intersecting. Touching triangles have d = 0 with the axis along which they touch. Ties go to
-///   the first axis in the order above, and of its two directions to the one with
-///   n·(nB - nA) >= 0 (for coplanar faces of two solids resting on each other, n = B's outward
-///   normal). Edge pairs within about 1e-6 rad of parallel are skipped (their cross product has
-///   no reliable direction).
+///   any more separates them; every translation shorter than d leaves them intersecting. Touching
+///   triangles have d = 0 with the axis along which they touch. Ties go to the first axis in the
+///   order above, and of its two directions to the one with n·(nB - nA) >= 0 (for coplanar faces of
+///   two solids resting on each other, n = B's outward normal). Edge pairs within about 1e-6 rad of
+///   parallel are skipped (their cross product has no reliable direction).
 /// - Triangles apart (distance dist > 0): n = (pa - pb) / dist from B's closest point to A's, and
 ///   d = -dist.
 /// Computed in doubles (not exact): about 1e-15 x the triangles' size for well-shaped triangles.
 /// Whether the triangles intersect is the exact predicate triangles_intersect.
 ANTCD_API TrianglePenetration triangle_penetration(const Vec3& a0, const Vec3& a1, const Vec3& a2,
-                                                   const Vec3& b0, const Vec3& b1,
-                                                   const Vec3& b2);
+                                                   const Vec3& b0, const Vec3& b1, const Vec3& b2);
 
 /// The query used by collision detection with threshold delta >= 0: true when the triangles
 /// intersect or their distance is <= delta. With delta == 0 this is exactly triangles_intersect.

@@ -73,10 +73,10 @@ struct PoseCheck {
 [[nodiscard]] inline PoseCheck check_pose(const Transform& pose, Scalar r30, Scalar r31, Scalar r32,
                                           Scalar r33) noexcept {
   PoseCheck c = check_pose(pose);
-  if (c.rigid() && !(std::abs(r30) + std::abs(r31) + std::abs(r32) + std::abs(r33 - 1) <=
-                     tolerance::kRigid)) {
+  if (c.rigid() &&
+      !(std::abs(r30) + std::abs(r31) + std::abs(r32) + std::abs(r33 - 1) <= tolerance::kRigid)) {
     c.fault = std::isfinite(r30 + r31 + r32 + r33) ? PoseCheck::Fault::NotAffine
-                                                    : PoseCheck::Fault::NotFinite;
+                                                   : PoseCheck::Fault::NotFinite;
   }
   return c;
 }

@@ -129,9 +129,11 @@ struct WitnessCheck {
 /// to a neighbouring triangle is found again without a traversal. stop_at_first: stops at the
 /// first valid pair, moved to the front (the other witnesses stay, untested); else keeps only
 /// the valid witnesses. Throws antcd::ArgumentError for a negative or non-finite delta.
-ANTCD_RANDOM_API WitnessCheck confirm_witnesses(const Model& a, const Transform& pose_a, const Model& b,
-                               const Transform& pose_b, Scalar delta, ColonyMemory& memory,
-                               bool stop_at_first, std::uint32_t neighbourhood = 0);
+ANTCD_RANDOM_API WitnessCheck confirm_witnesses(const Model& a, const Transform& pose_a,
+                                                const Model& b, const Transform& pose_b,
+                                                Scalar delta, ColonyMemory& memory,
+                                                bool stop_at_first,
+                                                std::uint32_t neighbourhood = 0);
 
 /// The whole random query of one model pair (section 4): the memory's witnesses first (each
 /// confirmed at the new poses by the exact test counts as a hit), else preliminary detection at
@@ -141,13 +143,14 @@ ANTCD_RANDOM_API WitnessCheck confirm_witnesses(const Model& a, const Transform&
 /// The scene runner (scene.hpp) runs exactly this per pair. `memory` may be null. Throws
 /// antcd::ArgumentError on invalid arguments.
 ANTCD_RANDOM_API DetectResult random_detect(const Model& a, const Transform& pose_a, const Model& b,
-                           const Transform& pose_b, const DetectRequest& request,
-                           ColonyMemory* memory = nullptr);
+                                            const Transform& pose_b, const DetectRequest& request,
+                                            ColonyMemory* memory = nullptr);
 
 /// One call: build_feature_space(a, pose_a, b, pose_b, sampling, request.seed), then search.
-ANTCD_RANDOM_API SearchResult random_collide(const Model& a, const Transform& pose_a, const Model& b,
-                            const Transform& pose_b, const SearchRequest& request = {},
-                            const SamplingOptions& sampling = {});
+ANTCD_RANDOM_API SearchResult random_collide(const Model& a, const Transform& pose_a,
+                                             const Model& b, const Transform& pose_b,
+                                             const SearchRequest& request = {},
+                                             const SamplingOptions& sampling = {});
 
 // ---- The same query in steps, for callers that share an evaluation budget ----
 

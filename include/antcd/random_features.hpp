@@ -138,9 +138,9 @@ ANTCD_RANDOM_API Scalar default_delta(Scalar radius_a, Scalar radius_b);
 /// frame and orders them (options.order). `seed` drives the sampling only. Models with no leaf
 /// pair give an empty space. Throws antcd::ArgumentError if samples_per_side is 0, delta is
 /// negative or not finite, or a set centroid_delta is not finite and > 0.
-ANTCD_RANDOM_API FeatureSpace build_feature_space(const Model& a, const Transform& pose_a, const Model& b,
-                                 const Transform& pose_b, const SamplingOptions& options = {},
-                                 std::uint64_t seed = 0);
-
+ANTCD_RANDOM_API FeatureSpace build_feature_space(const Model& a, const Transform& pose_a,
+                                                  const Model& b, const Transform& pose_b,
+                                                  const SamplingOptions& options = {},
+                                                  std::uint64_t seed = 0);
 
 }  // namespace antcd

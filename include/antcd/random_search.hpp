@@ -17,7 +17,6 @@ namespace antcd {
 
 // ---- Searches (sections 3.3–4) ----
 
-
 /// Readings of Eq. 12, eta = 1 / (d_oj + d_ij + d_js) (docs/random-detection.md argues them).
 enum class PathHeuristic {
   /// Default. d_oj = the length of the ant's path so far, d_ij = the step from the current cell
@@ -131,15 +130,16 @@ struct FeaturePair {
 struct ColonyMemory {
   std::uint32_t grid_a = 0;  ///< pheromone blocks per side (0 = not initialised)
   std::uint32_t grid_b = 0;
-  std::vector<float> log_tau;          ///< log2 of the pheromone, grid_a x grid_b
-  std::uint64_t iterations = 0;        ///< N_c: iterations run so far
-  double best_evaluation = 0;          ///< Eq. 13's bt (0 = none yet)
+  std::vector<float> log_tau;    ///< log2 of the pheromone, grid_a x grid_b
+  std::uint64_t iterations = 0;  ///< N_c: iterations run so far
+  double best_evaluation = 0;    ///< Eq. 13's bt (0 = none yet)
   /// Witnesses as positions in the two models' leaf order (Model::leaf_triangles() indices,
   /// pose-independent, like FeatureSide::position), most recent first.
   std::vector<std::pair<std::uint32_t, std::uint32_t>> witnesses;
   /// The last query of this pair (a scene frame) ended without a witness while its leaves
-  /// overlapped (undecided, or proven separate by a complete scan: a near miss). Its contact, if one appears, is new, so the next query traverses the
-  /// whole hierarchy at once instead of trying the nearest leaf pairs first.
+  /// overlapped (undecided, or proven separate by a complete scan: a near miss). Its contact, if
+  /// one appears, is new, so the next query traverses the whole hierarchy at once instead of trying
+  /// the nearest leaf pairs first.
   bool undecided = false;
   /// Largest number of witnesses kept.
   static constexpr std::size_t kMaxWitnesses = 64;
@@ -202,16 +202,16 @@ struct SearchResult {
   /// Smallest centroid distance evaluated (+inf if nothing was evaluated) and its cell.
   Scalar best_distance = std::numeric_limits<Scalar>::infinity();
   FeaturePair best;
-  std::uint64_t evaluations = 0;     ///< fitness (centroid distance) evaluations, repeats included
-  std::uint64_t witness_tests = 0;   ///< exact triangle tests run (Verdict::Witness)
-  std::uint32_t iterations = 0;  ///< iterations begun, over all runs (Exhaustive: rows visited;
-                                 ///< a leaf-pair scan: leaf pairs visited)
-  std::uint32_t runs = 0;        ///< runs begun (1 + restarts used)
+  std::uint64_t evaluations = 0;    ///< fitness (centroid distance) evaluations, repeats included
+  std::uint64_t witness_tests = 0;  ///< exact triangle tests run (Verdict::Witness)
+  std::uint32_t iterations = 0;     ///< iterations begun, over all runs (Exhaustive: rows visited;
+                                    ///< a leaf-pair scan: leaf pairs visited)
+  std::uint32_t runs = 0;           ///< runs begun (1 + restarts used)
   std::vector<ProgressMark> progress;  ///< one per SearchRequest::progress_marks, same order
   StopReason stop = StopReason::EmptySpace;
   /// The search enumerated the cells that can collide: Exhaustive and Grid (the whole space), or a
-  /// colony whose budget covered the overlapping leaf pairs' cells (AntParams::scan_covered_spaces).
-  /// With stop == Iterations, every such cell was tested.
+  /// colony whose budget covered the overlapping leaf pairs' cells
+  /// (AntParams::scan_covered_spaces). With stop == Iterations, every such cell was tested.
   bool scanned = false;
   Verdict verdict = Verdict::Witness;
   Scalar centroid_delta = 0;  ///< the centroid threshold used (PaperCentroid)
@@ -222,13 +222,12 @@ struct SearchResult {
 /// evaluations), and leaves its state and this search's witnesses in it. Throws
 /// antcd::ArgumentError on an invalid request.
 ANTCD_RANDOM_API SearchResult search(const FeatureSpace& space, const SearchRequest& request,
-                    ColonyMemory* memory = nullptr);
+                                     ColonyMemory* memory = nullptr);
 
 /// Number of colliding pairs in the space under `verdict` (centroid threshold `centroid_delta`,
 /// unset: the space's), by enumeration: the truth a detection rate is measured against.
 ANTCD_RANDOM_API std::uint64_t count_colliding(const FeatureSpace& space,
-                                        Verdict verdict = Verdict::Witness,
-                                        std::optional<Scalar> centroid_delta = std::nullopt);
-
+                                               Verdict verdict = Verdict::Witness,
+                                               std::optional<Scalar> centroid_delta = std::nullopt);
 
 }  // namespace antcd

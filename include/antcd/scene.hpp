@@ -9,7 +9,8 @@
 // - "poses" holds one pose (a static object) or exactly "frames" poses.
 // - "scale" is optional, uniform, > 0, default 1; it scales the mesh about its own origin before
 //   the pose is applied.
-// - Names are unique and non-empty. Quaternions within tolerance::kUnitQuaternion (1e-3) of unit length are normalised; others
+// - Names are unique and non-empty. Quaternions within tolerance::kUnitQuaternion (1e-3) of unit
+// length are normalised; others
 //   are an error. Every error names the scene file and the object.
 //
 // Engine: one Model per distinct (mesh file, scale), shared by the objects that use it, and one
@@ -30,10 +31,10 @@
 #pragma once
 
 #include <antcd/bvh.hpp>
-#include <antcd/scene_export.hpp>
 #include <antcd/mesh.hpp>
 #include <antcd/method.hpp>
 #include <antcd/random.hpp>
+#include <antcd/scene_export.hpp>
 
 #include <cstdint>
 #include <filesystem>
@@ -65,8 +66,9 @@ struct SceneDescription {
 
 /// Parses a scene from JSON text. `source` names the input in errors; relative mesh paths are
 /// resolved against `base_dir`. Mesh files are not opened here. Throws SceneError.
-ANTCD_SCENE_API SceneDescription parse_scene(std::string_view json_text, const std::filesystem::path& base_dir,
-                             const std::string& source);
+ANTCD_SCENE_API SceneDescription parse_scene(std::string_view json_text,
+                                             const std::filesystem::path& base_dir,
+                                             const std::string& source);
 /// Reads and parses a scene file. Throws SceneError.
 ANTCD_SCENE_API SceneDescription load_scene(const std::filesystem::path& path);
 /// Serialises a scene (mesh paths as in mesh_text) and writes it atomically. Throws Error.
@@ -112,8 +114,8 @@ struct SceneQuery {
 /// Scene::run_frame passes random_detect as DetectRequest::search.seed (without a frame budget,
 /// random_detect with it, the scene's other settings and the pair's memory gives the same verdict
 /// and evaluations as the frame).
-ANTCD_SCENE_API std::uint64_t scene_pair_seed(std::uint64_t seed, std::size_t frame, std::uint32_t i,
-                                        std::uint32_t j);
+ANTCD_SCENE_API std::uint64_t scene_pair_seed(std::uint64_t seed, std::size_t frame,
+                                              std::uint32_t i, std::uint32_t j);
 
 /// What the random methods carry from frame to frame, per object pair: the colony's pheromone,
 /// its iteration count and the last witnesses (ColonyMemory, random.hpp). Pass the same memory to

@@ -48,8 +48,7 @@
 
 namespace antcd {
 
-namespace detail {
-}  // namespace detail
+namespace detail {}  // namespace detail
 
 /// A handle to an object of a World. Compares and orders by (slot, generation).
 struct ObjectId {
@@ -60,10 +59,10 @@ struct ObjectId {
 };
 
 struct ObjectOptions {
-  std::string name;             ///< reported in errors; need not be unique
-  std::uint64_t user_tag = 0;   ///< free for the application
-  std::uint32_t group = 1;      ///< the bits this object belongs to
-  std::uint32_t mask = ~0U;     ///< the groups it may collide with
+  std::string name;            ///< reported in errors; need not be unique
+  std::uint64_t user_tag = 0;  ///< free for the application
+  std::uint32_t group = 1;     ///< the bits this object belongs to
+  std::uint32_t mask = ~0U;    ///< the groups it may collide with
 };
 
 struct WorldOptions {
@@ -135,7 +134,8 @@ struct NearestPair {
 
 /// Ray against one posed model: every hit triangle (closed triangles; a ray lying in a triangle's
 /// plane does not hit it), sorted by (distance, triangle). Thread-safe. `object` is left default.
-ANTCD_API std::vector<RayHit> raycast_all(const Model& model, const Transform& pose, const Ray& ray);
+ANTCD_API std::vector<RayHit> raycast_all(const Model& model, const Transform& pose,
+                                          const Ray& ray);
 /// The nearest hit of raycast_all (ties: smallest triangle index), or nothing.
 ANTCD_API std::optional<RayHit> raycast(const Model& model, const Transform& pose, const Ray& ray);
 
@@ -219,8 +219,7 @@ class ANTCD_API World {
   [[nodiscard]] std::vector<ObjectContacts> collide_object(
       ObjectId id, const CollisionRequest& request = {}) const;
   /// The objects that an external model at `pose` collides with, sorted by id.
-  [[nodiscard]] std::vector<ObjectContacts> collide_model(const Model& model,
-                                                          const Transform& pose,
+  [[nodiscard]] std::vector<ObjectContacts> collide_model(const Model& model, const Transform& pose,
                                                           const CollisionRequest& request = {},
                                                           const QueryFilter& filter = {}) const;
   /// Nearest queries. Each answer is the pair of least (distance, a, b) over the pairs it ranges

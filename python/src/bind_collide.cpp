@@ -36,18 +36,21 @@ void bind_collide(py::module_& m) {
       "every pair (each once, up to max_contacts). Arrays are built when read.")
       .def_readonly("colliding", &CollisionResult::colliding)
       .def("__bool__", [](const CollisionResult& r) { return r.colliding; })
-      .def("__len__", [](const CollisionResult& r) { return r.contacts.size(); },
-           "Number of contacts.")
+      .def(
+          "__len__", [](const CollisionResult& r) { return r.contacts.size(); },
+          "Number of contacts.")
       .def_property_readonly(
           "triangles_a",
           [](const CollisionResult& r) {
-            return make_vector<std::uint32_t>(r.contacts.size(), [&](std::size_t i) { return r.contacts[i].triangle_a; });
+            return make_vector<std::uint32_t>(
+                r.contacts.size(), [&](std::size_t i) { return r.contacts[i].triangle_a; });
           },
           "uint32[k]: each contact's triangle index in A's faces.")
       .def_property_readonly(
           "triangles_b",
           [](const CollisionResult& r) {
-            return make_vector<std::uint32_t>(r.contacts.size(), [&](std::size_t i) { return r.contacts[i].triangle_b; });
+            return make_vector<std::uint32_t>(
+                r.contacts.size(), [&](std::size_t i) { return r.contacts[i].triangle_b; });
           },
           "uint32[k]: each contact's triangle index in B's faces.")
       .def_property_readonly(
@@ -62,7 +65,8 @@ void bind_collide(py::module_& m) {
       .def_property_readonly(
           "distances",
           [](const CollisionResult& r) {
-            return make_vector<double>(r.contacts.size(), [&](std::size_t i) { return r.contacts[i].distance; });
+            return make_vector<double>(r.contacts.size(),
+                                       [&](std::size_t i) { return r.contacts[i].distance; });
           },
           "float64[k]: triangle-triangle distance of each contact (0 when they intersect).")
       .def_property_readonly(
@@ -77,14 +81,16 @@ void bind_collide(py::module_& m) {
       .def_property_readonly(
           "depths",
           [](const CollisionResult& r) {
-            return make_vector<double>(r.contacts.size(), [&](std::size_t i) { return r.contacts[i].depth; });
+            return make_vector<double>(r.contacts.size(),
+                                       [&](std::size_t i) { return r.contacts[i].depth; });
           },
           "float64[k], with contact_normals=True (zeros otherwise): each triangle pair's "
           "penetration depth (the shortest separating translation; -distance when apart).")
       .def_property_readonly(
           "regions",
           [](const CollisionResult& r) {
-            return make_vector<std::uint32_t>(r.contacts.size(), [&](std::size_t i) { return r.contacts[i].region; });
+            return make_vector<std::uint32_t>(r.contacts.size(),
+                                              [&](std::size_t i) { return r.contacts[i].region; });
           },
           "uint32[k], with manifold_points > 0: each kept contact's touching region.")
       .def_property_readonly(
@@ -153,10 +159,12 @@ void bind_collide(py::module_& m) {
         const CollisionRequest request;
         std::uint64_t hits = 0;
         const auto start = std::chrono::steady_clock::now();
-        for (std::uint64_t i = 0; i < repeats; ++i) hits += collide(a, pa, b, pb, request, result) ? 1 : 0;
+        for (std::uint64_t i = 0; i < repeats; ++i)
+          hits += collide(a, pa, b, pb, request, result) ? 1 : 0;
         const double seconds =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        if (hits != 0 && hits != repeats) throw std::logic_error("collide verdict changed between calls");
+        if (hits != 0 && hits != repeats)
+          throw std::logic_error("collide verdict changed between calls");
         return seconds / static_cast<double>(repeats);
       },
       py::arg("a"), py::arg("pose_a"), py::arg("b"), py::arg("pose_b"), py::arg("repeats"),

@@ -50,8 +50,8 @@ void bind_distance(py::module_& m) {
       .def("__repr__", [](const DistanceResult& r) {
         std::ostringstream s;
         s.precision(17);
-        s << "<antcd.DistanceResult distance=" << r.distance << " triangles=(" << r.triangle_a << ", "
-          << r.triangle_b << ")" << (r.intersecting ? " intersecting" : "") << ">";
+        s << "<antcd.DistanceResult distance=" << r.distance << " triangles=(" << r.triangle_a
+          << ", " << r.triangle_b << ")" << (r.intersecting ? " intersecting" : "") << ">";
         return s.str();
       });
 
@@ -62,7 +62,8 @@ void bind_distance(py::module_& m) {
         const Transform pa = to_transform(pose_a, "pose_a");
         const Transform pb = to_transform(pose_b, "pose_b");
         if (!(upper_bound >= 0)) {
-          throw py::value_error("upper_bound must be >= 0 (inf: no bound), got " + std::to_string(upper_bound));
+          throw py::value_error("upper_bound must be >= 0 (inf: no bound), got " +
+                                std::to_string(upper_bound));
         }
         DistanceRequest request;
         request.upper_bound = upper_bound;

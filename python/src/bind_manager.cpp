@@ -1,4 +1,5 @@
-// python/src/bind_manager.cpp — antcd._World, the engine under antcd.CollisionManager (collision.py).
+// python/src/bind_manager.cpp — antcd._World, the engine under antcd.CollisionManager
+// (collision.py).
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
@@ -16,14 +17,15 @@ ManagedWorld::Mode parse_mode(std::string_view mode) {
   if (mode == "verdict") return ManagedWorld::Mode::Verdict;
   if (mode == "pairs") return ManagedWorld::Mode::Pairs;
   if (mode == "contacts") return ManagedWorld::Mode::Contacts;
-  throw py::value_error("mode must be 'verdict', 'pairs' or 'contacts', got '" + std::string(mode) + "'");
+  throw py::value_error("mode must be 'verdict', 'pairs' or 'contacts', got '" + std::string(mode) +
+                        "'");
 }
 
 py::list to_python(std::vector<ManagedWorld::Hit> hits) {
   py::list out;
   for (ManagedWorld::Hit& h : hits) {
-    out.append(py::make_tuple(h.a, h.b, std::move(h.result), std::const_pointer_cast<Model>(h.model_a),
-                              to_matrix(h.pose_a)));
+    out.append(py::make_tuple(h.a, h.b, std::move(h.result),
+                              std::const_pointer_cast<Model>(h.model_a), to_matrix(h.pose_a)));
   }
   return out;
 }

@@ -18,8 +18,9 @@ namespace {
 Method parse_search_method(std::string_view name) {
   const Method method = parse_method(name);  // ArgumentError (ValueError) for an unknown name
   if (!is_search_method(method)) {
-    throw py::value_error("random_collide needs a search method (maco, aco, pso, ga or exhaustive), got '" +
-                          std::string(name) + "': use collide() for exact detection");
+    throw py::value_error(
+        "random_collide needs a search method (maco, aco, pso, ga or exhaustive), got '" +
+        std::string(name) + "': use collide() for exact detection");
   }
   return method;
 }
@@ -60,19 +61,20 @@ void bind_random(py::module_& m) {
       "exact. bool(result) is result.found.")
       .def_property_readonly("found", [](const RandomResult& r) { return r.search.found; })
       .def("__bool__", [](const RandomResult& r) { return r.search.found; })
-      .def_property_readonly("method", [](const RandomResult& r) { return std::string(method_name(r.method)); })
+      .def_property_readonly(
+          "method", [](const RandomResult& r) { return std::string(method_name(r.method)); })
       .def_property_readonly(
           "triangles_a",
           [](const RandomResult& r) {
-            return make_vector<std::uint32_t>(r.search.hits.size(),
-                                              [&](std::size_t i) { return r.search.hits[i].triangle_a; });
+            return make_vector<std::uint32_t>(
+                r.search.hits.size(), [&](std::size_t i) { return r.search.hits[i].triangle_a; });
           },
           "uint32[k]: A's triangle of each distinct colliding feature pair, in the order found.")
       .def_property_readonly(
           "triangles_b",
           [](const RandomResult& r) {
-            return make_vector<std::uint32_t>(r.search.hits.size(),
-                                              [&](std::size_t i) { return r.search.hits[i].triangle_b; });
+            return make_vector<std::uint32_t>(
+                r.search.hits.size(), [&](std::size_t i) { return r.search.hits[i].triangle_b; });
           },
           "uint32[k]: B's triangle of each hit.")
       .def_property_readonly(
@@ -85,23 +87,29 @@ void bind_random(py::module_& m) {
       .def_property_readonly(
           "cells",
           [](const RandomResult& r) {
-            return make_rows<std::uint32_t>(r.search.hits.size(), 2, [&](std::size_t i, std::uint32_t* o) {
-              o[0] = r.search.hits[i].i;
-              o[1] = r.search.hits[i].j;
-            });
+            return make_rows<std::uint32_t>(r.search.hits.size(), 2,
+                                            [&](std::size_t i, std::uint32_t* o) {
+                                              o[0] = r.search.hits[i].i;
+                                              o[1] = r.search.hits[i].j;
+                                            });
           },
           "uint32[k, 2]: the grid cell (i, j) of each hit in the feature space.")
-      .def_property_readonly("best_distance", [](const RandomResult& r) { return r.search.best_distance; },
-                             "Smallest centroid distance evaluated (inf when nothing was).")
-      .def_property_readonly("evaluations", [](const RandomResult& r) { return r.search.evaluations; },
-                             "Fitness evaluations, repeats included.")
-      .def_property_readonly("iterations", [](const RandomResult& r) { return r.search.iterations; })
+      .def_property_readonly(
+          "best_distance", [](const RandomResult& r) { return r.search.best_distance; },
+          "Smallest centroid distance evaluated (inf when nothing was).")
+      .def_property_readonly(
+          "evaluations", [](const RandomResult& r) { return r.search.evaluations; },
+          "Fitness evaluations, repeats included.")
+      .def_property_readonly("iterations",
+                             [](const RandomResult& r) { return r.search.iterations; })
       .def_property_readonly("runs", [](const RandomResult& r) { return r.search.runs; })
-      .def_property_readonly("delta", [](const RandomResult& r) { return r.delta; },
-                             "collide()'s threshold the flow ran with (culling and witness test).")
-      .def_property_readonly("stop", [](const RandomResult& r) { return std::string(stop_name(r.search.stop)); },
-                             "Why the search stopped: empty-space, first-hit, target, iterations, "
-                             "evaluations or time.")
+      .def_property_readonly(
+          "delta", [](const RandomResult& r) { return r.delta; },
+          "collide()'s threshold the flow ran with (culling and witness test).")
+      .def_property_readonly(
+          "stop", [](const RandomResult& r) { return std::string(stop_name(r.search.stop)); },
+          "Why the search stopped: empty-space, first-hit, target, iterations, "
+          "evaluations or time.")
       .def("__repr__", [](const RandomResult& r) {
         return "<antcd.RandomResult method=" + std::string(method_name(r.method)) +
                " found=" + (r.search.found ? "True" : "False") +
@@ -126,7 +134,8 @@ void bind_random(py::module_& m) {
           if (d == -1.0 && PyErr_Occurred() != nullptr) throw py::error_already_set();
           sampling.delta = to_non_negative(d, "delta");
         }
-        request.iterations = static_cast<std::uint32_t>(to_count(iterations, "iterations", 1, 1'000'000'000));
+        request.iterations =
+            static_cast<std::uint32_t>(to_count(iterations, "iterations", 1, 1'000'000'000));
         const auto m_agents = static_cast<std::uint32_t>(to_count(agents, "agents", 2, 1'000'000));
         request.ant.ants = m_agents;
         request.pso.particles = m_agents;
@@ -135,8 +144,8 @@ void bind_random(py::module_& m) {
         request.stop.max_evaluations = to_count(max_evaluations, "max_evaluations", 0,
                                                 std::numeric_limits<std::uint64_t>::max());
         request.restarts = static_cast<std::uint32_t>(to_count(restarts, "restarts", 0, 1'000'000));
-        sampling.samples_per_side =
-            static_cast<std::uint32_t>(to_count(samples_per_side, "samples_per_side", 1, 10'000'000));
+        sampling.samples_per_side = static_cast<std::uint32_t>(
+            to_count(samples_per_side, "samples_per_side", 1, 10'000'000));
         RandomResult result;
         result.method = request.method;
         result.delta = sampling.delta;

@@ -31,7 +31,8 @@ struct SceneRun {
   std::vector<std::string> names;
 };
 
-PyScene open_scene(const py::handle path_in, const py::handle leaf_size, const std::string& covariance) {
+PyScene open_scene(const py::handle path_in, const py::handle leaf_size,
+                   const std::string& covariance) {
   BuildOptions options;
   options.leaf_size = static_cast<std::uint32_t>(to_count(leaf_size, "leaf_size", 1, 1u << 20));
   options.covariance = parse_covariance(covariance);
@@ -41,7 +42,8 @@ PyScene open_scene(const py::handle path_in, const py::handle leaf_size, const s
   return PyScene{std::make_shared<Scene>(load_scene(path), options), path.string()};
 }
 
-py::array_t<std::uint32_t> pair_array(const std::vector<std::pair<std::uint32_t, std::uint32_t>>& pairs) {
+py::array_t<std::uint32_t> pair_array(
+    const std::vector<std::pair<std::uint32_t, std::uint32_t>>& pairs) {
   return make_rows<std::uint32_t>(pairs.size(), 2, [&](std::size_t i, std::uint32_t* o) {
     o[0] = pairs[i].first;
     o[1] = pairs[i].second;
@@ -133,14 +135,15 @@ void bind_scene(py::module_& m) {
       .def_property_readonly(
           "times_ms",
           [](const SceneRun& r) {
-            return make_vector<double>(r.frames.size(), [&](std::size_t i) { return r.frames[i].time_ms; });
+            return make_vector<double>(r.frames.size(),
+                                       [&](std::size_t i) { return r.frames[i].time_ms; });
           },
           "float64[f]: wall time of each frame (pose update + broad phase + narrow phase), ms.")
       .def_property_readonly(
           "feature_hits",
           [](const SceneRun& r) {
-            return make_vector<std::uint64_t>(r.frames.size(),
-                                              [&](std::size_t i) { return r.frames[i].feature_hits; });
+            return make_vector<std::uint64_t>(
+                r.frames.size(), [&](std::size_t i) { return r.frames[i].feature_hits; });
           },
           "uint64[f]: random methods: colliding feature pairs found per frame.")
       .def_property_readonly(

@@ -31,7 +31,8 @@ std::string dtype_of(const py::array& a) { return py::str(a.dtype()).cast<std::s
 py::array as_array(py::handle value, std::string_view name) {
   if (value.is_none()) throw py::value_error(str(name) + " must be an array, got None");
   // numpy.asarray, looked up once (intentionally leaked: no destructor runs after Python's exit).
-  static const py::object* const asarray = new py::object(py::module_::import("numpy").attr("asarray"));
+  static const py::object* const asarray =
+      new py::object(py::module_::import("numpy").attr("asarray"));
   try {
     return (*asarray)(value);
   } catch (py::error_already_set& e) {
@@ -152,7 +153,8 @@ Transform to_transform(py::handle pose, std::string_view name) {
     if (m.ndim() != 2 || m.shape(0) != 4 || m.shape(1) != 4) {
       throw py::value_error(str(name) +
                             " must be a 4x4 homogeneous matrix or a (rotation 3x3, translation 3) "
-                            "pair, got shape " + shape_of(m));
+                            "pair, got shape " +
+                            shape_of(m));
     }
     std::copy_n(m.data(), 16, d);
   }
@@ -249,7 +251,8 @@ std::string_view covariance_name(CovarianceMethod method) {
   return method == CovarianceMethod::VertexMean ? "vertex" : "area";
 }
 
-std::uint64_t to_count(py::handle value, std::string_view name, std::uint64_t lo, std::uint64_t hi) {
+std::uint64_t to_count(py::handle value, std::string_view name, std::uint64_t lo,
+                       std::uint64_t hi) {
   // Python ints and numpy integers (anything with __index__), never bools or floats.
   if (py::isinstance<py::bool_>(value) || PyIndex_Check(value.ptr()) == 0) {
     throw py::value_error(str(name) + " must be an integer, got " +
@@ -273,7 +276,8 @@ std::uint64_t to_count(py::handle value, std::string_view name, std::uint64_t lo
 
 double to_non_negative(double value, std::string_view name) {
   if (!std::isfinite(value) || value < 0) {
-    throw py::value_error(str(name) + " must be a finite number >= 0, got " + std::to_string(value));
+    throw py::value_error(str(name) + " must be a finite number >= 0, got " +
+                          std::to_string(value));
   }
   return value;
 }

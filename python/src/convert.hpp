@@ -53,9 +53,10 @@ double to_non_negative(double value, std::string_view name);
 /// A read-only numpy view of `count` x `cols` elements at `data`, kept alive by `owner`.
 template <typename T>
 py::array_t<T> readonly_view(const T* data, std::size_t count, std::size_t cols, py::handle owner) {
-  py::array_t<T> a({static_cast<py::ssize_t>(count), static_cast<py::ssize_t>(cols)},
-                   {static_cast<py::ssize_t>(cols * sizeof(T)), static_cast<py::ssize_t>(sizeof(T))},
-                   data, owner);
+  py::array_t<T> a(
+      {static_cast<py::ssize_t>(count), static_cast<py::ssize_t>(cols)},
+      {static_cast<py::ssize_t>(cols * sizeof(T)), static_cast<py::ssize_t>(sizeof(T))}, data,
+      owner);
   a.attr("flags").attr("writeable") = false;
   return a;
 }

@@ -47,9 +47,9 @@ class ManagedWorld {
 
   /// The closest pair of a minimum-distance query.
   struct Nearest {
-    bool found = false;  ///< false when there is no pair (then distance is +inf)
-    Id a = 0;            ///< this world's object
-    Id b = 0;            ///< the other object (distance_single: 0)
+    bool found = false;     ///< false when there is no pair (then distance is +inf)
+    Id a = 0;               ///< this world's object
+    Id b = 0;               ///< the other object (distance_single: 0)
     DistanceResult result;  ///< A = object a's model, B = object b's (or the query's)
   };
 
@@ -60,14 +60,16 @@ class ManagedWorld {
   bool set_pose(Id id, const Transform& pose);
   [[nodiscard]] std::size_t size() const;
 
-  /// Colliding pairs among this world's objects, a added before b (ObjectId order). Sorted by (a, b).
+  /// Colliding pairs among this world's objects, a added before b (ObjectId order). Sorted by (a,
+  /// b).
   [[nodiscard]] std::vector<Hit> collide_internal(Mode mode, Scalar delta = 0) const;
   /// Objects colliding with `model` at `pose`: Hit::a is the object, B is `model`. Sorted by a.
-  [[nodiscard]] std::vector<Hit> collide_single(const Model& model, const Transform& pose, Mode mode,
-                                                Scalar delta = 0) const;
+  [[nodiscard]] std::vector<Hit> collide_single(const Model& model, const Transform& pose,
+                                                Mode mode, Scalar delta = 0) const;
   /// Colliding pairs (this world's a, other's b), sorted by (a, b). `other` may be *this (every
   /// object then also meets itself, as two managers holding the same objects would).
-  [[nodiscard]] std::vector<Hit> collide_other(const ManagedWorld& other, Mode mode, Scalar delta = 0) const;
+  [[nodiscard]] std::vector<Hit> collide_other(const ManagedWorld& other, Mode mode,
+                                               Scalar delta = 0) const;
 
   /// The closest pair of distinct objects of this world: signed distance (distance.hpp,
   /// signed_distance: -penetration depth when two closed objects overlap) for closed pairs, the

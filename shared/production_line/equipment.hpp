@@ -16,7 +16,8 @@ inline constexpr Scalar kRollerPitch = 0.25;
 inline constexpr Scalar kRollerAxisZ = 0.80;
 inline constexpr Scalar kRollerTop = kRollerAxisZ + kRollerRadius;
 inline constexpr Scalar kRailHalfY = 0.04;
-inline constexpr Scalar kRailY = kRollerLength / 2 + 0.02 + kRailHalfY;  // 2 cm gap to the roller ends
+inline constexpr Scalar kRailY =
+    kRollerLength / 2 + 0.02 + kRailHalfY;  // 2 cm gap to the roller ends
 inline constexpr Scalar kSheetHalfX = 0.45;
 inline constexpr Scalar kSheetHalfY = 0.45;
 inline constexpr Scalar kSheetHalfZ = 0.005;
@@ -28,7 +29,8 @@ inline constexpr Scalar kStationGap = 1.2;  ///< plus 0–0.3 m from the seed
 inline constexpr Scalar kPlatenHalfX = 0.60;
 inline constexpr Scalar kPlatenHalfZ = 0.05;
 inline constexpr Scalar kPressLength = 3.2;
-inline constexpr Scalar kPressSheetTravel = 1.10;  ///< sheet centre: from -travel (off the platen) to 0
+inline constexpr Scalar kPressSheetTravel =
+    1.10;  ///< sheet centre: from -travel (off the platen) to 0
 inline constexpr Scalar kPressOpening = 0.40;
 
 // Robot: shoulder 0.9 m above the floor, both links 1 m.

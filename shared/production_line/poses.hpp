@@ -57,5 +57,4 @@ inline Mat3 z_to_y() {
   return r;
 }
 
-
 }  // namespace antcd::shared::line

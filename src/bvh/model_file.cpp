@@ -10,8 +10,8 @@
 // order, only degenerate triangles left out, volumes that hold their subtrees) before the Model
 // exists.
 #include <antcd/bvh.hpp>
-#include <antcd/geometry.hpp>
 #include <antcd/file.hpp>
+#include <antcd/geometry.hpp>
 #include <antcd/tolerances.hpp>
 
 #include "bvh/model_cache.hpp"

@@ -118,9 +118,8 @@ bool Model::refit(std::span<const Vec3> new_vertices, double rebuild_above) {
     std::copy(cl.begin(), cl.end(), points.begin());
     std::copy(cr.begin(), cr.end(), points.begin() + 8);
     const Obb box = fit_points(axes, points);
-    const Scalar from_children =
-        std::max((left.center - box.center).norm() + left.radius,
-                 (right.center - box.center).norm() + right.radius);
+    const Scalar from_children = std::max((left.center - box.center).norm() + left.radius,
+                                          (right.center - box.center).norm() + right.radius);
     detail::store_volumes(node, box, std::min(from_children, box.half_extents.norm()));
   }
   stats_.obb_volume_sum = 0;

@@ -43,8 +43,8 @@ std::size_t split_items(std::span<Item> tris, std::size_t depth) {
   const auto first = tris.begin();
   const auto last = tris.end();
   if (depth < kMedianDepth) {
-    auto mid = std::partition(first, last,
-                              [&](const Item& t) { return dir.dot(t.centroid) < split; });
+    auto mid =
+        std::partition(first, last, [&](const Item& t) { return dir.dot(t.centroid) < split; });
     if (mid != first && mid != last) return static_cast<std::size_t>(mid - first);
   }
   const auto mid = first + static_cast<std::ptrdiff_t>(n / 2);

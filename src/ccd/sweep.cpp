@@ -16,12 +16,12 @@
 #include <string>
 #include <vector>
 
+#include <antcd/pose.hpp>
 #include "ccd/first_contact.hpp"
 #include "ccd/motion.hpp"
 #include "ccd/swept_proximity.hpp"
 #include "distance/seeded.hpp"
 #include "util/check.hpp"
-#include <antcd/pose.hpp>
 
 namespace antcd {
 namespace {

@@ -3,8 +3,8 @@
 
 #include "bvh/traverse.hpp"
 #include "exact/manifold.hpp"
-#include "points/point_index.hpp"
 #include "geometry/penetration.hpp"
+#include "points/point_index.hpp"
 #include "util/check.hpp"
 
 #include <array>

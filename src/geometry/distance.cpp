@@ -26,10 +26,10 @@ Scalar point_segment_distance_squared(const Vec3& p, const Vec3& a, const Vec3& 
   return (p - c).squaredNorm();
 }
 
-// The interior critical point of |p(s) - q(t)|² for p(s) = p0 + s (p1 - p0), q(t) = q0 + t (q1 - q0):
-// when both parameters lie in [0, 1], its squared distance (x, y receive the points); otherwise,
-// or for parallel segments, +inf. The other candidates of a segment pair's minimum have an end
-// point of one segment, which callers cover separately.
+// The interior critical point of |p(s) - q(t)|² for p(s) = p0 + s (p1 - p0), q(t) = q0 + t (q1 -
+// q0): when both parameters lie in [0, 1], its squared distance (x, y receive the points);
+// otherwise, or for parallel segments, +inf. The other candidates of a segment pair's minimum have
+// an end point of one segment, which callers cover separately.
 Scalar segment_interior_distance_squared(const Vec3& p0, const Vec3& p1, const Vec3& q0,
                                          const Vec3& q1, Vec3& x, Vec3& y) {
   const Vec3 d1 = p1 - p0;

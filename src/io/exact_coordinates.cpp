@@ -187,9 +187,9 @@ std::optional<std::vector<Vec3>> ply_coordinates(const std::string& text) {
   const std::string_view all(text);
   PlyHeader header;
   if (!parse_ply_header(all, header).empty()) return std::nullopt;
-  const bool foreign_order =
-      header.format == PlyFormat::BinaryBigEndian ||
-      (header.format == PlyFormat::BinaryLittleEndian && std::endian::native != std::endian::little);
+  const bool foreign_order = header.format == PlyFormat::BinaryBigEndian ||
+                             (header.format == PlyFormat::BinaryLittleEndian &&
+                              std::endian::native != std::endian::little);
   if (foreign_order) return std::nullopt;
   const bool ascii = header.format == PlyFormat::Ascii;
   const std::vector<PlyElement>& elements = header.elements;

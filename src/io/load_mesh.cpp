@@ -21,8 +21,8 @@
 
 #include "io/exact_coordinates.hpp"
 #include "io/ply_layout.hpp"
-#include "io/stl_binary.hpp"
 #include "io/polygon_soup.hpp"
+#include "io/stl_binary.hpp"
 
 #include <assimp/config.h>
 #include <assimp/mesh.h>
@@ -374,16 +374,15 @@ Mesh load_mesh(const std::filesystem::path& path) {
   // The whole text, for assimp's OFF reader's check and for the coordinates of OFF and PLY. The
   // OFF reader gets a file by extension, or by content starting with "off" (unless .stl).
   const detail::CoordinateFormat coordinates = detail::coordinate_format(path);
-  const bool off_content = head_size >= 3 && (head[0] | 0x20) == 'o' &&
-                           (head[1] | 0x20) == 'f' && (head[2] | 0x20) == 'f';
+  const bool off_content = head_size >= 3 && (head[0] | 0x20) == 'o' && (head[1] | 0x20) == 'f' &&
+                           (head[2] | 0x20) == 'f';
   const bool off_reader = ext == ".off" || (off_content && ext != ".stl");
   // assimp's PLY reader gets a file by extension, or by content starting with "ply" when no
   // reader of its extension takes it.
-  const bool ply_content = head_size >= 3 && (head[0] | 0x20) == 'p' &&
-                           (head[1] | 0x20) == 'l' && (head[2] | 0x20) == 'y';
-  const bool ply_reader =
-      ext == ".ply" || (ply_content && !off_reader && ext != ".stl" &&
-                        detail::text_format(path) != detail::TextFormat::Obj);
+  const bool ply_content = head_size >= 3 && (head[0] | 0x20) == 'p' && (head[1] | 0x20) == 'l' &&
+                           (head[2] | 0x20) == 'y';
+  const bool ply_reader = ext == ".ply" || (ply_content && !off_reader && ext != ".stl" &&
+                                            detail::text_format(path) != detail::TextFormat::Obj);
   if (const std::string problem =
           unterminated_ply_header(path, std::string_view(head.data(), head_size));
       !problem.empty()) {

@@ -154,7 +154,8 @@ PolygonSoup read_obj(const std::filesystem::path& path, const std::string& sourc
     }
   }
   for (const tinyobj::shape_t& shape : shapes) {
-    for (const tinyobj::index_t& index : shape.mesh.indices) soup.corners.push_back(index.vertex_index);
+    for (const tinyobj::index_t& index : shape.mesh.indices)
+      soup.corners.push_back(index.vertex_index);
     for (const auto count : shape.mesh.num_face_vertices) soup.corner_counts.push_back(count);
   }
   return soup;

@@ -195,8 +195,7 @@ std::string unsafe_ply_layout(std::string_view text) {
       continue;
     }
     if (!e.name.empty() && e.name.front() >= '0' && e.name.front() <= '9') {
-      return "the PLY element name '" + std::string(e.name.substr(0, 40)) +
-             "' starts with a digit";
+      return "the PLY element name '" + std::string(e.name.substr(0, 40)) + "' starts with a digit";
     }
     for (std::size_t later = k + 1; later < header.elements.size(); ++later) {
       if (e.count > 0 && known(header.elements[later].name)) {

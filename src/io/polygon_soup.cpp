@@ -71,8 +71,8 @@ void triangulate(const std::vector<Vec3>& p, Triangles& tri) {
   const int v = (drop + 2) % 3;
   const Scalar sign = normal[drop] < 0 ? -1 : 1;
   auto cross2 = [&](std::size_t a, std::size_t b, std::size_t c) {
-    return sign * ((p[b][u] - p[a][u]) * (p[c][v] - p[a][v]) -
-                   (p[b][v] - p[a][v]) * (p[c][u] - p[a][u]));
+    return sign *
+           ((p[b][u] - p[a][u]) * (p[c][v] - p[a][v]) - (p[b][v] - p[a][v]) * (p[c][u] - p[a][u]));
   };
   std::vector<std::uint32_t> ring(n);
   for (std::uint32_t i = 0; i < n; ++i) ring[i] = i;

@@ -6,8 +6,8 @@
 #include "io/polygon_soup.hpp"
 #include "util/huge_pages.hpp"
 
-#include <antcd/file.hpp>
 #include <antcd/error.hpp>
+#include <antcd/file.hpp>
 
 #include <array>
 #include <bit>
@@ -129,8 +129,8 @@ Mesh read_binary_stl(const std::filesystem::path& path, const std::string& sourc
   while (done < facets) {
     const std::size_t count = std::min<std::size_t>(kFacetsPerBlock, facets - done);
     if (std::fread(block.data(), kFacetBytes, count, file.get()) != count) {
-      throw MeshError(source, "cannot be read: the file ended or failed at facet " +
-                                  std::to_string(done));
+      throw MeshError(source,
+                      "cannot be read: the file ended or failed at facet " + std::to_string(done));
     }
     for (std::size_t f = 0; f < count; ++f) {
       const unsigned char* corner = block.data() + f * kFacetBytes + 12;  // after the normal
@@ -138,8 +138,8 @@ Mesh read_binary_stl(const std::filesystem::path& path, const std::string& sourc
       for (int k = 0; k < 3; ++k, corner += 12) {
         const Vec3 p(read_f32(corner), read_f32(corner + 4), read_f32(corner + 8));
         if (!p.allFinite()) {
-          throw MeshError(source, "facet " + std::to_string(done + f) +
-                                      " has a non-finite coordinate");
+          throw MeshError(source,
+                          "facet " + std::to_string(done + f) + " has a non-finite coordinate");
         }
         tri[k] = table.find_or_add(p, mesh.vertices, source);
       }

@@ -1,6 +1,6 @@
 // Mesh basics: bounds, degenerate-triangle count, validation, OBJ output, merge and transform.
-#include <antcd/geometry.hpp>
 #include <antcd/file.hpp>
+#include <antcd/geometry.hpp>
 #include <antcd/mesh.hpp>
 
 #include <array>
@@ -9,7 +9,6 @@
 #include <limits>
 #include <string>
 #include <system_error>
-
 
 namespace antcd {
 

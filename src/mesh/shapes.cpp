@@ -214,8 +214,7 @@ Mesh make_torus(Scalar major, Scalar minor, int major_segments, int minor_segmen
   if (!(minor < major)) {
     // With minor >= major the tube reaches the axis: the inner ring collapses or self-intersects.
     throw antcd::ArgumentError("antcd::make_torus: minor radius (" + number_text(minor) +
-                               ") must be smaller than major radius (" +
-                               number_text(major) + ")");
+                               ") must be smaller than major radius (" + number_text(major) + ")");
   }
   require_count("make_torus", "major_segments", major_segments, 3);
   require_count("make_torus", "minor_segments", minor_segments, 3);

@@ -20,9 +20,9 @@ struct PointIndex {
   std::vector<std::uint32_t> fan_first;
   std::vector<std::array<std::uint32_t, 2>> fan_edges;
   /// Angle-weighted pseudo-normals, pointing out of the solid (flipped when the whole surface
-  /// faces inward, i.e. encloses a negative volume): per leaf triangle k (leaf order) its unit face normal and
-  /// the (unnormalised) normal sums of its edges (v_i, v_{i+1}); per mesh vertex the angle-weighted
-  /// sum of its triangles' normals.
+  /// faces inward, i.e. encloses a negative volume): per leaf triangle k (leaf order) its unit face
+  /// normal and the (unnormalised) normal sums of its edges (v_i, v_{i+1}); per mesh vertex the
+  /// angle-weighted sum of its triangles' normals.
   std::vector<Vec3> face_normal;
   std::vector<std::array<Vec3, 3>> edge_normal;
   std::vector<Vec3> vertex_normal;

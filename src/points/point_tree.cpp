@@ -95,8 +95,8 @@ namespace {
 /// Lower bound of the squared distance from p to triangle t (see PointTree::Triangle).
 Scalar triangle_bound_squared(const PointTree::Triangle& t, const Vec3& p) {
   const Scalar h = t.n.dot(p) - t.nd;
-  const Scalar e = std::max({t.md[0] - t.m[0].dot(p), t.md[1] - t.m[1].dot(p),
-                             t.md[2] - t.m[2].dot(p), Scalar{0}});
+  const Scalar e = std::max(
+      {t.md[0] - t.m[0].dot(p), t.md[1] - t.m[1].dot(p), t.md[2] - t.m[2].dot(p), Scalar{0}});
   return h * h + e * e;
 }
 

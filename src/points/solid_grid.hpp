@@ -16,8 +16,8 @@ namespace antcd::detail {
 /// meets the closed cell. The unmarked cells fall into face-connected components; the surface
 /// meets no component's closed union, so the winding number is constant on it, and is computed
 /// once at a cell centre (for at most about 1000 + n/16 components; any further ones are left
-/// undecided, like surface cells). A point in an unmarked cell (or outside the grid, where the winding
-/// number is 0) gets its answer from the cell; one in a surface cell needs a point query.
+/// undecided, like surface cells). A point in an unmarked cell (or outside the grid, where the
+/// winding number is 0) gets its answer from the cell; one in a surface cell needs a point query.
 class SolidGrid {
  public:
   enum : std::uint8_t { kSurface = 0, kOutside = 1, kInside = 2 };

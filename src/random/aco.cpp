@@ -21,9 +21,9 @@
 #include <limits>
 #include <vector>
 
+#include "random/engines.hpp"
 #include "random/fast_math.hpp"
 #include "random/lane_vectors.hpp"
-#include "random/engines.hpp"
 #include "random/recorder.hpp"
 
 namespace antcd::detail {
@@ -238,8 +238,7 @@ ANTCD_VECTOR_CLONES void run_colony(const FeatureSpace& space, const SearchReque
   // Pheromone grid over the models' leaf order, carried in the memory.
   const std::uint32_t ga = grid_size(p.pheromone_resolution, space.a.model_triangles);
   const std::uint32_t gb = grid_size(p.pheromone_resolution, space.b.model_triangles);
-  if (memory.grid_a != ga || memory.grid_b != gb ||
-      memory.log_tau.size() != std::size_t{ga} * gb) {
+  if (memory.grid_a != ga || memory.grid_b != gb || memory.log_tau.size() != std::size_t{ga} * gb) {
     const auto witnesses = std::move(memory.witnesses);
     memory.clear();
     memory.witnesses = witnesses;
@@ -275,8 +274,8 @@ ANTCD_VECTOR_CLONES void run_colony(const FeatureSpace& space, const SearchReque
   std::vector<StartRange> starts;
   if (p.start == AntStart::LeafPairs) {
     for (const auto& [la, lb] : space.overlaps) {
-      const StartRange r{space.a.leaf_start[la], space.a.leaf_start[la + 1],
-                         space.b.leaf_start[lb], space.b.leaf_start[lb + 1]};
+      const StartRange r{space.a.leaf_start[la], space.a.leaf_start[la + 1], space.b.leaf_start[lb],
+                         space.b.leaf_start[lb + 1]};
       if (r.a0 != r.a1 && r.b0 != r.b1) starts.push_back(r);
     }
   }
@@ -284,7 +283,7 @@ ANTCD_VECTOR_CLONES void run_colony(const FeatureSpace& space, const SearchReque
   const std::size_t path_capacity = std::size_t{p.steps} + 1;
   std::vector<Cell> paths(std::size_t{p.ants} * path_capacity);
   std::vector<std::uint32_t> path_length(p.ants);
-  std::vector<double> tour_length(p.ants);  // L_k
+  std::vector<double> tour_length(p.ants);           // L_k
   std::vector<double> pending(log_tau.size(), 0.0);  // deposits of this iteration, per block
   std::vector<std::uint8_t> is_touched(log_tau.size(), 0);
   std::vector<std::uint32_t> touched;  // blocks with a pending deposit, in first-touch order
@@ -299,8 +298,8 @@ ANTCD_VECTOR_CLONES void run_colony(const FeatureSpace& space, const SearchReque
   const auto unit = static_cast<float>(space.centroid_delta);  // > 0: the length unit
   const float denom_floor = 1e-6f * unit;
   const auto log_tau_floor = static_cast<float>(std::log2(1e-9 * p.tau0));
-  double bt = memory.best_evaluation > 0 ? memory.best_evaluation
-                                         : std::numeric_limits<double>::infinity();
+  double bt =
+      memory.best_evaluation > 0 ? memory.best_evaluation : std::numeric_limits<double>::infinity();
 
   // J_k(c): the 8 neighbours at distance 1 (lanes 0–7), then the 8 at distance hop (8–15). The
   // directions are listed so that lane 7 - k (8 + 15 - k) is the opposite move of lane k.
@@ -392,13 +391,13 @@ ANTCD_VECTOR_CLONES void run_colony(const FeatureSpace& space, const SearchReque
             on_path[half] |= (lanes::U8)(lane_i[half] == pi) & (lanes::U8)(lane_j[half] == pj);
           }
         }
-        const std::uint32_t ok_mask = lanes::to_mask(lane_ok[0] & ~on_path[0],
-                                                     lane_ok[1] & ~on_path[1]);
+        const std::uint32_t ok_mask =
+            lanes::to_mask(lane_ok[0] & ~on_path[0], lane_ok[1] & ~on_path[1]);
         if (ok_mask == 0) break;  // boxed in by its own path at a border
         // The candidates stay in their lanes (lane order is candidate order): the lanes of
         // ok_mask. The other lanes are computed and never chosen.
-        const bool interior = cur.i >= hop_a && cur.i + hop_a < na && cur.j >= hop_b &&
-                              cur.j + hop_b < nb;
+        const bool interior =
+            cur.i >= hop_a && cur.i + hop_a < na && cur.j >= hop_b && cur.j + hop_b < nb;
         if (interior) {
           gather_interior(space, cur.i, cur.j, hop_a, hop_b, witness, lanes);
         } else {
@@ -416,8 +415,8 @@ ANTCD_VECTOR_CLONES void run_colony(const FeatureSpace& space, const SearchReque
           lanes::spread_rows(block_row.data(), cur.i, hop_a, row.data());
           lanes::spread_columns(block_col.data(), cur.j, hop_b, col.data());
           for (std::uint32_t half = 0; half < 2; ++half) {
-            lanes::store(cand_block.data() + 8 * half, lanes::load(row.data() + 8 * half) +
-                                                           lanes::load(col.data() + 8 * half));
+            lanes::store(cand_block.data() + 8 * half,
+                         lanes::load(row.data() + 8 * half) + lanes::load(col.data() + 8 * half));
           }
         } else {
           for (std::uint32_t k = 0; k < kCandidates; ++k) {

@@ -4,8 +4,8 @@
 
 #include <antcd/random.hpp>
 
-#include "random/recorder.hpp"
 #include <antcd/rng.hpp>
+#include "random/recorder.hpp"
 
 #include <cstdint>
 

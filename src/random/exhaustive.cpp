@@ -28,9 +28,8 @@ struct RowScan {
   float min2;
   int within;
 };
-ANTCD_VECTOR_CLONES RowScan scan_row(const FeatureSide& b, std::uint32_t count, float ax,
-                                     float ay, float az, float reach_a, bool witness,
-                                     float centroid) {
+ANTCD_VECTOR_CLONES RowScan scan_row(const FeatureSide& b, std::uint32_t count, float ax, float ay,
+                                     float az, float reach_a, bool witness, float centroid) {
   const float* bx = b.x.data();
   const float* by = b.y.data();
   const float* bz = b.z.data();
@@ -223,8 +222,8 @@ std::uint64_t count_colliding(const FeatureSpace& space, Verdict verdict,
   for (std::uint32_t i = 0; i < space.a.size(); ++i) {
     const float ax = space.a.x[i], ay = space.a.y[i], az = space.a.z[i];
     const float reach_a = witness ? space.a.radius[i] + t.delta : 0.0f;
-    const detail::RowScan row = detail::scan_row(space.b, nb, ax, ay, az, reach_a, witness,
-                                                 t.centroid);
+    const detail::RowScan row =
+        detail::scan_row(space.b, nb, ax, ay, az, reach_a, witness, t.centroid);
     if (row.within == 0) continue;
     if (!witness) {
       total += static_cast<std::uint64_t>(row.within);

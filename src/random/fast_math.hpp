@@ -43,7 +43,7 @@ inline float fast_log2(float x) {
 inline float fast_exp2(float x) {
   x = x < -126.0f ? -126.0f : (x > 126.0f ? 126.0f : x);
   const std::int32_t whole = static_cast<std::int32_t>(x) - (x < 0 ? 1 : 0);  // floor, or one less
-  const float f = x - static_cast<float>(whole);                                // [0, 1]
+  const float f = x - static_cast<float>(whole);                              // [0, 1]
   const float p = ((0.07912522f * f + 0.22494631f) * f + 0.69592847f) * f + 1.0f;  // 2^f, [1, 2]
   // p's exponent field is 127 (or 128 at f = 1); adding `whole` to it scales by 2^whole.
   return std::bit_cast<float>(std::bit_cast<std::uint32_t>(p) +

@@ -321,5 +321,4 @@ Verdict parse_verdict(std::string_view text) {
                       "' (expected witness or paper-centroid)");
 }
 
-
 }  // namespace antcd

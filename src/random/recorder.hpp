@@ -22,9 +22,9 @@ bool witness_test(const FeatureSpace& space, std::uint32_t i, std::uint32_t j);
 /// The resolved thresholds of a search.
 struct Thresholds {
   Verdict verdict = Verdict::Witness;
-  float delta = 0;           ///< collide()'s delta, as float, rounded up (reach filter)
-  float centroid2 = 0;       ///< PaperCentroid: squared centroid threshold
-  float centroid = 0;        ///< PaperCentroid: centroid threshold
+  float delta = 0;      ///< collide()'s delta, as float, rounded up (reach filter)
+  float centroid2 = 0;  ///< PaperCentroid: squared centroid threshold
+  float centroid = 0;   ///< PaperCentroid: centroid threshold
 };
 /// Unset centroid_delta: the space's. A set one must be finite and >= 0, else ArgumentError naming
 /// `caller`.

@@ -9,7 +9,6 @@
 #include <cmath>
 #include <limits>
 
-
 namespace antcd {
 
 std::uint64_t scene_pair_seed(std::uint64_t seed, std::size_t frame, std::uint32_t i,

@@ -35,12 +35,11 @@ PairOutcome query_pair(const PairSide& a, const PairSide& b, const SceneQuery& q
 using ForEach = std::function<void(std::size_t, const std::function<void(std::size_t)>&)>;
 
 /// Runs a random method on every candidate pair of a frame: random_detect's query per pair
-/// (PairDetection, antcd/random.hpp), whole, or with a frame budget in steps that share the budget in rounds.
-/// `memory` is empty or holds one ColonyMemory per pair. Deterministic: each pair's random stream
-/// depends on (query.seed, frame, a.index, b.index, round) and its memory only.
-void random_frame(const std::vector<std::pair<PairSide, PairSide>>& pairs,
-                  const SceneQuery& query, std::size_t frame,
-                  const std::vector<ColonyMemory*>& memory, std::vector<PairOutcome>& out,
-                  const ForEach& for_each);
+/// (PairDetection, antcd/random.hpp), whole, or with a frame budget in steps that share the budget
+/// in rounds. `memory` is empty or holds one ColonyMemory per pair. Deterministic: each pair's
+/// random stream depends on (query.seed, frame, a.index, b.index, round) and its memory only.
+void random_frame(const std::vector<std::pair<PairSide, PairSide>>& pairs, const SceneQuery& query,
+                  std::size_t frame, const std::vector<ColonyMemory*>& memory,
+                  std::vector<PairOutcome>& out, const ForEach& for_each);
 
 }  // namespace antcd::detail

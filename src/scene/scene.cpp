@@ -15,10 +15,10 @@
 #include <mutex>
 #include <stdexcept>
 
+#include <antcd/pose.hpp>
 #include "scene/pair_query.hpp"
 #include "util/check.hpp"
 #include "util/parallel.hpp"
-#include <antcd/pose.hpp>
 
 namespace antcd {
 
@@ -215,8 +215,8 @@ FrameResult Scene::run_frame(std::size_t frame, const SceneQuery& query,
     const auto hit = [&](std::size_t k, CollisionResult& scratch) {
       const auto [i, j] = cand[k];
       if (hints.owns_lock()) {
-        return collide(model_of(i), pose(i), model_of(j), pose(j), request,
-                                        scratch, broad_->witnesses[k].second);
+        return collide(model_of(i), pose(i), model_of(j), pose(j), request, scratch,
+                       broad_->witnesses[k].second);
       }
       return collide(model_of(i), pose(i), model_of(j), pose(j), request, scratch);
     };

@@ -15,7 +15,6 @@
 #include <string_view>
 #include <utility>
 
-
 namespace antcd::detail {
 
 [[noreturn]] inline void argument_error(std::string_view function, std::string_view argument,

@@ -304,8 +304,8 @@ class AabbTree {
   }
   [[gnu::always_inline]] static bool near(const Node& a, const Node& b, Scalar gap) {
     if (gap == 0) {  // exact in single precision
-      return a.lo[0] <= b.hi[0] && b.lo[0] <= a.hi[0] && a.lo[1] <= b.hi[1] &&
-             b.lo[1] <= a.hi[1] && a.lo[2] <= b.hi[2] && b.lo[2] <= a.hi[2];
+      return a.lo[0] <= b.hi[0] && b.lo[0] <= a.hi[0] && a.lo[1] <= b.hi[1] && b.lo[1] <= a.hi[1] &&
+             a.lo[2] <= b.hi[2] && b.lo[2] <= a.hi[2];
     }
     for (int k = 0; k < 3; ++k) {
       if (static_cast<Scalar>(a.lo[k]) - gap > static_cast<Scalar>(b.hi[k]) ||
@@ -344,10 +344,10 @@ class AabbTree {
   std::vector<std::int32_t> leaf_of_;  // by object; kNull when absent
   std::int32_t root_ = kNull;
   std::size_t leaves_ = 0;
-  std::size_t changes_ = 0;        // incremental changes since the last rebuild
-  bool ordered_ = false;           // nodes_ in depth-first order, none free (rebuild, relayout)
-  bool stable_ = false;            // no leaf inserted or removed since the last refit
-  Scalar built_area_ = 0;          // relative_area() right after the last rebuild
+  std::size_t changes_ = 0;  // incremental changes since the last rebuild
+  bool ordered_ = false;     // nodes_ in depth-first order, none free (rebuild, relayout)
+  bool stable_ = false;      // no leaf inserted or removed since the last refit
+  Scalar built_area_ = 0;    // relative_area() right after the last rebuild
 };
 
 }  // namespace antcd::detail

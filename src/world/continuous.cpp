@@ -12,10 +12,10 @@
 #include <utility>
 #include <vector>
 
+#include <antcd/pose.hpp>
 #include "ccd/motion.hpp"
 #include "util/check.hpp"
 #include "util/parallel.hpp"
-#include <antcd/pose.hpp>
 #include "world/world_impl.hpp"
 
 namespace antcd {

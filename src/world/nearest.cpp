@@ -7,8 +7,8 @@
 // exceed the distance of the pairs below them and pruning is strict, so every pair that could tie
 // with the best is measured: the answer is the least (distance, a, b), whatever the tree's shape.
 #include <antcd/distance.hpp>
-#include <antcd/penetration.hpp>
 #include <antcd/error.hpp>
+#include <antcd/penetration.hpp>
 #include <antcd/world.hpp>
 
 #include <algorithm>

@@ -61,7 +61,8 @@ void sort_pairs(std::vector<SlotPair>& pairs, std::size_t slots) {
   }
   const std::uint64_t low = (std::uint64_t{1} << bits) - 1;
   for (std::size_t k = 0; k < pairs.size(); ++k) {
-    pairs[k] = {static_cast<std::uint32_t>(keys[k] >> bits), static_cast<std::uint32_t>(keys[k] & low)};
+    pairs[k] = {static_cast<std::uint32_t>(keys[k] >> bits),
+                static_cast<std::uint32_t>(keys[k] & low)};
   }
 }
 
@@ -140,8 +141,8 @@ bool spheres_apart(const Object& a, const Object& b, Scalar delta) {
   const Sphere sb = b.model->root().sphere();
   const Vec3 ca = a.pose.apply(sa.center);
   const Vec3 cb = b.pose.apply(sb.center);
-  const Scalar scale = sa.radius + sb.radius + 2 * (sa.center.norm() + sb.center.norm()) +
-                       ca.norm() + cb.norm();
+  const Scalar scale =
+      sa.radius + sb.radius + 2 * (sa.center.norm() + sb.center.norm()) + ca.norm() + cb.norm();
   const Scalar reach = sa.radius + sb.radius + delta + 10 * tolerance::kVolume * scale;
   return (ca - cb).squaredNorm() > reach * reach;
 }
@@ -226,28 +227,31 @@ std::vector<PairContacts> World::collide_all(const CollisionRequest& request) co
   const std::vector<SlotPair> candidates = self_pairs(w, tolerance::widened(delta));
   std::vector<PairContacts> results(candidates.size());
   std::vector<char> hit(candidates.size(), 0);
-  for_each_pair(candidates.size(), [&](std::size_t k) {
-    const auto [i, j] = candidates[k];
-    const Bounds& bi = w.bounds[i];
-    if (!detail::boxes_overlap(grown(bi.box, exact_growth(bi, delta)), w.bounds[j].box) ||
-        !w.admits(i, j)) {
-      return;
-    }
-    const Object& a = w.objects[i];
-    const Object& b = w.objects[j];
-    if (spheres_apart(a, b, delta)) return;
-    CollisionResult r;
-    if (collide(*a.model, a.pose, *b.model, b.pose, request, r)) {
-      hit[k] = 1;
-      results[k].contacts = std::move(r.contacts);
-    }
-  }, [&](std::size_t k) {
-    // The second objects of the sorted pairs are scattered through memory: load them ahead.
-    const std::uint32_t j = candidates[k].second;
-    ANTCD_PREFETCH(&w.bounds[j]);
-    ANTCD_PREFETCH(&w.objects[j]);
-    ANTCD_PREFETCH(&w.objects[j].pose.translation);
-  });
+  for_each_pair(
+      candidates.size(),
+      [&](std::size_t k) {
+        const auto [i, j] = candidates[k];
+        const Bounds& bi = w.bounds[i];
+        if (!detail::boxes_overlap(grown(bi.box, exact_growth(bi, delta)), w.bounds[j].box) ||
+            !w.admits(i, j)) {
+          return;
+        }
+        const Object& a = w.objects[i];
+        const Object& b = w.objects[j];
+        if (spheres_apart(a, b, delta)) return;
+        CollisionResult r;
+        if (collide(*a.model, a.pose, *b.model, b.pose, request, r)) {
+          hit[k] = 1;
+          results[k].contacts = std::move(r.contacts);
+        }
+      },
+      [&](std::size_t k) {
+        // The second objects of the sorted pairs are scattered through memory: load them ahead.
+        const std::uint32_t j = candidates[k].second;
+        ANTCD_PREFETCH(&w.bounds[j]);
+        ANTCD_PREFETCH(&w.objects[j]);
+        ANTCD_PREFETCH(&w.objects[j].pose.translation);
+      });
   std::vector<PairContacts> out;
   for (std::size_t k = 0; k < candidates.size(); ++k) {
     if (!hit[k]) continue;
@@ -307,9 +311,8 @@ std::vector<ObjectContacts> World::collide_object(ObjectId id,
   const Object& o = w.get(id, "World::collide_object", "id");
   detail::require_non_negative("World::collide_object", "request.delta", request.delta);
   const Aabb query = grown(w.bounds[id.slot].box, exact_growth(w.bounds[id.slot], request.delta));
-  return against_world(w, *o.model, o.pose, query, request, [&](std::uint32_t j) {
-    return j != id.slot && w.admits(id.slot, j);
-  });
+  return against_world(w, *o.model, o.pose, query, request,
+                       [&](std::uint32_t j) { return j != id.slot && w.admits(id.slot, j); });
 }
 
 std::vector<ObjectContacts> World::collide_model(const Model& model, const Transform& pose,

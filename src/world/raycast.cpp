@@ -136,17 +136,16 @@ Vec3 checked_ray_direction(const Ray& ray, const char* function) {
   }
   if (!ray.direction.allFinite() || ray.direction.squaredNorm() == 0) {
     const Vec3& d = ray.direction;
-    detail::argument_error(fn, "ray.direction", "finite and non-zero",
-                           "(" + number_text(d.x()) + ", " +
-                               number_text(d.y()) + ", " + number_text(d.z()) +
-                               ")");
+    detail::argument_error(
+        fn, "ray.direction", "finite and non-zero",
+        "(" + number_text(d.x()) + ", " + number_text(d.y()) + ", " + number_text(d.z()) + ")");
   }
   detail::require_bound(fn, "ray.max_distance", ray.max_distance);
   return ray.direction.normalized();
 }
 
-void model_ray_hits(const Model& model, const Transform& pose, const Ray& ray,
-                    const Vec3& unit_dir, std::vector<RayHit>& out) {
+void model_ray_hits(const Model& model, const Transform& pose, const Ray& ray, const Vec3& unit_dir,
+                    std::vector<RayHit>& out) {
   const LocalRay r = to_local(pose, ray, unit_dir);
   const std::size_t first = out.size();
   walk(model, r, &r.max_distance, [&](std::uint32_t k, Scalar s) {

@@ -9,9 +9,9 @@
 #include <sstream>
 #include <string>
 
+#include <antcd/pose.hpp>
 #include "util/check.hpp"
 #include "util/parallel.hpp"
-#include <antcd/pose.hpp>
 #include "world/world_impl.hpp"
 
 namespace antcd {
@@ -71,15 +71,14 @@ const World::Impl::Object& World::Impl::get(ObjectId id, const char* function,
                                             const char* argument) const {
   if (!contains(id)) {
     throw ArgumentError(std::string(function) + ": " + argument + " " + describe(id) +
-                                " is not an object of this world (removed, or never added)");
+                        " is not an object of this world (removed, or never added)");
   }
   return objects[id.slot];
 }
 
 Aabb World::Impl::fattened(std::uint32_t slot) const {
   const Bounds& b = bounds[slot];
-  return grown(b.box, settings.fat_fraction * objects[slot].model->root().radius +
-                          2 * b.tolerance);
+  return grown(b.box, settings.fat_fraction * objects[slot].model->root().radius + 2 * b.tolerance);
 }
 
 World::World(const WorldOptions& options) : impl_(std::make_unique<Impl>()) {
@@ -103,7 +102,8 @@ ObjectId World::add(std::shared_ptr<const Model> model, const Transform& pose,
     slot = w.free_slots.back();
     w.free_slots.pop_back();
   } else {
-    if (w.objects.size() >= UINT32_MAX - 1) throw ArgumentError("World::add: too many objects (2^32 - 2)");
+    if (w.objects.size() >= UINT32_MAX - 1)
+      throw ArgumentError("World::add: too many objects (2^32 - 2)");
     slot = static_cast<std::uint32_t>(w.objects.size());
     w.objects.emplace_back();
     w.bounds.emplace_back();
@@ -147,7 +147,8 @@ void World::remove(ObjectId id) {
 
 void World::set_pose(ObjectId id, const Transform& pose) {
   const Impl::Object& o = impl_->get(id, "World::set_pose", "id");
-  if (!check_pose(pose).rigid()) require_rigid(pose, "World::set_pose", "pose of " + object_label(o, id));
+  if (!check_pose(pose).rigid())
+    require_rigid(pose, "World::set_pose", "pose of " + object_label(o, id));
   set_poses(std::span<const ObjectId>(&id, 1), std::span<const Transform>(&pose, 1));
 }
 
@@ -155,7 +156,7 @@ void World::set_poses(std::span<const ObjectId> ids, std::span<const Transform> 
   Impl& w = *impl_;
   if (ids.size() != poses.size()) {
     throw ArgumentError("World::set_poses: " + std::to_string(ids.size()) + " ids but " +
-                                std::to_string(poses.size()) + " poses");
+                        std::to_string(poses.size()) + " poses");
   }
   // Every argument is checked before anything changes: in parallel on a large batch, then the first
   // bad one (if any) again, on this thread, for its message.
@@ -181,8 +182,9 @@ void World::set_poses(std::span<const ObjectId> ids, std::span<const Transform> 
   if (first_bad < ids.size()) {
     const std::size_t k = first_bad;
     w.get(ids[k], "World::set_poses", ("ids[" + std::to_string(k) + "]").c_str());
-    require_rigid(poses[k], "World::set_poses",
-               "poses[" + std::to_string(k) + "] of " + object_label(w.objects[ids[k].slot], ids[k]));
+    require_rigid(
+        poses[k], "World::set_poses",
+        "poses[" + std::to_string(k) + "] of " + object_label(w.objects[ids[k].slot], ids[k]));
   }
   w.apply_poses(ids, poses);
 }
@@ -215,7 +217,8 @@ void World::Impl::apply_poses(std::span<const ObjectId> ids, std::span<const Tra
   // world unless loaded a few objects ahead.
   constexpr std::size_t kAhead = 8;
   const auto fit_range = [&](std::size_t first, std::size_t last) {
-    for (std::size_t k = first; k < std::min(last, first + kAhead); ++k) w.tree.prefetch(ids[k].slot);
+    for (std::size_t k = first; k < std::min(last, first + kAhead); ++k)
+      w.tree.prefetch(ids[k].slot);
     for (std::size_t k = first; k < last; ++k) {
       if (k + kAhead < last) w.tree.prefetch(ids[k + kAhead].slot);
       fit(k);
@@ -284,8 +287,7 @@ void World::ignore_pair(ObjectId a, ObjectId b, bool ignored) {
   Impl::Object& oa = w.get(a, "World::ignore_pair", "a");
   Impl::Object& ob = w.get(b, "World::ignore_pair", "b");
   if (a.slot == b.slot) {
-    throw ArgumentError("World::ignore_pair: a and b are the same " +
-                                object_label(oa, a));
+    throw ArgumentError("World::ignore_pair: a and b are the same " + object_label(oa, a));
   }
   const auto set = [&](std::vector<std::uint32_t>& list, std::uint32_t slot) {
     const auto it = std::lower_bound(list.begin(), list.end(), slot);
@@ -301,9 +303,7 @@ void World::ignore_pair(ObjectId a, ObjectId b, bool ignored) {
 
 std::size_t World::size() const { return impl_->live; }
 
-bool World::contains(ObjectId id) const {
-  return impl_->contains(id);
-}
+bool World::contains(ObjectId id) const { return impl_->contains(id); }
 
 std::vector<ObjectId> World::objects() const {
   std::vector<ObjectId> out;

@@ -54,15 +54,15 @@ class CliQueries : public ::testing::Test {
 };
 
 TEST_F(CliQueries, RunReportsEachPairsDistanceInTheOrderOfPairs) {
-  const json plain = run_json({"run", "scene.json", "--delta", "0.65", "--out", "plain.json"},
-                              "plain.json");
+  const json plain =
+      run_json({"run", "scene.json", "--delta", "0.65", "--out", "plain.json"}, "plain.json");
   ASSERT_EQ(plain["frames"].size(), 3u);
   for (const json& f : plain["frames"]) EXPECT_FALSE(f.contains("distances"));
   EXPECT_FALSE(plain.contains("volume"));
 
-  const json j = run_json(
-      {"run", "scene.json", "--delta", "0.65", "--report-distance", "--out", "run.json"},
-      "run.json");
+  const json j =
+      run_json({"run", "scene.json", "--delta", "0.65", "--report-distance", "--out", "run.json"},
+               "run.json");
   const Model big(load_mesh(work_ / "big.obj"));
   const Model small(load_mesh(work_ / "small.obj"));
   const std::vector<Scalar> x = {1, 0.1, 1.7};
@@ -90,9 +90,9 @@ TEST_F(CliQueries, RunReportsEachPairsDistanceInTheOrderOfPairs) {
 TEST_F(CliQueries, RunVolumeFindsTheBoxInsideAndIsOnlyForTheExactMethod) {
   const json surface = run_json({"run", "scene.json", "--out", "surface.json"}, "surface.json");
   EXPECT_EQ(surface["frames"][1]["pairs"], json::array());
-  const json volume = run_json(
-      {"run", "scene.json", "--volume", "--report-distance", "--out", "volume.json"},
-      "volume.json");
+  const json volume =
+      run_json({"run", "scene.json", "--volume", "--report-distance", "--out", "volume.json"},
+               "volume.json");
   EXPECT_EQ(volume["volume"], true);
   EXPECT_EQ(volume["frames"][0]["pairs"], json::parse(R"([["big", "small"]])"));
   EXPECT_EQ(volume["frames"][1]["pairs"], json::parse(R"([["big", "small"]])"));
@@ -108,8 +108,9 @@ TEST_F(CliQueries, RunVolumeFindsTheBoxInsideAndIsOnlyForTheExactMethod) {
 }
 
 TEST_F(CliQueries, CollidePrintsTheLibrarysNormalsDepthsAndManifold) {
-  const std::vector<std::string> base = {"collide", "big.obj", "small.obj", "--pose-b",
-                                         "1,0.1,0.05,0.9659258,0,0,0.258819", "--all", "--json"};
+  const std::vector<std::string> base = {
+      "collide", "big.obj", "small.obj", "--pose-b", "1,0.1,0.05,0.9659258,0,0,0.258819",
+      "--all",   "--json"};
   const test::CliRun plain = run(base);
   ASSERT_EQ(plain.exit_code, 0) << plain.err;
   const json p = json::parse(plain.out);
@@ -126,8 +127,7 @@ TEST_F(CliQueries, CollidePrintsTheLibrarysNormalsDepthsAndManifold) {
   CollisionRequest req;
   req.all_contacts = true;
   req.contact_normals = true;
-  const Transform pb =
-      Transform::from_quaternion(Vec3(1, 0.1, 0.05), 0.9659258, 0, 0, 0.258819);
+  const Transform pb = Transform::from_quaternion(Vec3(1, 0.1, 0.05), 0.9659258, 0, 0, 0.258819);
   const CollisionResult lib = collide(big, Transform::identity(), small, pb, req);
   ASSERT_EQ(n["contacts"].size(), lib.contacts.size());
   for (std::size_t k = 0; k < lib.contacts.size(); ++k) {

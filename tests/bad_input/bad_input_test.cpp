@@ -858,8 +858,10 @@ TEST_F(Cli, HostilePointsFiles) {
   expect_usage_failure({"points", "tet.obj", "spaces.csv"}, "spaces.csv:2: line longer");
   expect_usage_failure({"points", "tet.obj", "nul.csv"}, "nul.csv:2");
   expect_usage_failure({"points", "tet.obj", "binary.csv"}, "binary.csv");
-  expect_usage_failure({"points", "tet.obj", "fifo.csv"}, "fifo.csv: cannot open the points file: is not a regular file");
-  expect_usage_failure({"points", "tet.obj", "/dev/zero"}, "/dev/zero: cannot open the points file: is not a regular file");
+  expect_usage_failure({"points", "tet.obj", "fifo.csv"},
+                       "fifo.csv: cannot open the points file: is not a regular file");
+  expect_usage_failure({"points", "tet.obj", "/dev/zero"},
+                       "/dev/zero: cannot open the points file: is not a regular file");
 }
 
 TEST_F(Cli, ThirdPartyMessagesStayOffStderr) {

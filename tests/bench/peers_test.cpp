@@ -1,5 +1,6 @@
 // antcd against FCL (and Bullet) on a small generated scene: the quick cross-check behind
-// `antcd bench peers` (experiments/peers/peers_bench.hpp). Built only when FCL and Bullet are found.
+// `antcd bench peers` (experiments/peers/peers_bench.hpp). Built only when FCL and Bullet are
+// found.
 #include <antcd/scene.hpp>
 
 #include <gtest/gtest.h>

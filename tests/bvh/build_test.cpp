@@ -340,8 +340,8 @@ TEST(BvhNodeStorage, ExtentsAndRadiiAreRoundedUpToFloats) {
 TEST(BvhBuild, ModelTakesAtMost100BytesPerTriangle) {
   // Issue 12's memory target: mesh (vertices, indices) + nodes + leaf order, here on closed and
   // flat tessellations at the default leaf size.
-  for (const Mesh& mesh : {make_sphere(1.0, 512, 256), make_torus(1.0, 0.3, 256, 128),
-                           make_box(Vec3(1, 2, 3), 64)}) {
+  for (const Mesh& mesh :
+       {make_sphere(1.0, 512, 256), make_torus(1.0, 0.3, 256, 128), make_box(Vec3(1, 2, 3), 64)}) {
     const Model model(mesh);
     const BvhStats& s = model.stats();
     const double per_triangle =

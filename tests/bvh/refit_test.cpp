@@ -1,5 +1,6 @@
 // Model::refit: after moving the vertices, every query answers as on a Model built from the moved
-// mesh; the volumes still bound their triangles; bad input is rejected and leaves the Model as it was.
+// mesh; the volumes still bound their triangles; bad input is rejected and leaves the Model as it
+// was.
 #include <antcd/bvh.hpp>
 #include <antcd/collide.hpp>
 #include <antcd/distance.hpp>
@@ -50,7 +51,8 @@ TEST(Refit, QueriesMatchAFreshlyBuiltModel) {
     for (const BvhNode& node : refitted.nodes()) {
       if (!node.is_leaf()) continue;
       for (std::uint32_t k = 0; k < 3 * node.count; ++k) {
-        const Vec3 v = refitted.leaf_corners()(node.first_or_right + k / 3, static_cast<int>(k % 3));
+        const Vec3 v =
+            refitted.leaf_corners()(node.first_or_right + k / 3, static_cast<int>(k % 3));
         const Vec3 local = node.axes().transpose() * (v - node.center);
         ASSERT_TRUE(((local.cwiseAbs() - node.half_extents()).array() <= 1e-12).all());
         ASSERT_LE((v - node.center).norm(), node.radius + 1e-12);

@@ -60,8 +60,8 @@ TEST_P(DistanceAgainstFcl, SameDistanceOnThousandsOfPoses) {
   const Model b(load_mesh(test::assimp_model(c.b)), {}, c.b);
   const auto fa = fcl_model(a.mesh());
   const auto fb = fcl_model(b.mesh());
-  const Scalar scale = a.root().radius + b.root().radius +
-                       a.root().center.norm() + b.root().center.norm();
+  const Scalar scale =
+      a.root().radius + b.root().radius + a.root().center.norm() + b.root().center.norm();
   std::mt19937_64 rng(2026);
   std::normal_distribution<Scalar> gauss;
   int separated = 0, near = 0, zero = 0;
@@ -74,8 +74,8 @@ TEST_P(DistanceAgainstFcl, SameDistanceOnThousandsOfPoses) {
     const Mat3 rot = test::random_pose(rng, 0).rotation;
     const Vec3 dir = Vec3(gauss(rng), gauss(rng), gauss(rng)).normalized();
     const auto vertex = [&](const Mesh& m) {
-      const auto& t = m.triangles[std::uniform_int_distribution<std::size_t>(
-          0, m.triangles.size() - 1)(rng)];
+      const auto& t =
+          m.triangles[std::uniform_int_distribution<std::size_t>(0, m.triangles.size() - 1)(rng)];
       return m.vertices[t[std::uniform_int_distribution<int>(0, 2)(rng)]];
     };
     const Vec3 va = vertex(a.mesh());

@@ -35,8 +35,7 @@ BruteDistance brute_force_distance(const Mesh& a, const Transform& pa, const Mes
     if (geometry::is_degenerate_triangle(a.vertices[ta[0]], a.vertices[ta[1]], a.vertices[ta[2]]))
       continue;
     for (const auto& tb : b.triangles) {
-      if (geometry::is_degenerate_triangle(b.vertices[tb[0]], b.vertices[tb[1]],
-                                           b.vertices[tb[2]]))
+      if (geometry::is_degenerate_triangle(b.vertices[tb[0]], b.vertices[tb[1]], b.vertices[tb[2]]))
         continue;
       const Scalar d = geometry::triangle_distance(va[ta[0]], va[ta[1]], va[ta[2]], vb[tb[0]],
                                                    vb[tb[1]], vb[tb[2]])
@@ -67,25 +66,24 @@ void expect_consistent(const Model& a, const Transform& pa, const Model& b, cons
   EXPECT_EQ(r.lower_bound, r.distance) << what;
   EXPECT_NEAR((r.point_a - r.point_b).norm(), r.distance, 1e-12 * scale) << what;
   EXPECT_LE(std::sqrt(geometry::point_triangle_distance_squared(
-                r.point_a, world_vertex(a, pa, r.triangle_a, 0), world_vertex(a, pa, r.triangle_a, 1),
-                world_vertex(a, pa, r.triangle_a, 2))),
+                r.point_a, world_vertex(a, pa, r.triangle_a, 0),
+                world_vertex(a, pa, r.triangle_a, 1), world_vertex(a, pa, r.triangle_a, 2))),
             1e-12 * scale)
       << what << ": point_a is not on triangle_a";
   EXPECT_LE(std::sqrt(geometry::point_triangle_distance_squared(
-                r.point_b, world_vertex(b, pb, r.triangle_b, 0), world_vertex(b, pb, r.triangle_b, 1),
-                world_vertex(b, pb, r.triangle_b, 2))),
+                r.point_b, world_vertex(b, pb, r.triangle_b, 0),
+                world_vertex(b, pb, r.triangle_b, 1), world_vertex(b, pb, r.triangle_b, 2))),
             1e-12 * scale)
       << what << ": point_b is not on triangle_b";
   if (r.intersecting) {
     EXPECT_EQ(r.distance, 0) << what;
   }
-  EXPECT_EQ(r.intersecting, r.intersecting && geometry::triangles_intersect(
-                                                   world_vertex(a, pa, r.triangle_a, 0),
-                                                   world_vertex(a, pa, r.triangle_a, 1),
-                                                   world_vertex(a, pa, r.triangle_a, 2),
-                                                   world_vertex(b, pb, r.triangle_b, 0),
-                                                   world_vertex(b, pb, r.triangle_b, 1),
-                                                   world_vertex(b, pb, r.triangle_b, 2)))
+  EXPECT_EQ(r.intersecting,
+            r.intersecting &&
+                geometry::triangles_intersect(
+                    world_vertex(a, pa, r.triangle_a, 0), world_vertex(a, pa, r.triangle_a, 1),
+                    world_vertex(a, pa, r.triangle_a, 2), world_vertex(b, pb, r.triangle_b, 0),
+                    world_vertex(b, pb, r.triangle_b, 1), world_vertex(b, pb, r.triangle_b, 2)))
       << what << ": the witness triangles do not intersect";
   EXPECT_EQ(r.intersecting, collide(a, pa, b, pb).colliding) << what;
 }
@@ -108,8 +106,8 @@ Placement random_placement(const Model& a, const Model& b, std::mt19937_64& rng)
   const auto& ma = a.mesh();
   const auto& mb = b.mesh();
   const auto pick = [&](const Mesh& m) {
-    const auto& t = m.triangles[std::uniform_int_distribution<std::size_t>(
-        0, m.triangles.size() - 1)(rng)];
+    const auto& t =
+        m.triangles[std::uniform_int_distribution<std::size_t>(0, m.triangles.size() - 1)(rng)];
     return m.vertices[t[std::uniform_int_distribution<int>(0, 2)(rng)]];
   };
   return {test::random_pose(rng, 0).rotation, pick(ma), pick(mb),
@@ -148,12 +146,12 @@ TEST_P(DistanceBruteForce, MatchesAllPairsAtRandomTouchingAndNearPoses) {
     const Scalar contact = touching_offset(a, b, place, 0, 2 * scale);
     // Random gaps, the touching pose, and gaps a hair either side of it.
     for (const Scalar offset :
-         {contact * 0.5, contact, contact * (1 + 1e-9), contact * (1 - 1e-9), contact + 1e-6 * scale,
-          contact + 0.05 * scale, contact + 0.3 * scale}) {
+         {contact * 0.5, contact, contact * (1 + 1e-9), contact * (1 - 1e-9),
+          contact + 1e-6 * scale, contact + 0.05 * scale, contact + 0.3 * scale}) {
       const Transform pb = place.at(offset);
       const Transform pa = Transform::identity();
-      const std::string what = p.a + " / " + p.b + " trial " + std::to_string(trial) +
-                               " offset " + std::to_string(offset);
+      const std::string what = p.a + " / " + p.b + " trial " + std::to_string(trial) + " offset " +
+                               std::to_string(offset);
       const DistanceResult r = distance(a, pa, b, pb);
       const BruteDistance truth = brute_force_distance(a.mesh(), pa, b.mesh(), pb);
       ASSERT_NEAR(r.distance, truth.distance, 1e-12 * scale) << what;
@@ -171,7 +169,8 @@ TEST_P(DistanceBruteForce, MatchesAllPairsAtRandomTouchingAndNearPoses) {
 INSTANTIATE_TEST_SUITE_P(RealMeshes, DistanceBruteForce,
                          ::testing::Values(MeshPair{"OBJ/spider.obj", "OFF/Wuson.off", 150},
                                            MeshPair{"PLY/cube.ply", "OBJ/spider.obj", 400},
-                                           MeshPair{"STL/sphereWithHole.stl", "PLY/Wuson.ply", 150}));
+                                           MeshPair{"STL/sphereWithHole.stl", "PLY/Wuson.ply",
+                                                    150}));
 
 TEST(Distance, RandomPosesOfFullMeshesAgreeWithBruteForce) {
   const Model a(load_mesh(test::assimp_model("OBJ/spider.obj")), {}, "spider");
@@ -266,9 +265,9 @@ TEST(Distance, RejectsInvalidRequests) {
   const Model a(make_box(Vec3(1, 1, 1)), {}, "a");
   const Transform id = Transform::identity();
   const Scalar nan = std::numeric_limits<Scalar>::quiet_NaN();
-  for (const auto& [ub, at, rt] : {std::tuple{-1.0, 0.0, 0.0}, std::tuple{nan, 0.0, 0.0},
-                                   std::tuple{1.0, -1.0, 0.0}, std::tuple{1.0, nan, 0.0},
-                                   std::tuple{1.0, 0.0, 1.0}, std::tuple{1.0, 0.0, -0.1}}) {
+  for (const auto& [ub, at, rt] :
+       {std::tuple{-1.0, 0.0, 0.0}, std::tuple{nan, 0.0, 0.0}, std::tuple{1.0, -1.0, 0.0},
+        std::tuple{1.0, nan, 0.0}, std::tuple{1.0, 0.0, 1.0}, std::tuple{1.0, 0.0, -0.1}}) {
     DistanceRequest request;
     request.upper_bound = ub;
     request.abs_tolerance = at;

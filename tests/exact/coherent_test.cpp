@@ -1,4 +1,5 @@
-// The frame-to-frame boolean query (collide() with a PairWitness, antcd/collide.hpp) against collide().
+// The frame-to-frame boolean query (collide() with a PairWitness, antcd/collide.hpp) against
+// collide().
 #include <antcd/collide.hpp>
 #include <antcd/geometry.hpp>
 #include <antcd/load.hpp>

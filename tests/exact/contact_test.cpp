@@ -48,9 +48,9 @@ void expect_contacts_separate(const Model& a, const Transform& pa, const Model& 
     if (c.distance > 0) {  // apart, within delta
       EXPECT_DOUBLE_EQ(c.depth, -c.distance) << what;
       // The normal runs from B's closest point to A's: B pushed along it by the distance touches.
-      const auto td = geometry::triangle_distance(ta[0], ta[1], ta[2], tb[0] + c.distance * c.normal,
-                                                  tb[1] + c.distance * c.normal,
-                                                  tb[2] + c.distance * c.normal);
+      const auto td =
+          geometry::triangle_distance(ta[0], ta[1], ta[2], tb[0] + c.distance * c.normal,
+                                      tb[1] + c.distance * c.normal, tb[2] + c.distance * c.normal);
       EXPECT_LE(td.distance, eps) << what;
       continue;
     }
@@ -162,7 +162,8 @@ TEST(ContactManifold, BoxInACornerGivesTwoRegionsOfAtMostKContacts) {
     }
     // The kept points reach across each region: their spread is at least half the region's.
     for (std::uint32_t r = 0; r < m.regions; ++r) {
-      const Vec3 normal = m.contacts[0].region == r ? m.contacts[0].normal : m.contacts.back().normal;
+      const Vec3 normal =
+          m.contacts[0].region == r ? m.contacts[0].normal : m.contacts.back().normal;
       Scalar full_span = 0, kept_span = 0;
       for (const Contact& x : full.contacts) {
         for (const Contact& y : full.contacts) {
@@ -173,7 +174,8 @@ TEST(ContactManifold, BoxInACornerGivesTwoRegionsOfAtMostKContacts) {
       }
       for (const Contact& x : m.contacts) {
         for (const Contact& y : m.contacts) {
-          if (x.region == r && y.region == r) kept_span = std::max(kept_span, (x.point - y.point).norm());
+          if (x.region == r && y.region == r)
+            kept_span = std::max(kept_span, (x.point - y.point).norm());
         }
       }
       if (k >= 2) {
@@ -213,8 +215,9 @@ TEST(ContactManifold, RealMeshesKeepBetweenOneAndKPerRegionCoveringEveryNormal) 
     // Every contact found has a region whose deepest contact's normal is within the angle.
     const Scalar min_cos = std::cos(req.manifold_angle);
     for (const Contact& c : full.contacts) {
-      EXPECT_TRUE(std::any_of(seed.begin(), seed.end(),
-                              [&](const Contact* s) { return s->normal.dot(c.normal) >= min_cos; }));
+      EXPECT_TRUE(std::any_of(seed.begin(), seed.end(), [&](const Contact* s) {
+        return s->normal.dot(c.normal) >= min_cos;
+      }));
     }
   }
   EXPECT_GE(checked, 5);

@@ -55,8 +55,8 @@ void expect_matches_brute_force(const Model& a, const Transform& pa, const Model
   const PairSet found = sorted_contacts(all);
   ASSERT_EQ(found, truth) << what << ": all-contacts set differs from brute force";
 
-  const Scalar scale = a.root().radius + b.root().radius + pa.translation.norm() +
-                       pb.translation.norm();
+  const Scalar scale =
+      a.root().radius + b.root().radius + pa.translation.norm() + pb.translation.norm();
   for (const Contact& c : all.contacts) {
     EXPECT_LE(c.distance, delta) << what;
     // The point is a common point (delta 0) or the closest points' midpoint: within distance/2

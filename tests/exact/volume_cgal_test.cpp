@@ -29,11 +29,11 @@ SurfaceMesh to_cgal(const Mesh& mesh) {
 }
 
 TEST(VolumeAgainstCgal, SmallSolidsInAndAroundClosedModels) {
-  for (const Mesh& big : {make_torus(1.0, 0.35, 40, 20), merge({make_box(Vec3(0.8, 0.5, 0.3), 2),
-                                                                transformed(make_sphere(0.5, 20, 10),
-                                                                            Transform::from_axis_angle(
-                                                                                Vec3::UnitX(), 0,
-                                                                                Vec3(2, 0, 0)))})}) {
+  for (const Mesh& big :
+       {make_torus(1.0, 0.35, 40, 20),
+        merge({make_box(Vec3(0.8, 0.5, 0.3), 2),
+               transformed(make_sphere(0.5, 20, 10),
+                           Transform::from_axis_angle(Vec3::UnitX(), 0, Vec3(2, 0, 0)))})}) {
     const Model a(big, {}, "big");
     ASSERT_TRUE(a.is_closed());
     const SurfaceMesh sm = to_cgal(big);
@@ -55,8 +55,7 @@ TEST(VolumeAgainstCgal, SmallSolidsInAndAroundClosedModels) {
       const CollisionResult surface = collide(a, Transform::identity(), small, pose);
       const CollisionResult r = collide(a, Transform::identity(), small, pose, volume);
       const Vec3 v = pose.apply(first);
-      const bool cgal_inside =
-          side(K::Point_3(v.x(), v.y(), v.z())) == CGAL::ON_BOUNDED_SIDE;
+      const bool cgal_inside = side(K::Point_3(v.x(), v.y(), v.z())) == CGAL::ON_BOUNDED_SIDE;
       ASSERT_EQ(r.colliding, surface.colliding || cgal_inside) << "pose " << i;
       EXPECT_EQ(r.contained, !surface.colliding && cgal_inside) << "pose " << i;
       touching += surface.colliding;

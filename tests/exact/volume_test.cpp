@@ -50,9 +50,8 @@ TEST(Volume, NestedClosedModelsCollideOnlyWithVolume) {
     EXPECT_TRUE(swapped.colliding && swapped.contained) << "inner as A";
   }
   // Moved out: apart; moved to cross the sphere: a surface contact, not a containment.
-  const CollisionResult apart = collide(outer, id, inner, Transform::from_axis_angle(
-                                                              Vec3::UnitX(), 0, Vec3(5, 0, 0)),
-                                        volume);
+  const CollisionResult apart = collide(
+      outer, id, inner, Transform::from_axis_angle(Vec3::UnitX(), 0, Vec3(5, 0, 0)), volume);
   EXPECT_FALSE(apart.colliding);
   const CollisionResult crossing = collide(
       outer, id, inner, Transform::from_axis_angle(Vec3::UnitX(), 0, Vec3(2, 0, 0)), volume);
@@ -82,7 +81,8 @@ TEST(Volume, OpenModelsKeepSurfaceSemanticsAndSaySo) {
   const Model inner(make_box(Vec3(0.2, 0.2, 0.2)), {}, "inner");
   CollisionRequest volume;
   volume.volume = true;
-  const CollisionResult r = collide(outer, Transform::identity(), inner, Transform::identity(), volume);
+  const CollisionResult r =
+      collide(outer, Transform::identity(), inner, Transform::identity(), volume);
   EXPECT_FALSE(r.colliding);
   EXPECT_TRUE(r.surface_only);
   EXPECT_FALSE(r.contained);

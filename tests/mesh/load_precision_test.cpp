@@ -16,8 +16,8 @@
 
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
-#include <assimp/Importer.hpp>
 #include <gtest/gtest.h>
+#include <assimp/Importer.hpp>
 
 #include <algorithm>
 #include <array>
@@ -41,7 +41,8 @@ using test::write_file;
 /// The corners of every triangle, in triangle order.
 std::vector<std::array<Vec3, 3>> corners(const Mesh& m) {
   std::vector<std::array<Vec3, 3>> out;
-  for (const auto& t : m.triangles) out.push_back({m.vertices[t[0]], m.vertices[t[1]], m.vertices[t[2]]});
+  for (const auto& t : m.triangles)
+    out.push_back({m.vertices[t[0]], m.vertices[t[1]], m.vertices[t[2]]});
   return out;
 }
 
@@ -75,12 +76,14 @@ struct TextMesh {
   [[nodiscard]] std::string faces_off() const {
     std::string s;
     for (const auto& t : triangles) {
-      s += "3 " + std::to_string(t[0]) + ' ' + std::to_string(t[1]) + ' ' + std::to_string(t[2]) + '\n';
+      s += "3 " + std::to_string(t[0]) + ' ' + std::to_string(t[1]) + ' ' + std::to_string(t[2]) +
+           '\n';
     }
     return s;
   }
   [[nodiscard]] std::string off() const {
-    std::string s = "OFF\n" + std::to_string(text.size()) + ' ' + std::to_string(triangles.size()) + " 0\n";
+    std::string s =
+        "OFF\n" + std::to_string(text.size()) + ' ' + std::to_string(triangles.size()) + " 0\n";
     for (const auto& p : text) s += p[0] + ' ' + p[1] + ' ' + p[2] + '\n';
     return s + faces_off();
   }
@@ -211,27 +214,31 @@ TEST(LoadPrecision, OffAndPlyLayoutsKeepTheFileCoordinates) {
   };
   std::vector<std::pair<std::string, std::string>> files = {
       // OFF: comments before and after the keyword, CRLF line ends.
-      {"comments_crlf.off", with_crlf("# made by a test\n  OFF\n# counts next\n\n" + n + ' ' + f +
-                                      " 0\n# vertices\n" + vertex_lines(" ", "  ") + m.faces_off())},
+      {"comments_crlf.off",
+       with_crlf("# made by a test\n  OFF\n# counts next\n\n" + n + ' ' + f + " 0\n# vertices\n" +
+                 vertex_lines(" ", "  ") + m.faces_off())},
       // Colours and normals after the coordinates, no keyword at all, counts on the keyword line.
-      {"colours.off", "COFF\n" + n + ' ' + f + " 0\n" + vertex_lines("", " 255 0 0 255") + m.faces_off()},
+      {"colours.off",
+       "COFF\n" + n + ' ' + f + " 0\n" + vertex_lines("", " 255 0 0 255") + m.faces_off()},
       {"normals.off", "NOFF\n" + n + ' ' + f + " 0\n" + vertex_lines("", " 0 0 1") + m.faces_off()},
       {"no_keyword.off", n + ' ' + f + " 0\n" + vertex_lines("", "") + m.faces_off()},
       {"one_line.off", "OFF " + n + ' ' + f + " 0\n" + vertex_lines("", "") + m.faces_off()},
       // PLY: comments, obj_info, normals before and colours after x/y/z, CRLF line ends.
       {"properties_crlf.ply",
-       with_crlf("ply\nformat ascii 1.0\ncomment made by a test\nobj_info none\nelement vertex " + n +
+       with_crlf("ply\nformat ascii 1.0\ncomment made by a test\nobj_info none\nelement vertex " +
+                 n +
                  "\nproperty float nx\nproperty float ny\nproperty float nz\nproperty double x\n"
                  "property double y\nproperty double z\nproperty uchar red\nproperty uchar green\n"
-                 "property uchar blue\nelement face " + f +
-                 "\nproperty list uchar int vertex_indices\nend_header\n" +
+                 "property uchar blue\nelement face " +
+                 f + "\nproperty list uchar int vertex_indices\nend_header\n" +
                  vertex_lines("0 0 1 ", " 10 20 30") + m.faces_off())},
       // Properties in another order (z, x, y).
       {"zxy.ply",
        [&] {
-         std::string s = "ply\nformat ascii 1.0\nelement vertex " + n +
-                         "\nproperty double z\nproperty double x\nproperty double y\nelement face " +
-                         f + "\nproperty list uchar int vertex_indices\nend_header\n";
+         std::string s =
+             "ply\nformat ascii 1.0\nelement vertex " + n +
+             "\nproperty double z\nproperty double x\nproperty double y\nelement face " + f +
+             "\nproperty list uchar int vertex_indices\nend_header\n";
          for (const auto& p : m.text) s += p[2] + ' ' + p[0] + ' ' + p[1] + '\n';
          return s + m.faces_off();
        }()},
@@ -240,8 +247,8 @@ TEST(LoadPrecision, OffAndPlyLayoutsKeepTheFileCoordinates) {
   {
     std::string s = "ply\nformat binary_little_endian 1.0\nelement vertex " + n +
                     "\nproperty float nx\nproperty double x\nproperty double y\nproperty double z\n"
-                    "property float nz\nelement face " + f +
-                    "\nproperty list uchar int vertex_indices\nend_header\n";
+                    "property float nz\nelement face " +
+                    f + "\nproperty list uchar int vertex_indices\nend_header\n";
     for (const auto& p : m.text) {
       const float normal = 1;
       append_le(s, &normal, sizeof normal);
@@ -274,13 +281,14 @@ TEST(LoadPrecision, LayoutsNotFollowedLoadAssimpFloats) {
   const TextMesh m = random_text_mesh("%.17g", 14);
   const auto expected = m.expected();
   const auto dir = fresh_temp_dir("precision_fallback");
-  std::string off = "4OFF\n" + std::to_string(m.text.size()) + ' ' +
-                    std::to_string(m.triangles.size()) + " 0\n";
+  std::string off =
+      "4OFF\n" + std::to_string(m.text.size()) + ' ' + std::to_string(m.triangles.size()) + " 0\n";
   for (const auto& p : m.text) off += p[0] + ' ' + p[1] + ' ' + p[2] + " 2\n";
   write_file(dir / "homogeneous.off", off + m.faces_off());
-  std::string ply = "ply\nformat binary_big_endian 1.0\nelement vertex " + std::to_string(m.text.size()) +
-                    "\nproperty double x\nproperty double y\nproperty double z\nelement face " +
-                    std::to_string(m.triangles.size()) + "\nproperty list uchar int vertex_indices\nend_header\n";
+  std::string ply =
+      "ply\nformat binary_big_endian 1.0\nelement vertex " + std::to_string(m.text.size()) +
+      "\nproperty double x\nproperty double y\nproperty double z\nelement face " +
+      std::to_string(m.triangles.size()) + "\nproperty list uchar int vertex_indices\nend_header\n";
   auto big_endian = [&](const void* value, std::size_t size) {
     const auto* bytes = static_cast<const char*>(value);
     for (std::size_t i = size; i-- > 0;) ply += bytes[i];
@@ -327,7 +335,8 @@ Tiling tiling(const Mesh& m) {
   Tiling t;
   t.triangles = m.triangles.size();
   for (const auto& tri : m.triangles) {
-    const Vec3 n = (m.vertices[tri[1]] - m.vertices[tri[0]]).cross(m.vertices[tri[2]] - m.vertices[tri[0]]);
+    const Vec3 n =
+        (m.vertices[tri[1]] - m.vertices[tri[0]]).cross(m.vertices[tri[2]] - m.vertices[tri[0]]);
     t.area += n.norm() / 2;
     t.all_face_up = t.all_face_up && n.z() > 0;
   }
@@ -397,8 +406,9 @@ struct AssimpMesh {
 
 AssimpMesh assimp_reference(const std::filesystem::path& path) {
   Assimp::Importer importer;
-  const aiScene* scene = importer.ReadFile(
-      path.string(), aiProcess_Triangulate | aiProcess_SortByPType | aiProcess_JoinIdenticalVertices);
+  const aiScene* scene =
+      importer.ReadFile(path.string(), aiProcess_Triangulate | aiProcess_SortByPType |
+                                           aiProcess_JoinIdenticalVertices);
   AssimpMesh out;
   if (scene == nullptr) {
     ADD_FAILURE() << "assimp cannot read " << path << ": " << importer.GetErrorString();
@@ -422,10 +432,10 @@ AssimpMesh assimp_reference(const std::filesystem::path& path) {
 }
 
 TEST(LoadPrecision, RealFilesAgreeWithAssimpWithinFloatRounding) {
-  for (const char* name : {"OBJ/spider.obj", "OBJ/box.obj", "OBJ/concave_polygon.obj",
-                           "OBJ/WusonOBJ.obj", "OBJ/regr01.obj", "OFF/Cube.off", "OFF/Wuson.off",
-                           "PLY/Wuson.ply", "PLY/cube.ply", "PLY/cube_binary.ply",
-                           "PLY/cube_uv.ply", "PLY/float-color.ply"}) {
+  for (const char* name :
+       {"OBJ/spider.obj", "OBJ/box.obj", "OBJ/concave_polygon.obj", "OBJ/WusonOBJ.obj",
+        "OBJ/regr01.obj", "OFF/Cube.off", "OFF/Wuson.off", "PLY/Wuson.ply", "PLY/cube.ply",
+        "PLY/cube_binary.ply", "PLY/cube_uv.ply", "PLY/float-color.ply"}) {
     SCOPED_TRACE(name);
     const auto path = assimp_model(name);
     if (!std::filesystem::exists(path)) GTEST_SKIP() << path << " is absent";
@@ -437,7 +447,8 @@ TEST(LoadPrecision, RealFilesAgreeWithAssimpWithinFloatRounding) {
     // parsing (not always correctly rounded): 2 float ulps.
     std::vector<std::array<float, 3>> ours;
     for (const Vec3& v : m.vertices) {
-      ours.push_back({static_cast<float>(v.x()), static_cast<float>(v.y()), static_cast<float>(v.z())});
+      ours.push_back(
+          {static_cast<float>(v.x()), static_cast<float>(v.y()), static_cast<float>(v.z())});
     }
     std::sort(ours.begin(), ours.end());
     double worst = 0;
@@ -518,7 +529,8 @@ TEST(LoadPrecision, DistanceOnRealFileMatchesOracleOnFileCoordinates) {
       const Scalar oracle = brute_distance(reference, points[i]);
       const Scalar scale = std::max<Scalar>(oracle, 1e-3 * extent.norm());
       worst = std::max(worst, std::abs(std::abs(result.points[i].distance) - oracle) / scale);
-      float_worst = std::max(float_worst, std::abs(brute_distance(rounded, points[i]) - oracle) / scale);
+      float_worst =
+          std::max(float_worst, std::abs(brute_distance(rounded, points[i]) - oracle) / scale);
     }
     EXPECT_LE(worst, 1e-12);
     // The check can fail: with float coordinates the same distances are off by far more.

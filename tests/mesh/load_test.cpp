@@ -242,8 +242,12 @@ TEST(LoadMesh, BinaryStlNativeReaderKeepsFileOrderAndJoinsOnlyEqualPositions) {
   write_file(dir / "mixed.STL", data);
   const Mesh m = load_mesh(dir / "mixed.STL");
   ASSERT_EQ(m.vertices.size(), 7u);
-  const std::vector<Vec3> expected = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(1, 1, 0),
-                                      Vec3(1, 1, static_cast<float>(1e-6)), Vec3(2, 2, 2),
+  const std::vector<Vec3> expected = {Vec3(0, 0, 0),
+                                      Vec3(1, 0, 0),
+                                      Vec3(0, 1, 0),
+                                      Vec3(1, 1, 0),
+                                      Vec3(1, 1, static_cast<float>(1e-6)),
+                                      Vec3(2, 2, 2),
                                       Vec3(3, 2, 2)};
   EXPECT_EQ(m.vertices, expected);
   const std::vector<TriangleIndices> triangles = {{0, 1, 2}, {1, 3, 2}, {2, 3, 4}, {5, 5, 6}};
@@ -259,9 +263,9 @@ TEST(LoadMesh, BinaryStlTestModelsKeepTheirCounts) {
     std::size_t vertices;
     std::size_t triangles;
   };
-  for (const Expected& e : {Expected{"STL/Wuson.stl", 2117, 3732},
-                            Expected{"STL/3DSMaxExport.STL", 1042, 2000},
-                            Expected{"STL/Spider_binary.stl", 722, 1368}}) {
+  for (const Expected& e :
+       {Expected{"STL/Wuson.stl", 2117, 3732}, Expected{"STL/3DSMaxExport.STL", 1042, 2000},
+        Expected{"STL/Spider_binary.stl", 722, 1368}}) {
     SCOPED_TRACE(e.file);
     const Mesh m = load_mesh(assimp_model(e.file));
     EXPECT_EQ(m.vertices.size(), e.vertices);
@@ -463,8 +467,8 @@ TEST(LoadMeshErrors, BinaryStlNonFiniteCoordinateNamesTheFacet) {
   append_u32(data, 3);
   append_stl_facet(data, {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0)});
   append_stl_facet(data, {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0)});
-  append_stl_facet(data, {Vec3(0, 0, 0), Vec3(1, std::numeric_limits<double>::infinity(), 0),
-                          Vec3(0, 1, 0)});
+  append_stl_facet(
+      data, {Vec3(0, 0, 0), Vec3(1, std::numeric_limits<double>::infinity(), 0), Vec3(0, 1, 0)});
   write_file(dir / "inf.stl", data);
   expect_load_error(dir / "inf.stl", "facet 2 has a non-finite coordinate");
   std::string nan = data;
@@ -546,7 +550,8 @@ TEST(LoadMeshErrors, OffHeaderAnnouncingTooMuch) {
   // A binary OFF's counts are not text (no header check applies): refused quickly all the same.
   std::string binary = "OFF BINARY\n";
   for (const std::uint32_t count : {200000000u, 200000000u, 0u}) {
-    for (int shift = 24; shift >= 0; shift -= 8) binary.push_back(static_cast<char>(count >> shift));
+    for (int shift = 24; shift >= 0; shift -= 8)
+      binary.push_back(static_cast<char>(count >> shift));
   }
   binary.append(64, '\0');
   write_file(dir / "binary.off", binary);
@@ -567,8 +572,9 @@ TEST(LoadMeshErrors, PlyBodyThatDoesNotHoldItsHeader) {
       "ply\nformat binary_little_endian 1.0\nelement vertex 4\nproperty float nx\n"
       "property double x\nproperty double y\nproperty double z\nelement face 2\n"
       "property list uchar int vertex_indices\n";
-  write_file(dir / "twice.ply", header + "property double y\nelement face 4\n"
-                                         "property list uchar int vertex_indices\nend_header\n" +
+  write_file(dir / "twice.ply", header +
+                                    "property double y\nelement face 4\n"
+                                    "property list uchar int vertex_indices\nend_header\n" +
                                     std::string(77, '\x01'));
   expect_load_error(dir / "twice.ply", "declares element 'face' a second time");
   // The same without the second element: the body ends inside the third vertex.
@@ -576,9 +582,10 @@ TEST(LoadMeshErrors, PlyBodyThatDoesNotHoldItsHeader) {
   expect_load_error(dir / "short.ply", "the PLY body ends inside element 'vertex' #2 (of 4)");
 
   // A binary triangle (x y z as float, then one face), whole and with its face list cut short.
-  std::string tri = "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\n"
-                    "property float y\nproperty float z\nelement face 1\n"
-                    "property list uchar int vertex_indices\nproperty uchar flags\nend_header\n";
+  std::string tri =
+      "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\n"
+      "property float y\nproperty float z\nelement face 1\n"
+      "property list uchar int vertex_indices\nproperty uchar flags\nend_header\n";
   for (const float c : {0.f, 0.f, 0.f, 1.f, 0.f, 0.f, 0.f, 1.f, 0.f}) test::append_f32(tri, c);
   const std::string vertices_only = tri;
   tri.push_back('\x03');
@@ -602,9 +609,10 @@ TEST(LoadMeshErrors, PlyBodyThatDoesNotHoldItsHeader) {
   expect_load_error(dir / "negative.ply", "gives list 'vertex_indices' a negative length");
 
   // The same triangle big-endian is read (counts and indices in the file's byte order).
-  std::string be = "ply\nformat binary_big_endian 1.0\nelement vertex 3\nproperty float x\n"
-                   "property float y\nproperty float z\nelement face 1\n"
-                   "property list ushort int vertex_indices\nend_header\n";
+  std::string be =
+      "ply\nformat binary_big_endian 1.0\nelement vertex 3\nproperty float x\n"
+      "property float y\nproperty float z\nelement face 1\n"
+      "property list ushort int vertex_indices\nend_header\n";
   const auto append_be = [&](std::uint32_t bits, int bytes) {
     for (int shift = 8 * (bytes - 1); shift >= 0; shift -= 8) {
       be.push_back(static_cast<char>(bits >> shift));

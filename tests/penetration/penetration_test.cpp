@@ -278,15 +278,17 @@ TEST(SignedDistance, NegativePenetrationDepthWhenSolidsOverlap) {
   const Model a(make_box(Vec3(1, 1, 1), 2), {}, "a");
   DistanceRequest req;
   // Overlapping by 0.3 (convex: exact).
-  DistanceResult r =
-      signed_distance(a, Transform::identity(), a, Transform(Mat3::Identity(), Vec3(1.7, 0.3, 0.2)), req);
+  DistanceResult r = signed_distance(a, Transform::identity(), a,
+                                     Transform(Mat3::Identity(), Vec3(1.7, 0.3, 0.2)), req);
   EXPECT_NEAR(r.distance, -0.3, 1e-12);
   EXPECT_LE(r.lower_bound, r.distance);
   // Apart by 0.5: the surface distance.
-  r = signed_distance(a, Transform::identity(), a, Transform(Mat3::Identity(), Vec3(2.5, 0, 0)), req);
+  r = signed_distance(a, Transform::identity(), a, Transform(Mat3::Identity(), Vec3(2.5, 0, 0)),
+                      req);
   EXPECT_NEAR(r.distance, 0.5, 1e-12);
   // Touching face on face: 0.
-  r = signed_distance(a, Transform::identity(), a, Transform(Mat3::Identity(), Vec3(2, 0.5, 0)), req);
+  r = signed_distance(a, Transform::identity(), a, Transform(Mat3::Identity(), Vec3(2, 0.5, 0)),
+                      req);
   EXPECT_EQ(r.distance, 0);
   // Nested (surfaces 0.8 apart): -(0.2 + 1) = -1.2, general solids (a torus is not convex).
   const Model small(make_box(Vec3(0.2, 0.2, 0.2)));
@@ -303,7 +305,7 @@ TEST(SignedDistance, NegativePenetrationDepthWhenSolidsOverlap) {
   Mesh open = make_box(Vec3(1, 1, 1));
   open.triangles.pop_back();
   EXPECT_THROW((void)signed_distance(Model(open, {}, "open"), Transform::identity(), a,
-                              Transform(Mat3::Identity(), Vec3(5, 0, 0)), req),
+                                     Transform(Mat3::Identity(), Vec3(5, 0, 0)), req),
                ArgumentError);
 }
 

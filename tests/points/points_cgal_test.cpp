@@ -59,7 +59,8 @@ void check_against_cgal(const Mesh& mesh, const std::string& name, std::uint64_t
   // Points near the surface: vertices pushed a little along random directions.
   std::uniform_int_distribution<std::size_t> pick(0, posed.vertices.size() - 1);
   std::normal_distribution<Scalar> g(0, 1e-3 * size.norm());
-  for (int i = 0; i < 200; ++i) points.push_back(posed.vertices[pick(rng)] + Vec3(g(rng), g(rng), g(rng)));
+  for (int i = 0; i < 200; ++i)
+    points.push_back(posed.vertices[pick(rng)] + Vec3(g(rng), g(rng), g(rng)));
 
   const std::vector<std::uint8_t> in = contains(model, pose, points);
   const SignedDistanceResult sd = signed_distance(model, pose, points);
@@ -86,7 +87,8 @@ void check_against_cgal(const Mesh& mesh, const std::string& name, std::uint64_t
 // only for surfaces that do not overlap themselves: models with overlapping pieces are tested
 // against the brute-force winding number in points_test.cpp instead.
 TEST(PointsAgainstCgal, ClosedThirdPartyMeshes) {
-  for (const std::string file : {"Collada/duck.dae", "3DS/fels.3ds", "OBJ/empty_mat.obj", "glTF/TwoBoxes/TwoBoxes.gltf", "OFF/Cube.off"}) {
+  for (const std::string file : {"Collada/duck.dae", "3DS/fels.3ds", "OBJ/empty_mat.obj",
+                                 "glTF/TwoBoxes/TwoBoxes.gltf", "OFF/Cube.off"}) {
     const Mesh mesh = load_mesh(test::assimp_model(file));
     check_against_cgal(mesh, file, std::hash<std::string>{}(file) % 1000);
   }
@@ -94,11 +96,11 @@ TEST(PointsAgainstCgal, ClosedThirdPartyMeshes) {
 
 TEST(PointsAgainstCgal, GeneratedSolids) {
   check_against_cgal(make_torus(1.0, 0.35, 48, 24), "torus", 1);
-  check_against_cgal(merge({make_box(Vec3(1, 0.5, 0.3), 4),
-                            transformed(make_cylinder(0.2, 3.0, 20),
-                                        Transform::from_axis_angle(Vec3::UnitX(), 0.3,
-                                                                   Vec3(2.5, 0, 0)))}),
-                     "box and cylinder", 2);
+  check_against_cgal(
+      merge({make_box(Vec3(1, 0.5, 0.3), 4),
+             transformed(make_cylinder(0.2, 3.0, 20),
+                         Transform::from_axis_angle(Vec3::UnitX(), 0.3, Vec3(2.5, 0, 0)))}),
+      "box and cylinder", 2);
 }
 
 }  // namespace

@@ -35,8 +35,9 @@ Scalar brute_distance(const Mesh& mesh, const Transform& pose, const Vec3& p) {
 bool brute_inside(const Mesh& mesh, const Transform& pose, const Vec3& p) {
   Scalar total = 0;
   for (const auto& t : mesh.triangles) {
-    total += geometry::solid_angle(p, pose.apply(mesh.vertices[t[0]]),
-                                   pose.apply(mesh.vertices[t[1]]), pose.apply(mesh.vertices[t[2]]));
+    total +=
+        geometry::solid_angle(p, pose.apply(mesh.vertices[t[0]]), pose.apply(mesh.vertices[t[1]]),
+                              pose.apply(mesh.vertices[t[2]]));
   }
   return std::abs(total) > 2 * std::numbers::pi;
 }
@@ -53,15 +54,15 @@ std::vector<Vec3> random_points(std::mt19937_64& rng, const Aabb& box, Scalar ma
 }
 
 std::vector<Mesh> solids() {
-  return {make_torus(1.0, 0.35, 40, 20), make_box(Vec3(0.8, 0.5, 0.3), 3),
-          make_sphere(0.7, 24, 12),
-          merge({make_cylinder(0.3, 1.0, 16), transformed(make_sphere(0.4, 12, 6),
-                                                          Transform::from_axis_angle(
-                                                              Vec3::UnitY(), 0, Vec3(1.5, 0, 0)))}),
-          // Overlapping pieces (winding number 2 where they overlap): signs from the winding number.
-          merge({make_box(Vec3(0.5, 0.5, 0.5), 2),
-                 transformed(make_sphere(0.6, 20, 10),
-                             Transform::from_axis_angle(Vec3::UnitZ(), 0, Vec3(0.6, 0.2, 0)))})};
+  return {
+      make_torus(1.0, 0.35, 40, 20), make_box(Vec3(0.8, 0.5, 0.3), 3), make_sphere(0.7, 24, 12),
+      merge({make_cylinder(0.3, 1.0, 16),
+             transformed(make_sphere(0.4, 12, 6),
+                         Transform::from_axis_angle(Vec3::UnitY(), 0, Vec3(1.5, 0, 0)))}),
+      // Overlapping pieces (winding number 2 where they overlap): signs from the winding number.
+      merge({make_box(Vec3(0.5, 0.5, 0.5), 2),
+             transformed(make_sphere(0.6, 20, 10),
+                         Transform::from_axis_angle(Vec3::UnitZ(), 0, Vec3(0.6, 0.2, 0)))})};
 }
 
 TEST(Points, MatchBruteForceDistanceAndWindingNumberAtRandomPoses) {
@@ -155,9 +156,9 @@ TEST(Points, ModelFrameDistanceIsExactlyTheBruteForceMinimum) {
   for (std::size_t i = 0; i < points.size(); ++i) {
     Scalar best = std::numeric_limits<Scalar>::infinity();
     for (const auto& t : mesh.triangles) {
-      best = std::min(best, geometry::point_triangle_distance_squared(
-                                points[i], mesh.vertices[t[0]], mesh.vertices[t[1]],
-                                mesh.vertices[t[2]]));
+      best = std::min(
+          best, geometry::point_triangle_distance_squared(
+                    points[i], mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]]));
     }
     ASSERT_EQ(std::abs(sd.points[i].distance), std::sqrt(best)) << "point " << i;
   }
@@ -281,8 +282,10 @@ TEST(Points, NonFinitePointIsAnArgumentErrorNamingIt) {
   const std::vector<Vec3> points{Vec3(0, 0, 0), Vec3(std::nan(""), 0, 0)};
   for (int which = 0; which < 2; ++which) {
     try {
-      if (which == 0) (void)contains(model, Transform::identity(), points);
-      else (void)signed_distance(model, Transform::identity(), points);
+      if (which == 0)
+        (void)contains(model, Transform::identity(), points);
+      else
+        (void)signed_distance(model, Transform::identity(), points);
       FAIL() << "must throw";
     } catch (const ArgumentError& e) {
       EXPECT_NE(std::string(e.what()).find("point 1"), std::string::npos) << e.what();

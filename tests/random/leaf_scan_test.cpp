@@ -32,7 +32,8 @@ std::vector<Pair> pairs() {
   const auto wuson = load_model("OBJ/WusonOBJ.obj");
   const auto spider = load_model("OBJ/spider.obj");
   const auto ball = std::make_shared<const Model>(make_sphere(0.5, 48, 24));
-  return {{"wuson-wuson", wuson, wuson}, {"spider-spider", spider, spider},
+  return {{"wuson-wuson", wuson, wuson},
+          {"spider-spider", spider, spider},
           {"wuson-ball", wuson, ball}};
 }
 

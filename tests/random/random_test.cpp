@@ -25,11 +25,9 @@ namespace {
 
 using TrianglePair = std::pair<std::uint32_t, std::uint32_t>;
 
-constexpr Method kAllMethods[] = {Method::Aco, Method::Maco,
-                                        Method::Pso, Method::Ga,
-                                        Method::Exhaustive, Method::Grid};
-constexpr Method kStochastic[] = {Method::Aco, Method::Maco, Method::Pso,
-                                        Method::Ga};
+constexpr Method kAllMethods[] = {Method::Aco, Method::Maco,       Method::Pso,
+                                  Method::Ga,  Method::Exhaustive, Method::Grid};
+constexpr Method kStochastic[] = {Method::Aco, Method::Maco, Method::Pso, Method::Ga};
 
 struct Scenario {
   std::string name;
@@ -654,11 +652,9 @@ TEST(RandomSearch, InvalidArgumentsThrow) {
   };
   EXPECT_THROW(search(space, bad([](SearchRequest& r) { r.centroid_delta = std::nan(""); })),
                ArgumentError);
-  EXPECT_THROW(search(space, bad([](SearchRequest& r) { r.iterations = 0; })),
-               ArgumentError);
+  EXPECT_THROW(search(space, bad([](SearchRequest& r) { r.iterations = 0; })), ArgumentError);
   EXPECT_THROW(search(space, bad([](SearchRequest& r) { r.ant.ants = 0; })), ArgumentError);
-  EXPECT_THROW(search(space, bad([](SearchRequest& r) { r.ant.rho = 1.5; })),
-               ArgumentError);
+  EXPECT_THROW(search(space, bad([](SearchRequest& r) { r.ant.rho = 1.5; })), ArgumentError);
   EXPECT_THROW(search(space, bad([](SearchRequest& r) { r.stop.target_share = 2; })),
                ArgumentError);
   EXPECT_THROW(search(space, bad([](SearchRequest& r) {

@@ -158,12 +158,12 @@ struct Golden {
 
 // Regenerate: see the top of this file (ANTCD_PRINT_GOLDEN=1).
 constexpr std::array<Golden, 6> kGolden = {{
-    {Method::Exact, 0x3b5301b0bdcdf40aULL},  // 16 colliding pairs, 0 feature hits
+    {Method::Exact, 0x3b5301b0bdcdf40aULL},      // 16 colliding pairs, 0 feature hits
     {Method::SphereObb, 0x3b5301b0bdcdf40aULL},  // 16 colliding pairs, 0 feature hits
-    {Method::Aco, 0xc61018e7b3bed31eULL},  // 16 colliding pairs, 1474 feature hits
-    {Method::Maco, 0x60dad332982f4f67ULL},  // 16 colliding pairs, 1430 feature hits
-    {Method::Pso, 0x1761adac2f928b81ULL},  // 16 colliding pairs, 207 feature hits
-    {Method::Ga, 0x5312cbb9cc89d100ULL},  // 16 colliding pairs, 104 feature hits
+    {Method::Aco, 0xc61018e7b3bed31eULL},        // 16 colliding pairs, 1474 feature hits
+    {Method::Maco, 0x60dad332982f4f67ULL},       // 16 colliding pairs, 1430 feature hits
+    {Method::Pso, 0x1761adac2f928b81ULL},        // 16 colliding pairs, 207 feature hits
+    {Method::Ga, 0x5312cbb9cc89d100ULL},         // 16 colliding pairs, 104 feature hits
 }};
 
 const char* enumerator(Method m) {

@@ -1,8 +1,8 @@
 // shared::run_scene and the run format: random methods carry their colonies from frame to frame
 // unless told not to, and the run JSON keeps the verdict, the memory flag, each frame's
 // evaluations and its undecided pairs through a round trip.
-#include "shared/production_line.hpp"
 #include "shared/run_result.hpp"
+#include "shared/production_line.hpp"
 
 #include <antcd/scene.hpp>
 

@@ -82,7 +82,8 @@ Mesh parse_obj_reference(const std::filesystem::path& path) {
       std::vector<std::uint32_t> f;
       std::string corner;
       while (fields >> corner) f.push_back(static_cast<std::uint32_t>(std::stoul(corner)) - 1);
-      if (f.size() != 3) throw std::runtime_error(path.string() + ": a face that is not a triangle");
+      if (f.size() != 3)
+        throw std::runtime_error(path.string() + ": a face that is not a triangle");
       m.triangles.push_back({f[0], f[1], f[2]});
     }
   }

@@ -1,10 +1,10 @@
 // The argument check of util/check.hpp and the named tolerances of antcd/tolerances.hpp: one
 // message format ("<function>: <argument> must be <requirement>, got <value>") from the helpers
 // and from the library calls that use them, and the tolerance functions' definitions.
-#include <antcd/pose.hpp>
 #include <antcd/collide.hpp>
 #include <antcd/distance.hpp>
 #include <antcd/penetration.hpp>
+#include <antcd/pose.hpp>
 #include <antcd/tolerances.hpp>
 #include <antcd/world.hpp>
 
@@ -107,7 +107,8 @@ TEST(Tolerances, Definitions) {
   EXPECT_EQ(check_pose(t, 0, kNaN, 0, 1).fault, Fault::NotFinite);
   // Each fault names itself; a rigid pose has no problem.
   EXPECT_EQ(check_pose(t).problem(), "");
-  EXPECT_NE(check_pose(Transform(-turn, Vec3::Zero())).problem().find("reflection"), std::string::npos);
+  EXPECT_NE(check_pose(Transform(-turn, Vec3::Zero())).problem().find("reflection"),
+            std::string::npos);
   EXPECT_NE(check_pose(Transform(2 * turn, Vec3::Zero())).problem().find("not orthonormal"),
             std::string::npos);
   EXPECT_NE(check_pose(t, 0, 0, 0, 2).problem().find("last row"), std::string::npos);

@@ -20,7 +20,9 @@
 namespace antcd::detail {
 namespace {
 
-Aabb box_at(const Vec3& c, Scalar half) { return Aabb{c - Vec3::Constant(half), c + Vec3::Constant(half)}; }
+Aabb box_at(const Vec3& c, Scalar half) {
+  return Aabb{c - Vec3::Constant(half), c + Vec3::Constant(half)};
+}
 
 Aabb grown_by(Aabb b, Scalar by) {
   b.min.array() -= by;
@@ -81,8 +83,7 @@ TEST(AabbTree, QueriesAndPairsEqualBruteForceAcrossRebuildsAndRefits) {
       }
       tree.refit();
     }
-    ASSERT_TRUE(tree.contains(static_cast<std::uint32_t>(boxes.size() - 1)) ==
-                present.back());
+    ASSERT_TRUE(tree.contains(static_cast<std::uint32_t>(boxes.size() - 1)) == present.back());
     if (step % 50 != 0) continue;
     const Aabb query = box_at(Vec3(u(rng), u(rng), u(rng)), 2 * size(rng));
     std::multiset<std::uint32_t> found;
@@ -91,7 +92,8 @@ TEST(AabbTree, QueriesAndPairsEqualBruteForceAcrossRebuildsAndRefits) {
     for (std::size_t k = 0; k < boxes.size(); ++k) {
       // The tree stores boxes rounded outward to single precision: a brute-force hit is always
       // found, and a box it finds is the object's box or a hair larger.
-      if (present[k] && boxes_overlap(boxes[k], query)) expected.insert(static_cast<std::uint32_t>(k));
+      if (present[k] && boxes_overlap(boxes[k], query))
+        expected.insert(static_cast<std::uint32_t>(k));
     }
     for (const std::uint32_t k : expected) ASSERT_EQ(found.count(k), 1u) << "step " << step;
     for (const std::uint32_t k : found) {
@@ -102,7 +104,8 @@ TEST(AabbTree, QueriesAndPairsEqualBruteForceAcrossRebuildsAndRefits) {
     // All pairs within a gap: one traversal, and the same split into tasks.
     const Scalar gap = step % 100 == 0 ? 0.0 : 0.25;
     Pairs whole;
-    tree.pairs(tree.all_pairs(), gap, [&](std::uint32_t a, std::uint32_t b) { whole.emplace_back(a, b); });
+    tree.pairs(tree.all_pairs(), gap,
+               [&](std::uint32_t a, std::uint32_t b) { whole.emplace_back(a, b); });
     Pairs split;
     for (const AabbTree::PairTask t : tree.pair_tasks(gap, 64)) {
       tree.pairs(t, gap, [&](std::uint32_t a, std::uint32_t b) { split.emplace_back(a, b); });
@@ -114,7 +117,8 @@ TEST(AabbTree, QueriesAndPairsEqualBruteForceAcrossRebuildsAndRefits) {
     Pairs expected_pairs;
     for (std::uint32_t i = 0; i < boxes.size(); ++i) {
       for (std::uint32_t j = i + 1; j < boxes.size(); ++j) {
-        if (present[i] && present[j] && near(boxes[i], boxes[j], gap)) expected_pairs.emplace_back(i, j);
+        if (present[i] && present[j] && near(boxes[i], boxes[j], gap))
+          expected_pairs.emplace_back(i, j);
       }
     }
     for (const auto& p : expected_pairs) {
@@ -164,10 +168,10 @@ TEST(AabbTree, StoredBoxesContainTheirBoxesAndStayWithinFourUlps) {
   // conversion rounds, at zero, near the denormals, at float binade boundaries and beyond the float
   // range, the stored box must contain the given one, and not be much looser.
   const Scalar big = static_cast<Scalar>(std::numeric_limits<float>::max());
-  const std::vector<Scalar> values = {0.0,  -0.0,     1e-300,     -1e-300, 1e-40,    -1e-40,
-                                      1.0,  -1.0,     1 + 1e-12,  1 - 1e-12, -(1 + 1e-12),
-                                      0.1,  -0.1,     1.0 / 3.0,  -2.0 / 3.0, 16777217.0,
-                                      1e30, -1e30,    big,        -big,    1e39,     -1e39};
+  const std::vector<Scalar> values = {0.0,  -0.0,      1e-300,     -1e-300,    1e-40,        -1e-40,
+                                      1.0,  -1.0,      1 + 1e-12,  1 - 1e-12,  -(1 + 1e-12), 0.1,
+                                      -0.1, 1.0 / 3.0, -2.0 / 3.0, 16777217.0, 1e30,         -1e30,
+                                      big,  -big,      1e39,       -1e39};
   std::mt19937_64 rng(11);
   std::uniform_real_distribution<Scalar> u(-1e4, 1e4);
   std::vector<Scalar> all = values;

@@ -1,5 +1,5 @@
-// World::candidate_pairs into a reused buffer (the scene runner's call every frame) answers what the
-// allocating call does, frame after frame, with stale content and storage from earlier frames.
+// World::candidate_pairs into a reused buffer (the scene runner's call every frame) answers what
+// the allocating call does, frame after frame, with stale content and storage from earlier frames.
 #include <antcd/geometry.hpp>
 #include <antcd/world.hpp>
 

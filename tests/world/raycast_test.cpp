@@ -70,8 +70,8 @@ void check_rays(const World& world, std::mt19937_64& rng, int rays, Scalar exten
     ray.origin = extent * Vec3(u(rng), u(rng), u(rng));
     // Aim near some object so that most rays hit something.
     const std::vector<ObjectId> ids = world.objects();
-    const Vec3 target = world.pose(ids[rng() % ids.size()]).translation +
-                        0.3 * Vec3(u(rng), u(rng), u(rng));
+    const Vec3 target =
+        world.pose(ids[rng() % ids.size()]).translation + 0.3 * Vec3(u(rng), u(rng), u(rng));
     ray.direction = (target - ray.origin) * (0.5 + u(rng) * u(rng));
     if (k % 4 == 3) ray.max_distance = (target - ray.origin).norm();
     const std::vector<BruteHit> brute = brute_force(world, ray);

@@ -96,9 +96,9 @@ Transform nudged(const Transform& t, std::mt19937_64& rng, Scalar extent) {
   if (u(rng) > 0.8) return test::random_pose(rng, extent);
   Transform out = t;
   out.translation += 0.08 * Vec3(u(rng), u(rng), u(rng));
-  out.rotation = Transform::from_axis_angle(Vec3(u(rng), u(rng), u(rng) + 2), 0.1 * u(rng))
-                     .rotation *
-                 t.rotation;
+  out.rotation =
+      Transform::from_axis_angle(Vec3(u(rng), u(rng), u(rng) + 2), 0.1 * u(rng)).rotation *
+      t.rotation;
   return out;
 }
 
@@ -268,13 +268,14 @@ TEST(World, RandomSequencesOnRealMeshesMatchBruteForce) {
 TEST(World, FiltersAndIgnoredPairs) {
   auto sphere = std::make_shared<const Model>(make_sphere(1.0, 16, 8));
   World world;
-  const auto at = [](Scalar x) { return Transform::from_axis_angle(Vec3::UnitZ(), 0, Vec3(x, 0, 0)); };
+  const auto at = [](Scalar x) {
+    return Transform::from_axis_angle(Vec3::UnitZ(), 0, Vec3(x, 0, 0));
+  };
   // Three overlapping spheres in a row: a-b and b-c touch, a-c overlap too (distance 1.5 < 2).
   const ObjectId a = world.add(sphere, at(0), {"a", 10, 1, ~0U});
   const ObjectId b = world.add(sphere, at(0.75), {"b", 11, 2, ~0U});
   const ObjectId c = world.add(sphere, at(1.5), {"c", 12, 4, ~0U});
-  EXPECT_EQ(pairs_of(world.collide_all()),
-            (std::vector<ObjectPair>{{a, b}, {a, c}, {b, c}}));
+  EXPECT_EQ(pairs_of(world.collide_all()), (std::vector<ObjectPair>{{a, b}, {a, c}, {b, c}}));
   // c does not collide with group 1 (a).
   world.set_filter(c, 4, ~0U ^ 1U);
   EXPECT_EQ(pairs_of(world.collide_all()), (std::vector<ObjectPair>{{a, b}, {b, c}}));
@@ -339,10 +340,13 @@ TEST(World, InvalidArgumentsNameTheArgumentAndChangeNothing) {
   EXPECT_NE(message([&] { world.ignore_pair(a, b); }).find(": b "), std::string::npos);
   EXPECT_NE(message([&] { world.ignore_pair(a, a); }).find("same"), std::string::npos);
   EXPECT_NE(message([&] { (void)world.pairs_within(-1); }).find("distance"), std::string::npos);
-  EXPECT_NE(message([&] { (void)world.collide_all({std::nan(""), false, 0}); }).find("delta"),
+  EXPECT_NE(message([&] {
+              (void)world.collide_all({std::nan(""), false, 0});
+            }).find("delta"),
             std::string::npos);
-  EXPECT_NE(message([&] { (void)world.raycast(Ray{Vec3::Zero(), Vec3::Zero()}); })
-                .find("ray.direction"),
+  EXPECT_NE(message([&] {
+              (void)world.raycast(Ray{Vec3::Zero(), Vec3::Zero()});
+            }).find("ray.direction"),
             std::string::npos);
   EXPECT_NE(message([&] { (void)World(WorldOptions{-1}); }).find("fat_fraction"),
             std::string::npos);
@@ -540,7 +544,8 @@ TEST(World, LargeMovingWorldMatchesOracleAtAnyThreadCount) {
     const auto cand1 = one.execute([&] { return world.candidate_pairs(0.05); });
     const auto cand3 = three.execute([&] { return world.candidate_pairs(0.05); });
     ASSERT_EQ(cand1, cand3);
-    for (const ObjectPair& p : expected) ASSERT_TRUE(std::binary_search(cand1.begin(), cand1.end(), p));
+    for (const ObjectPair& p : expected)
+      ASSERT_TRUE(std::binary_search(cand1.begin(), cand1.end(), p));
     colliding_seen += expected.size();
   }
   EXPECT_GT(colliding_seen, 100u);  // not vacuous

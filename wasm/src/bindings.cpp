@@ -43,7 +43,6 @@
 #include <string_view>
 #include <vector>
 
-
 namespace {
 
 using namespace antcd;
@@ -148,7 +147,8 @@ double* out_resize(std::size_t n) {
 // An integer in [1, 2^32) given as a JS number; throws ArgumentError naming it.
 std::uint32_t positive_count(double v, const char* name) {
   if (!(v >= 1 && v <= 4294967295.0) || v != std::floor(v)) {
-    throw ArgumentError(std::string(name) + " " + number_text(v) + " is not an integer in [1, 2^32)");
+    throw ArgumentError(std::string(name) + " " + number_text(v) +
+                        " is not an integer in [1, 2^32)");
   }
   return static_cast<std::uint32_t>(v);
 }
@@ -160,7 +160,8 @@ CollisionRequest collision_request(bool all_contacts, double delta, bool normals
   r.delta = delta;
   r.contact_normals = normals;
   if (!(max_contacts >= 0) || max_contacts != std::floor(max_contacts)) {
-    throw ArgumentError("maxContacts " + number_text(max_contacts) + " is not a non-negative integer");
+    throw ArgumentError("maxContacts " + number_text(max_contacts) +
+                        " is not a non-negative integer");
   }
   r.max_contacts = static_cast<std::size_t>(max_contacts);
   return r;
@@ -515,14 +516,16 @@ class WasmWorld {
  private:
   static std::uint32_t filter_bits(double v, const char* what) {
     if (!(v >= 0 && v <= 4294967295.0) || v != std::floor(v)) {
-      throw ArgumentError(std::string(what) + " " + number_text(v) + " is not an integer in [0, 2^32)");
+      throw ArgumentError(std::string(what) + " " + number_text(v) +
+                          " is not an integer in [0, 2^32)");
     }
     return static_cast<std::uint32_t>(v);
   }
   static ObjectId id_of(double handle, const char* function) {
     if (!(handle >= 0 && handle < kMaxGeneration * kGenerationScale) ||
         handle != std::floor(handle)) {
-      throw ArgumentError(std::string(function) + ": " + number_text(handle) + " is not an object handle");
+      throw ArgumentError(std::string(function) + ": " + number_text(handle) +
+                          " is not an object handle");
     }
     const double gen = std::floor(handle / kGenerationScale);
     return ObjectId{static_cast<std::uint32_t>(handle - gen * kGenerationScale),
