@@ -26,8 +26,8 @@ inline void require_sweep_range(std::string_view function, std::string_view argu
   msg.append(": ").append(argument);
   if (!what.empty()) msg.append(" ").append(what);
   msg.append(" is beyond the continuous queries' coordinate range (+-");
-  msg.append(detail::format_number(kSweepCoordinateRange)).append("), got ");
-  msg.append(detail::format_number(value));
+  msg.append(number_text(kSweepCoordinateRange)).append("), got ");
+  msg.append(number_text(value));
   throw ArgumentError(msg);
 }
 
