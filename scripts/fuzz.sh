@@ -41,6 +41,8 @@ fuzzers=(fuzz_mesh_load fuzz_scene_parse)
 fuzzers+=(fuzz_points_csv fuzz_run_result)
 # The model-file reader (issue 27), corpus fuzz/corpus/model.
 fuzzers+=(fuzz_model_file)
+# Self-collision and the vertex update (issue 41), corpus fuzz/corpus/self.
+fuzzers+=(fuzz_self)
 cmake --build "$build_dir" -j "$jobs" --target "${fuzzers[@]}"
 
 # ---- run ----
