@@ -39,6 +39,8 @@ set(ANTCD_CORE_SOURCES
   ccd/primitive.cpp
   ccd/sweep.cpp
   ccd/swept_proximity.cpp
+  ccd/deform_bounds.cpp
+  ccd/deform_sweep.cpp
 )
 set(ANTCD_CORE_TREE_SOURCE world/aabb_tree.cpp)
 # Self-collision of one Model (antcd/self.hpp).
