@@ -29,26 +29,31 @@
 //   + rounding per axis); it may be a false positive. A rigid mesh that turns is followed along
 //   chords (below), so its hits are always tolerance_decided.
 // - Broad phase: per call, every node of the model's hierarchy gets the axis-aligned boxes of its
-//   triangles' vertices at t = 0 and t = 1 and the largest displacement of those vertices along each
-//   axis, both directions; the box over [0, s] is within [lo0 - s dneg, hi0 + s dpos] and within the
-//   union of the two end boxes (padded for rounding by 8 u (M + D + min_separation), M the largest
-//   coordinate, D the largest displacement, u = 2^-53). A self-traversal (or a dual one) of those
-//   bounds visits every node pair within min_separation; in first-hit mode it prunes with the box
-//   over [0, s], s the earliest toi found so far. Each triangle pair's own bounds are checked before
-//   its (at most) 6 vertex–face and 9 edge–edge primitive queries; every primitive pair is queried
-//   from one triangle pair only (the lowest-indexed triangle holding the vertex or the edge).
+//   triangles' vertices at t = 0 and t = 1 and the largest displacement of those vertices along
+//   each axis, both directions; the box over [0, s] is within [lo0 - s dneg, hi0 + s dpos] and
+//   within the union of the two end boxes (padded for rounding by 8 u (M + D + min_separation), M
+//   the largest coordinate, D the largest displacement, u = 2^-53). A self-traversal (or a dual
+//   one) of those bounds visits every node pair within min_separation; in first-hit mode it prunes
+//   with the box over [0, s], s the earliest toi found so far. Each triangle pair's own bounds are
+//   checked before its (at most) 6 vertex–face and 9 edge–edge primitive queries; every primitive
+//   pair is queried from one triangle pair only (the lowest-indexed triangle holding the vertex or
+//   the edge).
 // - Rigid other (deform_sweep with two poses): B follows ccd::interpolate_pose. Its vertices run on
 //   arcs, which the primitives cannot take, so [0, 1] is cut into n equal pieces on which each
-//   vertex of B stays within delta = r (theta / n)^2 / 8 of its chord (theta: the rotation angle from
-//   pose_b0 to pose_b1, r: the largest |p| of B's vertices in its frame), and each piece is a linear
-//   query with min_separation + delta (+ a rounding allowance of 64 u times the scene's size). n is
-//   the least that keeps delta <= pose_path_tolerance (0: 1e-3 r), at most 1024 (then delta is the
-//   larger value that n = 1024 gives). Conservative as above; a hit means within min_separation +
-//   2 delta. A pure translation is one piece.
-// - Determinism: the traversal is cut into a fixed list of tasks (a function of the two meshes and
-//   their bounds only), each run sequentially with its own earliest toi; the answer is the
-//   earliest over the tasks (ties: pair kind, then indices). The same input gives the same result
-//   at any thread count.
+//   vertex of B stays within delta = r (theta / n)^2 / 8 of its chord (theta: the rotation angle
+//   from pose_b0 to pose_b1, r: the largest |p| of B's vertices in its frame), and each piece is a
+//   linear query with min_separation + delta (+ a rounding allowance of 64 u times the scene's
+//   size). n is the least that keeps delta <= pose_path_tolerance (0: 1e-3 r), at most 1024 (then
+//   delta is the larger value that n = 1024 gives). Conservative as above; a hit means within
+//   min_separation + 2 delta. A pure translation is one piece.
+// - Determinism: the traversal is cut into a fixed list of tasks run in parallel. In first-hit
+//   mode they share the earliest toi found so far; a pair is pruned only when its bounds over [0,
+//   that toi + time_tolerance], grown by the primitives' tolerance reach (3W + rounding, ccd.hpp),
+//   are apart, which proves its own toi later. So the answer is the earliest (toi, then pair kind
+//   and indices) over every pair the bounds keep over [0, 1], the same at any thread count and
+//   equal to all_pairs' first entry. One exception: a primitive query that exhausts its box budget
+//   (DeformPair::budget_exhausted, very degenerate input) stops at a time its geometry does not
+//   bound, so whether such a pair was pruned may then depend on the timing.
 // - Memory: O(n) per call, none growing with the square of the mesh: the bounds (160 bytes per
 //   hierarchy node, about n / 2 nodes for leaf size 4), a copy of the leaf order (4 bytes per
 //   triangle), an ownership byte per triangle and a vertex->triangle index used while it is made
@@ -60,9 +65,9 @@
 // same Model at once (not while Model::refit runs on it). Parallel over the tasks (oneTBB when the
 // library is built with it).
 // Errors (antcd::ArgumentError naming the argument): V0 / V1 (or B0 / B1) whose size is not the
-// mesh's vertex count, a non-finite coordinate or one larger than 1e150 in magnitude (named with its
-// index), min_separation < 0 or not finite, time_tolerance <= 0 or not finite, pose_path_tolerance
-// < 0 or not finite, a non-finite pose.
+// mesh's vertex count, a non-finite coordinate or one larger than 1e150 in magnitude (named with
+// its index), min_separation < 0 or not finite, time_tolerance <= 0 or not finite,
+// pose_path_tolerance < 0 or not finite, a non-finite pose.
 #pragma once
 
 #include <antcd/bvh.hpp>
@@ -116,10 +121,10 @@ struct DeformSweepResult {
   DeformPair pair;
   /// all_pairs: every hit pair, sorted by (toi, kind, vertex_in_first, indices). Empty otherwise.
   std::vector<DeformPair> pairs;
-  std::uint64_t node_pairs = 0;        ///< node pairs whose bounds were compared
-  std::uint64_t primitive_queries = 0; ///< ccd::vertex_face / edge_edge calls
-  std::size_t tasks = 0;               ///< parallel tasks the traversal was cut into
-  std::size_t scratch_bytes = 0;       ///< bytes one call held (see Memory above)
+  std::uint64_t node_pairs = 0;         ///< node pairs whose bounds were compared
+  std::uint64_t primitive_queries = 0;  ///< ccd::vertex_face / edge_edge calls
+  std::size_t tasks = 0;                ///< parallel tasks the traversal was cut into
+  std::size_t scratch_bytes = 0;        ///< bytes one call held (see Memory above)
 };
 
 /// Self CCD of `model`'s mesh moving from V0 to V1 (one position per mesh vertex).

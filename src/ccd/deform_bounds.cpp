@@ -150,8 +150,8 @@ DeformBounds make_deform_bounds(const Model& model, std::span<const Vec3> V0,
   }
 
   for (std::size_t v = 0; v < V0.size(); ++v) {
-    b.max_coordinate = std::max(
-        {b.max_coordinate, V0[v].cwiseAbs().maxCoeff(), V1[v].cwiseAbs().maxCoeff()});
+    b.max_coordinate =
+        std::max({b.max_coordinate, V0[v].cwiseAbs().maxCoeff(), V1[v].cwiseAbs().maxCoeff()});
     b.max_displacement = std::max(b.max_displacement, (V1[v] - V0[v]).cwiseAbs().maxCoeff());
   }
   std::size_t owner_scratch = 0;

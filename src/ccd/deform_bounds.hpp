@@ -28,10 +28,10 @@ struct DeformBounds {
   std::vector<SweptNode> nodes;
   std::vector<std::uint32_t> triangles;  ///< leaf order, then the zero-area triangles
   std::uint32_t root = 0;
-  std::vector<OwnerMask> owner;  ///< per mesh triangle
-  Scalar max_coordinate = 0;     ///< largest |coordinate| of V0 and V1
-  Scalar max_displacement = 0;   ///< largest |V1 - V0| per axis
-  std::size_t scratch_bytes = 0; ///< peak bytes held while building and after
+  std::vector<OwnerMask> owner;   ///< per mesh triangle
+  Scalar max_coordinate = 0;      ///< largest |coordinate| of V0 and V1
+  Scalar max_displacement = 0;    ///< largest |V1 - V0| per axis
+  std::size_t scratch_bytes = 0;  ///< peak bytes held while building and after
 };
 
 /// The bounds of `model`'s hierarchy (its node topology; the zero-area triangles it leaves out in

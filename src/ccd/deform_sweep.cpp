@@ -6,6 +6,7 @@
 #include <antcd/error.hpp>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -43,6 +44,8 @@ struct Context {
   Scalar tol = 1e-6;
   Scalar pad = 0;
   bool all_pairs = false;
+  /// First-hit mode: the earliest toi any task has found (shared; read for pruning only).
+  std::atomic<Scalar>* shared_best = nullptr;
 };
 
 /// A unit of traversal: the self-pairs under node a (self_item) or the pairs between node a of
@@ -148,7 +151,16 @@ class Traversal {
 
  private:
   /// The time up to which contacts still matter: the earliest toi so far (first-hit mode).
-  [[nodiscard]] Scalar horizon() const { return out_.hit && !c_.all_pairs ? out_.best.toi : 1; }
+  /// The time up to which contacts still matter: the earliest toi any task found so far, plus the
+  /// time tolerance (first-hit mode). A pair apart over [0, horizon] by more than the pad (which
+  /// holds the primitives' tolerance reach, see pad_for) has a toi later than that earliest one,
+  /// so pruning it never changes the answer, whatever the order the tasks run in.
+  [[nodiscard]] Scalar horizon() const {
+    if (c_.all_pairs) return 1;
+    Scalar best = c_.shared_best->load(std::memory_order_relaxed);
+    if (out_.hit) best = std::min(best, out_.best.toi);
+    return std::min(Scalar(1), best + c_.tol);
+  }
 
   void leaf_pairs(const SweptNode& na, const SweptNode& nb, bool same) {
     const auto& ta = c_.a.bounds->triangles;
@@ -241,6 +253,10 @@ class Traversal {
     if (!out_.hit || earlier(p, out_.best)) {
       out_.best = p;
       out_.hit = true;
+      Scalar seen = c_.shared_best->load(std::memory_order_relaxed);
+      while (p.toi < seen &&
+             !c_.shared_best->compare_exchange_weak(seen, p.toi, std::memory_order_relaxed)) {
+      }
     }
   }
 
@@ -253,7 +269,9 @@ class Traversal {
 std::vector<Item> make_tasks(const Context& c, Item root, std::uint64_t& node_pairs) {
   std::vector<Item> items = {root};
   TaskOut scratch;
-  Traversal probe(c, scratch);
+  Context whole = c;  // culled over [0, 1]: no shared best yet
+  whole.all_pairs = true;
+  Traversal probe(whole, scratch);
   while (items.size() < kTasks) {
     std::vector<Item> next;
     bool changed = false;
@@ -297,8 +315,11 @@ DeformSweepResult run_sweep(const Context& c, Item root, std::size_t bounds_byte
   DeformSweepResult result;
   const std::vector<Item> tasks = make_tasks(c, root, result.node_pairs);
   std::vector<TaskOut> outs(tasks.size());
+  std::atomic<Scalar> shared_best{std::numeric_limits<Scalar>::infinity()};
+  Context ctx = c;
+  ctx.shared_best = &shared_best;
   parallel::for_each_index(0, tasks.size(), [&](std::size_t k) {
-    Traversal t(c, outs[k]);
+    Traversal t(ctx, outs[k]);
     t.run(tasks[k]);
   });
   std::size_t stack_bytes = 0;
@@ -319,7 +340,8 @@ DeformSweepResult run_sweep(const Context& c, Item root, std::size_t bounds_byte
     std::size_t n = 0;
     for (const TaskOut& o : outs) n += o.pairs.size();
     result.pairs.reserve(n);
-    for (const TaskOut& o : outs) result.pairs.insert(result.pairs.end(), o.pairs.begin(), o.pairs.end());
+    for (const TaskOut& o : outs)
+      result.pairs.insert(result.pairs.end(), o.pairs.begin(), o.pairs.end());
     std::sort(result.pairs.begin(), result.pairs.end(), earlier);
   }
   result.tasks = tasks.size();
@@ -352,10 +374,16 @@ void check_request(const char* function, const DeformSweepRequest& r) {
   detail::require_non_negative(function, "pose_path_tolerance", r.pose_path_tolerance);
 }
 
-Scalar pad_for(const DeformBounds& a, const DeformBounds& b, Scalar sep) {
+/// The bounds' padding: their rounding (8 u (M + D + sep)), and the reach of a tolerance-decided
+/// primitive hit (ccd.hpp: within min_separation + 3W + rounding per axis at a time in [toi, toi +
+/// time_tolerance], W = max(time_tolerance 2 D, 4 eps), eps = 96 u M: the primitive's a-priori
+/// rounding bound), so that a pair the bounds drop could not have reported an earlier toi.
+Scalar pad_for(const DeformBounds& a, const DeformBounds& b, Scalar sep, Scalar tol) {
   const Scalar m = std::max(a.max_coordinate, b.max_coordinate);
   const Scalar d = std::max(a.max_displacement, b.max_displacement);
-  return 8 * kUnitRoundoff * (m + d + sep) + std::numeric_limits<Scalar>::min();
+  const Scalar eps = 96 * kUnitRoundoff * m + std::numeric_limits<Scalar>::min();
+  const Scalar w = std::max(tol * 2 * d, 4 * eps);
+  return (8 * kUnitRoundoff * (m + d + sep) + 3 * w + 4 * eps) * (1 + 16 * kUnitRoundoff);
 }
 
 DeformSweepResult two_meshes(const Model& a, std::span<const Vec3> A0, std::span<const Vec3> A1,
@@ -369,7 +397,7 @@ DeformSweepResult two_meshes(const Model& a, std::span<const Vec3> A0, std::span
   c.self = false;
   c.sep = sep;
   c.tol = request.time_tolerance;
-  c.pad = pad_for(ba, bb, sep);
+  c.pad = pad_for(ba, bb, sep, request.time_tolerance);
   c.all_pairs = request.all_pairs;
   return run_sweep(c, {ba.root, bb.root, false}, ba.scratch_bytes + bb.scratch_bytes);
 }
@@ -389,7 +417,7 @@ DeformSweepResult deform_sweep(const Model& model, std::span<const Vec3> V0,
   c.self = true;
   c.sep = request.min_separation;
   c.tol = request.time_tolerance;
-  c.pad = pad_for(bounds, bounds, c.sep);
+  c.pad = pad_for(bounds, bounds, c.sep, c.tol);
   c.all_pairs = request.all_pairs;
   return run_sweep(c, {bounds.root, 0, true}, bounds.scratch_bytes);
 }
@@ -433,8 +461,8 @@ DeformSweepResult deform_sweep(const Model& a, std::span<const Vec3> A0, std::sp
   }
   const Scalar bend = theta > 0 ? r * (theta / pieces) * (theta / pieces) / 8 : 0;
   // Rounding allowance: the interpolated poses, the mapped vertices and the interpolated A.
-  Scalar scene = r + pose_b0.translation.cwiseAbs().maxCoeff() +
-                 pose_b1.translation.cwiseAbs().maxCoeff();
+  Scalar scene =
+      r + pose_b0.translation.cwiseAbs().maxCoeff() + pose_b1.translation.cwiseAbs().maxCoeff();
   for (std::size_t v = 0; v < A0.size(); ++v) {
     scene = std::max({scene, A0[v].cwiseAbs().maxCoeff(), A1[v].cwiseAbs().maxCoeff()});
   }
@@ -446,11 +474,13 @@ DeformSweepResult deform_sweep(const Model& a, std::span<const Vec3> A0, std::sp
   auto world = [&](Scalar t, std::vector<Vec3>& out) {
     const Transform pose = ccd::interpolate_pose(pose_b0, pose_b1, t);
     out.resize(local.size());
-    for (std::size_t v = 0; v < local.size(); ++v) out[v] = pose.rotation * local[v] + pose.translation;
+    for (std::size_t v = 0; v < local.size(); ++v)
+      out[v] = pose.rotation * local[v] + pose.translation;
   };
   auto lerp = [&](Scalar t, std::vector<Vec3>& out) {
     out.resize(A0.size());
-    for (std::size_t v = 0; v < A0.size(); ++v) out[v] = t == 1 ? A1[v] : Vec3(A0[v] + t * (A1[v] - A0[v]));
+    for (std::size_t v = 0; v < A0.size(); ++v)
+      out[v] = t == 1 ? A1[v] : Vec3(A0[v] + t * (A1[v] - A0[v]));
   };
   DeformSweepResult total;
   std::vector<Vec3> b_start, b_end, a_start, a_end;
@@ -465,8 +495,8 @@ DeformSweepResult deform_sweep(const Model& a, std::span<const Vec3> A0, std::sp
     total.node_pairs += piece.node_pairs;
     total.primitive_queries += piece.primitive_queries;
     total.tasks += piece.tasks;
-    total.scratch_bytes = std::max(total.scratch_bytes,
-                                   piece.scratch_bytes + 4 * local.size() * sizeof(Vec3));
+    total.scratch_bytes =
+        std::max(total.scratch_bytes, piece.scratch_bytes + 4 * local.size() * sizeof(Vec3));
     // Piece time s -> global time, rounded down (never later than the true one), within the piece.
     auto global = [&](Scalar s) {
       const Scalar t = t0 + s * (t1 - t0);

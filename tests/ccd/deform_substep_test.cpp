@@ -2,8 +2,8 @@
 // each checked with exact discrete tests (antcd::triangles_intersect on the triangle pairs that
 // share no vertex, or antcd::collide between two meshes). Whenever a step at t_k intersects, the
 // CCD must report a hit with toi <= t_k (0 false negatives). Real meshes (Debian's assimp models)
-// bent and twisted, a folding strip, a twisting strip, a cloth falling onto a sphere and a cloth hit
-// by a turning box.
+// bent and twisted, a folding strip, a twisting strip, a cloth falling onto a sphere and a cloth
+// hit by a turning box.
 #include <antcd/bvh.hpp>
 #include <antcd/ccd.hpp>
 #include <antcd/collide.hpp>
@@ -55,8 +55,8 @@ void compare(const char* name, const DeformSweepResult& r, std::optional<int> k,
 
 void report(const char* what, const Tally& t) {
   std::cout << what << ": " << t.cases << " motions, " << t.intersecting
-            << " intersect at a sub-step, " << t.false_negatives << " false negatives, " << t.ccd_only
-            << " CCD hits no sub-step shows\n";
+            << " intersect at a sub-step, " << t.false_negatives << " false negatives, "
+            << t.ccd_only << " CCD hits no sub-step shows\n";
 }
 
 /// Self case: CCD vs the sub-steps' exact self test (pairs sharing no vertex).
@@ -64,9 +64,8 @@ void self_case(const char* name, const Mesh& mesh, const std::vector<Vec3>& v0,
                const std::vector<Vec3>& v1, Tally& t) {
   const Model model(mesh, {}, name);
   const DeformSweepResult r = deform_sweep(model, v0, v1);
-  const auto k = first_step([&](Scalar s) {
-    return test::self_intersects_disjoint(mesh, test::lerp(v0, v1, s));
-  });
+  const auto k = first_step(
+      [&](Scalar s) { return test::self_intersects_disjoint(mesh, test::lerp(v0, v1, s)); });
   compare(name, r, k, t);
 }
 
@@ -143,8 +142,8 @@ TEST(DeformCcdSubstep, TwistingStrip) {
       const Scalar y = p.y() - 0.3;
       // Twisted about the strip's axis and pulled into a loop so that its ends cross.
       const Scalar phi = std::numbers::pi * 1.2 * p.x() / 4;
-      v1[i] = Vec3(std::sin(phi) * 1.2, y * std::cos(a) + 0.5 * (1 - std::cos(phi)),
-                   y * std::sin(a));
+      v1[i] =
+          Vec3(std::sin(phi) * 1.2, y * std::cos(a) + 0.5 * (1 - std::cos(phi)), y * std::sin(a));
     }
     self_case("twisting strip", strip, v0, v1, t);
   }

@@ -70,7 +70,8 @@ inline bool self_intersects_disjoint(const Mesh& mesh, const std::vector<Vec3>& 
       const auto& ta = mesh.triangles[a];
       const auto& tb = mesh.triangles[b];
       if (share_vertex(ta, tb)) continue;
-      if (geometry::triangles_intersect(p[ta[0]], p[ta[1]], p[ta[2]], p[tb[0]], p[tb[1]], p[tb[2]])) {
+      if (geometry::triangles_intersect(p[ta[0]], p[ta[1]], p[ta[2]], p[tb[0]], p[tb[1]],
+                                        p[tb[2]])) {
         return true;
       }
     }
