@@ -123,7 +123,7 @@ void run_discrete_all(benchmark::State& state, const Step& s) {
 void BM_DeformSweep_Wave(benchmark::State& state) { run_ccd(state, wave_step(), false); }
 void BM_DiscreteAllContacts_Wave(benchmark::State& state) { run_discrete_all(state, wave_step()); }
 void BM_DeformSweep_Stack(benchmark::State& state) { run_ccd(state, stack_step(), false); }
-void BM_DeformSweepAllPairs_Stack(benchmark::State& state) { run_ccd(state, stack_step(), true); }
+void BM_DeformSweepAllPairs_Wave(benchmark::State& state) { run_ccd(state, wave_step(), true); }
 void BM_DiscreteAllContacts_Stack(benchmark::State& state) {
   run_discrete_all(state, stack_step());
 }
@@ -138,7 +138,7 @@ void BM_DiscreteLayers_Stack(benchmark::State& state) {
 BENCHMARK(BM_DeformSweep_Wave)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_DiscreteAllContacts_Wave)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_DeformSweep_Stack)->Unit(benchmark::kMillisecond)->UseRealTime();
-BENCHMARK(BM_DeformSweepAllPairs_Stack)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_DeformSweepAllPairs_Wave)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_DiscreteAllContacts_Stack)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_DiscreteLayers_Stack)->Unit(benchmark::kMillisecond)->UseRealTime();
 

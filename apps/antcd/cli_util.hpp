@@ -106,6 +106,7 @@ void add_learn_commands(CLI::App& app, int& code);
 void add_ccd_commands(CLI::App& app, int& code);
 /// `self-intersect` and `self-proximity` (cmd_self.cpp): one mesh against itself.
 void add_self_commands(CLI::App& app, int& code);
+void add_deform_ccd_command(CLI::App& app, int& code);
 
 /// "box-dnn" or "box-lstm": the learned baselines (cmd_learn.cpp), run through run_learned.
 bool is_learned_method(const std::string& method);

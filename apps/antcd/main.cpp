@@ -45,6 +45,7 @@ int main(int argc, char** argv) {
   antcd::cli::add_view_command(app, code);
   antcd::cli::add_ccd_commands(app, code);
   antcd::cli::add_self_commands(app, code);
+  antcd::cli::add_deform_ccd_command(app, code);
 #if defined(ANTCD_LAB)
   antcd::cli::add_bench_commands(app, code);
   antcd::cli::add_learn_commands(app, code);
