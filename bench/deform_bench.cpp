@@ -1,8 +1,8 @@
 // Deforming-mesh CCD (antcd::deform_sweep) on a 100k-triangle cloth step against discrete exact
-// queries on the same mesh. antcd has no discrete self-intersection query on main yet
-// (issue 36), so the discrete reference is collide() of the mesh at t = 1 against a second Model of
-// the same mesh, all contacts (every triangle touches itself and its neighbours there: an
-// all-pairs discrete cost), and the boolean collide() of the cloth's two layers at t = 1.
+// queries on the same mesh at t = 1 (Model built beforehand): antcd::self_intersections (with and
+// without its normal-cone cull; its cone data are built on the first call and kept), collide() of
+// the mesh against a second Model of it, all contacts (every triangle touches itself and its
+// neighbours there: an all-pairs discrete cost), and the boolean collide() of the two layers.
 //
 // Cloths (x, y in [0, 1]): "wave": one sheet of 224 x 224 quads (100 352 triangles) waving, every
 // vertex moving by under half a cell (no contact: toi = 1, the whole traversal runs). "stack": two
@@ -11,6 +11,7 @@
 #include <antcd/bvh.hpp>
 #include <antcd/collide.hpp>
 #include <antcd/deform_ccd.hpp>
+#include <antcd/self.hpp>
 
 #include <benchmark/benchmark.h>
 
@@ -120,6 +121,30 @@ void run_discrete_all(benchmark::State& state, const Step& s) {
   state.counters["contacts"] = static_cast<double>(r.contacts.size());
 }
 
+/// self_intersections of the mesh at t = 1.
+void run_self(benchmark::State& state, const Step& s, bool cones) {
+  Mesh at1 = s.mesh;
+  at1.vertices = s.v1;
+  const antcd::Model model(at1, {}, "cloth");
+  antcd::SelfIntersectionRequest req;
+  req.normal_cones = cones;
+  antcd::SelfIntersectionResult r = antcd::self_intersections(model, req);  // cone data built
+  for (auto _ : state) {
+    r = antcd::self_intersections(model, req);
+    benchmark::DoNotOptimize(r.intersecting);
+  }
+  state.counters["pairs"] = static_cast<double>(r.pairs.size());
+}
+
+void BM_SelfIntersections_Wave(benchmark::State& state) { run_self(state, wave_step(), true); }
+void BM_SelfIntersectionsNoCones_Wave(benchmark::State& state) {
+  run_self(state, wave_step(), false);
+}
+void BM_SelfIntersections_Stack(benchmark::State& state) { run_self(state, stack_step(), true); }
+void BM_SelfIntersectionsNoCones_Stack(benchmark::State& state) {
+  run_self(state, stack_step(), false);
+}
+
 void BM_DeformSweep_Wave(benchmark::State& state) { run_ccd(state, wave_step(), false); }
 void BM_DiscreteAllContacts_Wave(benchmark::State& state) { run_discrete_all(state, wave_step()); }
 void BM_DeformSweep_Stack(benchmark::State& state) { run_ccd(state, stack_step(), false); }
@@ -136,8 +161,12 @@ void BM_DiscreteLayers_Stack(benchmark::State& state) {
 }
 
 BENCHMARK(BM_DeformSweep_Wave)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_SelfIntersections_Wave)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_SelfIntersectionsNoCones_Wave)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_DiscreteAllContacts_Wave)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_DeformSweep_Stack)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_SelfIntersections_Stack)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_SelfIntersectionsNoCones_Stack)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_DeformSweepAllPairs_Wave)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_DiscreteAllContacts_Stack)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_DiscreteLayers_Stack)->Unit(benchmark::kMillisecond)->UseRealTime();
