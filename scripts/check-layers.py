@@ -4,10 +4,11 @@ above its own, and the libraries include only what they link.
 
 Every folder of src/ is a layer, ranked below; a public header include/antcd/<name>.hpp belongs to
 the layer that implements it (HEADER_LAYER). A file of layer L may include the public and private
-headers of layers ranked below L and of L itself. Layers of one rank (io and random, the core's
-siblings exact/points ...) must not include each other. Public headers are checked the same way, and
-the front ends (apps/, python/, wasm/) may not include private headers of src/ at all (they are the
-libraries' callers, not parts of them).
+headers of layers ranked below L and of L itself; layers of one rank (io and random) must not
+include each other. Public headers are checked the same way, and the front ends (apps/, python/,
+wasm/) may not include private headers of src/ at all (they are the libraries' callers, not parts
+of them). Every public header must be installed by exactly one library (its antcd_library_headers
+list in src/CMakeLists.txt).
 
 Usage: scripts/check-layers.py [REPO]   exits 1 naming each upward include, 0 when there is none.
 """
@@ -27,7 +28,7 @@ HEADER_LAYER = {
     "math": "base", "error": "base", "export": "base", "tolerances": "base", "version": "base",
     "pose": "base", "file": "util",
     "geometry": "geometry", "mesh": "mesh", "bvh": "bvh", "points": "points", "collide": "exact",
-    "distance": "distance", "penetration": "penetration", "sweep": "ccd", "ccd": "ccd",
+    "distance": "distance", "penetration": "penetration", "sweep": "ccd", "ccd": "ccd", "deform_ccd": "ccd",
     "self": "self", "world": "world",
     "load": "io", "csv": "io", "io_export": "io",
     "random": "random", "random_features": "random", "random_search": "random", "method": "random",
@@ -89,10 +90,21 @@ def main():
                 if m and m.group(1) == '"' and m.group(2).split("/")[0] in RANKS:
                     problems.append(f"{f.relative_to(repo)}:{number}: the front end includes the "
                                     f"library's private header {m.group(2)}")
+    # Every public header is installed by exactly one library (antcd_library_headers in
+    # src/CMakeLists.txt), or an installed package would lack it.
+    cmake = (repo / "src" / "CMakeLists.txt").read_text(encoding="utf-8")
+    listed = []
+    for m in re.finditer(r"antcd_library_headers\(\s*(\w+)([^)]*)\)", cmake):
+        listed += m.group(2).split()
+    for f in sorted((repo / "include" / "antcd").glob("*.hpp")):
+        if listed.count(f.name) != 1:
+            problems.append(f"include/antcd/{f.name}: installed by {listed.count(f.name)} libraries "
+                            "(list it once in an antcd_library_headers call of src/CMakeLists.txt)")
     for p in problems:
         print(p)
     if problems:
-        print(f"check-layers: {len(problems)} include(s) against the layers (docs/design.md)",
+        print(f"check-layers: {len(problems)} problem(s): includes against the layers of "
+              "docs/design.md, or public headers no library installs",
               file=sys.stderr)
         return 1
     print(f"check-layers: {checked} files, no upward include")
