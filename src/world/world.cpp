@@ -299,8 +299,8 @@ void World::set_vertices(ObjectId id, std::span<const Vec3> vertices) {
   // is being made meanwhile). Otherwise (the first call: the Model is the shared one given to
   // add(); or a model_ptr() of the private one is held) a copy is refitted, and replaces it only
   // when the refit succeeded: on a throw nothing has changed.
-  std::shared_ptr<Model> target = o.own;
-  if (!target || target.use_count() != 2) target = std::make_shared<Model>(*o.model);
+  std::shared_ptr<Model> target =
+      o.own && o.own.use_count() == 2 ? o.own : std::make_shared<Model>(*o.model);
   try {
     target->refit(vertices, o.options.rebuild_above);
   } catch (const Error& e) {

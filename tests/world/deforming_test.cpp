@@ -177,7 +177,9 @@ void deform_frame_by_frame(double rebuild_above) {
   EXPECT_GT(pairs_seen, 12u) << "the sheet touches nothing: the test would be trivial";
   // The shared Model was never changed: the rigid copy of the sheet still has the flat mesh.
   EXPECT_EQ(original->mesh().vertices, start.vertices);
-  if (rebuild_above > 0) EXPECT_TRUE(rebuilt) << "the rebuild rule never fired";
+  if (rebuild_above > 0) {
+    EXPECT_TRUE(rebuilt) << "the rebuild rule never fired";
+  }
 }
 
 TEST(WorldDeforming, SheetFrameByFrameEqualsWorldRebuiltFromMovedMesh) { deform_frame_by_frame(0); }
@@ -201,16 +203,23 @@ TEST(WorldDeforming, PrivateCopyOnFirstSetVerticesAndHeldPointersNeverChange) {
   EXPECT_EQ(world.model_ptr(b), original);
   EXPECT_EQ(original->mesh().vertices, start.vertices);
   EXPECT_EQ(world.model(a).mesh().vertices, f1.vertices);
-  // Memory: one private Model, counted once.
-  const std::size_t copy_bytes = sizeof(Model) + original->stats().memory_bytes;
-  EXPECT_EQ(world.memory_bytes(), rigid_bytes + copy_bytes);
+  // Memory: one private Model (what the shared one costs), counted once. (The broad-phase tree's
+  // own storage may change by some bytes when the object's leaf moves, hence the slack, a quarter
+  // of the copy: counting the copy twice or not at all fails.)
+  const auto copy_bytes = [&] { return sizeof(Model) + world.model(a).stats().memory_bytes; };
+  EXPECT_EQ(world.model(a).stats().memory_bytes, original->stats().memory_bytes);
+  const auto expect_one_copy = [&] {
+    const double extra = double(world.memory_bytes()) - double(rigid_bytes);
+    EXPECT_NEAR(extra, double(copy_bytes()), double(copy_bytes()) / 4);
+  };
+  EXPECT_EQ(world.memory_bytes(), rigid_bytes + copy_bytes());
 
   // Refitted in place while nothing else holds the private copy...
   const Model* before = &world.model(a);
   const Mesh f2 = rippled_sheet(10, 10, 0.7);
   world.set_vertices(a, f2.vertices);
   EXPECT_EQ(&world.model(a), before);
-  EXPECT_EQ(world.memory_bytes(), rigid_bytes + copy_bytes);
+  expect_one_copy();
 
   // ...copied again while a model_ptr() of it is held, so the holder's Model never changes.
   const ModelPtr held = world.model_ptr(a);
@@ -219,7 +228,7 @@ TEST(WorldDeforming, PrivateCopyOnFirstSetVerticesAndHeldPointersNeverChange) {
   EXPECT_NE(world.model_ptr(a), held);
   EXPECT_EQ(held->mesh().vertices, f2.vertices);
   EXPECT_EQ(world.model(a).mesh().vertices, f3.vertices);
-  EXPECT_EQ(world.memory_bytes(), rigid_bytes + copy_bytes);
+  expect_one_copy();
 
   // The object's bounds follow its mesh: moved far up, it leaves b's neighbourhood and comes back.
   Mesh up = f3;
@@ -235,7 +244,7 @@ TEST(WorldDeforming, PrivateCopyOnFirstSetVerticesAndHeldPointersNeverChange) {
 
   // Removing the object frees its private copy.
   world.remove(a);
-  EXPECT_LT(world.memory_bytes(), rigid_bytes + copy_bytes);
+  EXPECT_LT(world.memory_bytes(), rigid_bytes + sizeof(Model) + original->stats().memory_bytes);
 }
 
 // Self pairs, frame by frame while the sheet curls from flat into a loop through itself: (id, id)
