@@ -19,6 +19,7 @@
 #include <utility>
 #include <vector>
 
+#include "self/self_meshes.hpp"
 #include "support/sanitizer.hpp"
 #include "support/test_support.hpp"
 
@@ -121,23 +122,12 @@ TEST(Concurrency, WorldQueriesFromManyThreadsBetweenMutations) {
 TEST(Concurrency, WorldDeformingSelfCollisionQueriesFromManyThreads) {
   constexpr int kThreads = 6;
   constexpr int kN = 16;
+  // The sheet blended from flat into a loop through itself (x = u^2 - 1, z = u (u^2 - 1)).
   const auto sheet_at = [&](Scalar s) {
-    Mesh m;
-    for (int j = 0; j <= 4; ++j) {
-      for (int i = 0; i <= kN; ++i) {
-        // Blended from flat into a loop through itself (x = u^2 - 1, z = u (u^2 - 1)).
-        const Scalar u = -1.5 + 3.0 * i / kN;
-        m.vertices.emplace_back((1 - s) * u + s * (u * u - 1), 0.25 * j, s * u * (u * u - 1));
-      }
-    }
-    const auto id = [](int i, int j) { return static_cast<std::uint32_t>(j * (kN + 1) + i); };
-    for (int j = 0; j < 4; ++j) {
-      for (int i = 0; i < kN; ++i) {
-        m.triangles.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
-        m.triangles.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
-      }
-    }
-    return m;
+    return test::grid_sheet(kN, 4, [=](int i, int j) {
+      const Scalar u = -1.5 + 3.0 * i / kN;
+      return Vec3((1 - s) * u + s * (u * u - 1), 0.25 * j, s * u * (u * u - 1));
+    });
   };
   const auto sphere = std::make_shared<const Model>(make_sphere(0.3, 12, 6));
   const Model probe(make_box(Vec3(0.5, 0.5, 0.5), 2));
