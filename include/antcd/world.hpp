@@ -3,8 +3,9 @@
 //
 // Conventions
 // - Objects: each object is a shared, immutable Model (std::shared_ptr<const Model>, so many
-//   objects may share one hierarchy), a pose (p_world = R p_model + t, see math.hpp), a name and a
-//   user tag (free for the application; antcd only reports them), a collision group and a mask.
+//   objects may share one hierarchy; a deforming object gets its own, see below), a pose (p_world =
+//   R p_model + t, see math.hpp), a name and a user tag (free for the application; antcd only
+//   reports them), a collision group and a mask.
 // - Handles: add() returns an ObjectId. It stays valid until that object is removed; a removed
 //   object's id is never valid again (slots are reused with a new generation), so a stale id is
 //   reported as an error, never silently aliased to another object.
@@ -24,8 +25,9 @@
 //   (wrap a call in a tbb::task_arena to bound it); the answer does not depend on how many. A build
 //   without oneTBB (ANTCD_USE_TBB=OFF) runs them on the calling thread, with the same answers.
 // - Errors: an invalid argument (an unknown or removed ObjectId, a non-finite or non-rigid pose, a
-//   negative or non-finite distance, a zero ray direction, a null model) throws ArgumentError
-//   (error.hpp) whose message names the function, the argument and the object.
+//   negative or non-finite distance, a zero ray direction, a null model, a wrong vertex count or
+//   a non-finite vertex given to set_vertices) throws ArgumentError (error.hpp) whose message
+//   names the function, the argument and the object.
 // - Broad phase: a dynamic AABB tree (docs/design.md). Moving an object within its leaf's box
 //   costs only the box computation; when few objects leave their boxes, each costs one removal and
 //   one insertion (O(log n)) with a fattened box; when many do (a frame of a moving world), one
@@ -39,9 +41,11 @@
 //   the shared one costs, per object, however many objects shared it), counted in
 //   memory_bytes(); rigid objects still share theirs. A pointer from model_ptr() is never changed
 //   under its holder: while one is held, the next set_vertices() copies again instead of
-//   refitting in place (model() references the object's current Model and sees the new
-//   vertices). After set_vertices() every query answers as on a World whose object was added
-//   with Model(moved mesh) at the same pose (only costs differ).
+//   refitting in place. A reference from model() is the object's current Model: it sees the new
+//   vertices of an in-place refit, and is valid until the object's next set_vertices() or
+//   remove() (a copy may replace the Model it refers to). After set_vertices() every query answers
+//   as on a World whose object was added with Model(moved mesh) at the same pose (only costs
+//   differ).
 // - Self-collision: an object added with ObjectOptions::self_collision = true is also tested
 //   against itself by collide_all(), with antcd::self_intersections (self.hpp: exact; two
 //   triangles sharing a vertex or an edge count only where they meet beyond it). A self pair is
