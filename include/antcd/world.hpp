@@ -3,8 +3,9 @@
 //
 // Conventions
 // - Objects: each object is a shared, immutable Model (std::shared_ptr<const Model>, so many
-//   objects may share one hierarchy), a pose (p_world = R p_model + t, see math.hpp), a name and a
-//   user tag (free for the application; antcd only reports them), a collision group and a mask.
+//   objects may share one hierarchy; a deforming object gets its own, see below), a pose (p_world =
+//   R p_model + t, see math.hpp), a name and a user tag (free for the application; antcd only
+//   reports them), a collision group and a mask.
 // - Handles: add() returns an ObjectId. It stays valid until that object is removed; a removed
 //   object's id is never valid again (slots are reused with a new generation), so a stale id is
 //   reported as an error, never silently aliased to another object.
@@ -17,19 +18,42 @@
 // - Order: results are deterministic and independent of the thread count and of the broad phase's
 //   internal shape: pairs are sorted by (a, b) in ObjectId order with a < b, single-object results
 //   by the other object's id, ray hits by (distance, object, triangle).
-// - Threads: mutating member functions (add, remove, set_pose, set_poses, set_filter,
-//   ignore_pair) must not run concurrently with anything else on the same World. Every const
-//   member function (all queries) may run from any number of threads at once between mutations.
-//   Queries spread their work over oneTBB workers of the calling thread's task arena (wrap a call
-//   in a tbb::task_arena to bound it); the answer does not depend on how many. A build without
-//   oneTBB (ANTCD_USE_TBB=OFF) runs them on the calling thread, with the same answers.
+// - Threads: mutating member functions (add, remove, set_pose, set_poses, set_vertices,
+//   set_filter, ignore_pair) must not run concurrently with anything else on the same World. Every
+//   const member function (all queries) may run from any number of threads at once between
+//   mutations. Queries spread their work over oneTBB workers of the calling thread's task arena
+//   (wrap a call in a tbb::task_arena to bound it); the answer does not depend on how many. A build
+//   without oneTBB (ANTCD_USE_TBB=OFF) runs them on the calling thread, with the same answers.
 // - Errors: an invalid argument (an unknown or removed ObjectId, a non-finite or non-rigid pose, a
-//   negative or non-finite distance, a zero ray direction, a null model) throws ArgumentError
-//   (error.hpp) whose message names the function, the argument and the object.
+//   negative or non-finite distance, a zero ray direction, a null model, a wrong vertex count or
+//   a non-finite vertex given to set_vertices) throws ArgumentError (error.hpp) whose message
+//   names the function, the argument and the object.
 // - Broad phase: a dynamic AABB tree (docs/design.md). Moving an object within its leaf's box
 //   costs only the box computation; when few objects leave their boxes, each costs one removal and
 //   one insertion (O(log n)) with a fattened box; when many do (a frame of a moving world), one
 //   O(n) refit. All-pairs queries traverse the tree against itself. Queries never modify it.
+// - Deforming objects (set_vertices): an object's mesh keeps its triangles and gets new vertex
+//   positions (cloth, a sagging sheet, a skinned part). A Model given to add() is shared and
+//   never changed by the World, so the first set_vertices() on an object copies its Model into a
+//   private one of the object's (copy on first write) and refits that copy (Model::refit: O(n),
+//   the hierarchy keeps its topology); later calls refit the private copy in place. Memory: one
+//   whole Model per deforming object (mesh and hierarchy, its BvhStats::memory_bytes: about what
+//   the shared one costs, per object, however many objects shared it), counted in
+//   memory_bytes(); rigid objects still share theirs. A pointer from model_ptr() is never changed
+//   under its holder: while one is held, the next set_vertices() copies again instead of
+//   refitting in place. A reference from model() is the object's current Model: it sees the new
+//   vertices of an in-place refit, and is valid until the object's next set_vertices() or
+//   remove() (a copy may replace the Model it refers to). After set_vertices() every query answers
+//   as on a World whose object was added with Model(moved mesh) at the same pose (only costs
+//   differ).
+// - Self-collision: an object added with ObjectOptions::self_collision = true is also tested
+//   against itself by collide_all(), with antcd::self_intersections (self.hpp: exact; two
+//   triangles sharing a vertex or an edge count only where they meet beyond it). A self pair is
+//   reported as (id, id), sorted with the others (so just before the pairs (id, b), b > id), with
+//   its triangle pairs in PairContacts::self_pairs. Groups, masks and ignored pairs do not apply to
+//   it (the option alone decides), nor does request.delta (a self pair is a self-intersection,
+//   never a near miss); other queries (pairs_within, collide_object, nearest, candidates) report
+//   distinct objects only.
 #pragma once
 
 #include <antcd/collide.hpp>
@@ -38,6 +62,7 @@
 #include <antcd/export.hpp>
 #include <antcd/sweep.hpp>
 
+#include <array>
 #include <cstdint>
 #include <limits>
 #include <memory>
@@ -63,6 +88,12 @@ struct ObjectOptions {
   std::uint64_t user_tag = 0;  ///< free for the application
   std::uint32_t group = 1;     ///< the bits this object belongs to
   std::uint32_t mask = ~0U;    ///< the groups it may collide with
+  /// collide_all() also tests the object against itself (see "Self-collision" above).
+  bool self_collision = false;
+  /// For set_vertices(): rebuild the object's hierarchy when its refitted volumes have grown
+  /// looser than this (Model::refit's rebuild_above, Model::refit_growth()); 0: never (refit
+  /// only). >= 0 (add() throws ArgumentError otherwise).
+  double rebuild_above = 0;
 };
 
 struct WorldOptions {
@@ -79,10 +110,16 @@ struct ObjectPair {
 };
 
 /// A colliding pair with what collide() reported for it: contacts[k].triangle_a indexes a's mesh.
+/// A self pair (a == b, an object with ObjectOptions::self_collision that intersects itself) has
+/// no contacts; its intersecting triangle pairs are in self_pairs.
 struct PairContacts {
   ObjectId a;
   ObjectId b;
   std::vector<Contact> contacts;  ///< boolean query: the one contact found; all_contacts: every one
+  /// Self pair only: SelfIntersectionResult::pairs of the object's model (mesh triangle indices,
+  /// i < j, sorted). Boolean query: the one pair of first_only; all_contacts: every pair (the
+  /// first max_contacts of them when that is set). Empty for a pair of two objects.
+  std::vector<std::array<std::uint32_t, 2>> self_pairs;
 };
 
 /// One object touched by a query object: contacts[k].triangle_a indexes the QUERY's mesh and
@@ -181,6 +218,16 @@ class ANTCD_API World {
   void set_pose(ObjectId id, const Transform& pose);
   /// ids[k] gets poses[k]. Checks every argument first: on error nothing is changed.
   void set_poses(std::span<const ObjectId> ids, std::span<const Transform> poses);
+  /// New model-frame positions for the vertices of object `id`'s mesh (same count and order, same
+  /// triangles; see "Deforming objects" above): its hierarchy is refitted (rebuilt when it grew
+  /// looser than its options' rebuild_above) and its broad-phase box updated as set_poses()
+  /// updates a moved object's. Throws ArgumentError naming the function, the argument and the
+  /// object for an unknown or removed id, a wrong vertex count, a non-finite vertex (its index),
+  /// or a triangle that had zero area when the object's Model was built and has an area now (it
+  /// is not in the hierarchy: add the object again with a Model built from the new mesh). On a
+  /// throw nothing is changed. O(n) in the object's vertices (plus one copy of its Model the
+  /// first time, and whenever a model_ptr() of it is held).
+  void set_vertices(ObjectId id, std::span<const Vec3> vertices);
   void set_filter(ObjectId id, std::uint32_t group, std::uint32_t mask);
   /// Excludes (ignored = true) or re-admits the pair from every pair query.
   void ignore_pair(ObjectId a, ObjectId b, bool ignored = true);
@@ -198,7 +245,8 @@ class ANTCD_API World {
   [[nodiscard]] bool pair_ignored(ObjectId a, ObjectId b) const;
   /// Whether the filters let a and b collide (groups, masks, ignored pairs).
   [[nodiscard]] bool may_collide(ObjectId a, ObjectId b) const;
-  /// Heap bytes of the world's own structures (objects, tree; not the shared Models).
+  /// Heap bytes of the world's own structures (objects, tree, and the private Models of deforming
+  /// objects, by their BvhStats::memory_bytes; not the shared Models).
   [[nodiscard]] std::size_t memory_bytes() const;
 
   // ---- queries (const, thread-safe between mutations) ----
@@ -211,7 +259,9 @@ class ANTCD_API World {
   /// `out` and this thread's working storage have grown to the frame's size. Const and
   /// thread-safe like candidate_pairs, given a distinct `out` per thread.
   void candidate_pairs(Scalar delta, std::vector<ObjectPair>& out) const;
-  /// Every admitted pair that collides under `request` (delta, all contacts or boolean), sorted.
+  /// Every admitted pair that collides under `request` (delta, all contacts or boolean), and the
+  /// self pair (id, id) of every object with ObjectOptions::self_collision that intersects itself,
+  /// sorted by (a, b).
   [[nodiscard]] std::vector<PairContacts> collide_all(const CollisionRequest& request = {}) const;
   /// The admitted pairs whose meshes come within `distance` >= 0 of each other, sorted.
   [[nodiscard]] std::vector<ObjectPair> pairs_within(Scalar distance) const;

@@ -1,6 +1,7 @@
 // The World's queries: pairs from the broad-phase tree, exact narrow phase on each pair (spread
 // over oneTBB workers, results in a fixed order), and ray casts.
 #include <antcd/error.hpp>
+#include <antcd/self.hpp>
 #include <antcd/tolerances.hpp>
 #include <antcd/world.hpp>
 
@@ -218,9 +219,11 @@ void World::Impl::candidate_slots(Scalar delta, std::vector<SlotPair>& out,
   }
 }
 
-std::vector<PairContacts> World::collide_all(const CollisionRequest& request) const {
-  detail::require_non_negative("World::collide_all", "request.delta", request.delta);
-  const Impl& w = *impl_;
+namespace {
+
+// collide_all(request), with the self pairs when `with_self`.
+std::vector<PairContacts> collide_pairs(const World::Impl& w, const CollisionRequest& request,
+                                        bool with_self) {
   const Scalar delta = request.delta;
   // Tree boxes contain the objects' boxes grown by their rounding allowances, so every pair whose
   // boxes pass the box test below has tree boxes within delta of each other.
@@ -252,14 +255,44 @@ std::vector<PairContacts> World::collide_all(const CollisionRequest& request) co
         ANTCD_PREFETCH(&w.objects[j]);
         ANTCD_PREFETCH(&w.objects[j].pose.translation);
       });
+  // Self pairs, object by object in slot order (each self test spreads its own work over the
+  // workers), merged in: (i, i) comes before every (i, j), j > i.
+  std::vector<PairContacts> selves;
+  for (std::uint32_t s = 0; s < w.objects.size(); ++s) {
+    if (!with_self || !w.alive(s) || !w.bounds[s].self_collision) continue;
+    SelfIntersectionRequest self_request;
+    self_request.first_only = !request.all_contacts;
+    SelfIntersectionResult r = self_intersections(*w.objects[s].model, self_request);
+    if (!r.intersecting) continue;
+    if (request.all_contacts && request.max_contacts != 0 &&
+        r.pairs.size() > request.max_contacts) {
+      r.pairs.resize(request.max_contacts);
+    }
+    PairContacts p;
+    p.a = p.b = w.id_of(s);
+    p.self_pairs = std::move(r.pairs);
+    selves.push_back(std::move(p));
+  }
   std::vector<PairContacts> out;
+  std::size_t next_self = 0;
   for (std::size_t k = 0; k < candidates.size(); ++k) {
     if (!hit[k]) continue;
+    while (next_self < selves.size() && selves[next_self].a.slot <= candidates[k].first) {
+      out.push_back(std::move(selves[next_self++]));
+    }
     results[k].a = w.id_of(candidates[k].first);
     results[k].b = w.id_of(candidates[k].second);
     out.push_back(std::move(results[k]));
   }
+  while (next_self < selves.size()) out.push_back(std::move(selves[next_self++]));
   return out;
+}
+
+}  // namespace
+
+std::vector<PairContacts> World::collide_all(const CollisionRequest& request) const {
+  detail::require_non_negative("World::collide_all", "request.delta", request.delta);
+  return collide_pairs(*impl_, request, true);
 }
 
 std::vector<ObjectPair> World::pairs_within(Scalar distance) const {
@@ -267,7 +300,8 @@ std::vector<ObjectPair> World::pairs_within(Scalar distance) const {
   CollisionRequest request;
   request.delta = distance;
   std::vector<ObjectPair> out;
-  for (const PairContacts& p : collide_all(request)) out.push_back({p.a, p.b});
+  // Distinct objects only (world.hpp).
+  for (const PairContacts& p : collide_pairs(*impl_, request, false)) out.push_back({p.a, p.b});
   return out;
 }
 

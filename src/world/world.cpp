@@ -94,6 +94,10 @@ ObjectId World::add(std::shared_ptr<const Model> model, const Transform& pose,
   const std::string label =
       options.name.empty() ? std::string("the new object") : "object '" + options.name + "'";
   if (!model) throw ArgumentError("World::add: model is null (" + label + ")");
+  if (!(options.rebuild_above >= 0)) {
+    throw ArgumentError("World::add: options.rebuild_above of " + label + " must be >= 0, got " +
+                        std::to_string(options.rebuild_above));
+  }
   require_rigid(pose, "World::add", "pose of " + label);
   const Transform new_pose = pose;  // `pose` may live in this World (add(m, world.pose(other)))
   Impl& w = *impl_;
@@ -114,6 +118,7 @@ ObjectId World::add(std::shared_ptr<const Model> model, const Transform& pose,
   }
   Impl::Object& o = w.objects[slot];
   o.model = std::move(model);
+  o.own.reset();
   o.pose = new_pose;
   o.options = std::move(options);
   o.ignored.clear();
@@ -123,6 +128,7 @@ ObjectId World::add(std::shared_ptr<const Model> model, const Transform& pose,
   b.group = o.options.group;
   b.mask = o.options.mask;
   b.has_ignored = false;
+  b.self_collision = o.options.self_collision;
   w.tree.insert(slot, w.fattened(slot));
   ++w.live;
   return w.id_of(slot);
@@ -274,6 +280,41 @@ void World::Impl::apply_poses(std::span<const ObjectId> ids, std::span<const Tra
   }
 }
 
+void World::set_vertices(ObjectId id, std::span<const Vec3> vertices) {
+  Impl& w = *impl_;
+  Impl::Object& o = w.get(id, "World::set_vertices", "id");
+  const auto fail = [&](const std::string& problem) {
+    throw ArgumentError("World::set_vertices: vertices of " + object_label(o, id) + ": " + problem);
+  };
+  const std::size_t count = o.model->mesh().vertices.size();
+  if (vertices.size() != count) {
+    fail("got " + std::to_string(vertices.size()) + " vertices, the mesh has " +
+         std::to_string(count));
+  }
+  for (std::size_t i = 0; i < vertices.size(); ++i) {
+    if (!vertices[i].allFinite()) fail("vertex " + std::to_string(i) + " is not finite");
+  }
+  // The private Model is refitted in place only when nothing but this object holds it (o.model and
+  // o.own: a use count of 2; a mutation runs alone on this World, so no copy of these two pointers
+  // is being made meanwhile). Otherwise (the first call: the Model is the shared one given to
+  // add(); or a model_ptr() of the private one is held) a copy is refitted, and replaces it only
+  // when the refit succeeded: on a throw nothing has changed.
+  std::shared_ptr<Model> target =
+      o.own && o.own.use_count() == 2 ? o.own : std::make_shared<Model>(*o.model);
+  try {
+    target->refit(vertices, o.options.rebuild_above);
+  } catch (const Error& e) {
+    fail(e.what());
+  }
+  if (target != o.own) {
+    o.own = target;
+    o.model = std::move(target);
+  }
+  // The new root volumes: the object's box, as for a moved object.
+  const Transform pose = o.pose;
+  w.apply_poses(std::span<const ObjectId>(&id, 1), std::span<const Transform>(&pose, 1));
+}
+
 void World::set_filter(ObjectId id, std::uint32_t group, std::uint32_t mask) {
   Impl::Object& o = impl_->get(id, "World::set_filter", "id");
   o.options.group = group;
@@ -344,6 +385,7 @@ std::size_t World::memory_bytes() const {
       w.flags.capacity() + w.free_slots.capacity() * sizeof(std::uint32_t) + w.tree.memory_bytes();
   for (const Impl::Object& o : w.objects) {
     bytes += o.ignored.capacity() * sizeof(std::uint32_t);
+    if (o.own) bytes += sizeof(Model) + o.own->stats().memory_bytes;
     if (o.options.name.capacity() > 15) bytes += o.options.name.capacity() + 1;
   }
   return bytes;

@@ -18,6 +18,9 @@ namespace antcd {
 struct World::Impl {
   struct Object {
     std::shared_ptr<const Model> model;
+    /// A deforming object's private Model (the one `model` points to), made by its first
+    /// set_vertices(); null for an object whose Model is the shared one given to add().
+    std::shared_ptr<Model> own;
     Transform pose;
     ObjectOptions options;
     /// Slots of the objects this one must not be paired with, sorted.
@@ -33,7 +36,8 @@ struct World::Impl {
     Scalar tolerance = 0;
     std::uint32_t group = 0;  ///< copies of the object's options.group and options.mask
     std::uint32_t mask = 0;
-    bool has_ignored = false;  ///< whether the object's ignored list is non-empty
+    bool has_ignored = false;     ///< whether the object's ignored list is non-empty
+    bool self_collision = false;  ///< a copy of the object's options.self_collision
   };
 
   /// An object's root volumes placed by its pose, from the same arithmetic as its box (posed_box):

@@ -8,14 +8,18 @@
 #include <antcd/world.hpp>
 
 #include <gtest/gtest.h>
+#include <tbb/task_arena.h>
 
+#include <array>
 #include <latch>
 #include <memory>
 #include <optional>
 #include <random>
 #include <thread>
+#include <utility>
 #include <vector>
 
+#include "self/self_meshes.hpp"
 #include "support/sanitizer.hpp"
 #include "support/test_support.hpp"
 
@@ -109,6 +113,64 @@ TEST(Concurrency, WorldQueriesFromManyThreadsBetweenMutations) {
     for (int t = 0; t < kThreads; ++t) EXPECT_TRUE(got[t] == expected) << "thread " << t;
   }
   EXPECT_GT(pairs_seen, 0u);
+}
+
+// A deforming object with self-collision among rigid ones: set_vertices (main thread) between
+// rounds of collide_all (self pairs included) and the other queries from many threads at once.
+// Under TSan every thread runs its queries in an arena of one thread, so that self_intersections'
+// oneTBB loop stays on the calling thread (see support/sanitizer.hpp).
+TEST(Concurrency, WorldDeformingSelfCollisionQueriesFromManyThreads) {
+  constexpr int kThreads = 6;
+  constexpr int kN = 16;
+  // The sheet blended from flat into a loop through itself (x = u^2 - 1, z = u (u^2 - 1)).
+  const auto sheet_at = [&](Scalar s) {
+    return test::grid_sheet(kN, 4, [=](int i, int j) {
+      const Scalar u = -1.5 + 3.0 * i / kN;
+      return Vec3((1 - s) * u + s * (u * u - 1), 0.25 * j, s * u * (u * u - 1));
+    });
+  };
+  const auto sphere = std::make_shared<const Model>(make_sphere(0.3, 12, 6));
+  const Model probe(make_box(Vec3(0.5, 0.5, 0.5), 2));
+  World world;
+  std::mt19937_64 rng(5);
+  ObjectOptions selfish;
+  selfish.self_collision = true;
+  const ObjectId sheet =
+      world.add(std::make_shared<const Model>(sheet_at(0)), Transform{}, selfish);
+  for (int i = 0; i < 8; ++i) world.add(sphere, test::random_pose(rng, 1.5));
+  std::size_t self_pairs_seen = 0;
+  for (int round = 0; round <= 5; ++round) {
+    world.set_vertices(sheet, sheet_at(0.2 * round).vertices);  // a mutation, on this thread only
+    const auto ask_all = [&] {
+      std::pair<Answers, std::vector<std::vector<std::array<std::uint32_t, 2>>>> out;
+      const auto run = [&] {
+        out.first = ask(world, probe, Transform{});
+        CollisionRequest all;
+        all.all_contacts = true;
+        for (const PairContacts& p : world.collide_all(all)) out.second.push_back(p.self_pairs);
+      };
+      if (test::kUnderTsan) {
+        tbb::task_arena(1).execute(run);
+      } else {
+        run();
+      }
+      return out;
+    };
+    const auto expected = ask_all();
+    for (const auto& s : expected.second) self_pairs_seen += s.size();
+    std::vector<decltype(ask_all())> got(kThreads);
+    std::latch start(kThreads);
+    std::vector<std::thread> threads;
+    for (int t = 0; t < kThreads; ++t) {
+      threads.emplace_back([&, t] {
+        start.arrive_and_wait();
+        got[t] = ask_all();
+      });
+    }
+    for (std::thread& th : threads) th.join();
+    for (int t = 0; t < kThreads; ++t) EXPECT_TRUE(got[t] == expected) << "thread " << t;
+  }
+  EXPECT_GT(self_pairs_seen, 0u) << "the sheet never intersects itself: the test would be trivial";
 }
 
 }  // namespace
