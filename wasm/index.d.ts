@@ -90,6 +90,40 @@ export interface PenetrationResult {
   evaluations: number;
 }
 
+export interface SelfIntersectionStats {
+  nodePairs: number;
+  volumeRejects: number;
+  trianglePairs: number;
+  adjacentPairs: number;
+  coneCulled: number;
+  coneTests: number;
+  coneCacheBytes: number;
+}
+
+export interface SelfIntersectionResult {
+  intersecting: boolean;
+  /** Intersecting triangle pairs, two indices (i < j) per pair, sorted; one pair with firstOnly. */
+  pairs: Uint32Array;
+  /** Triangles of exactly zero area, ascending: in no pair. */
+  degenerateTriangles: Uint32Array;
+  stats: SelfIntersectionStats;
+}
+
+export interface SelfProximityResult {
+  /** The mesh's edges, two vertex indices (lower first) per edge, sorted. */
+  edges: Uint32Array;
+  /** (vertex, triangle) per pair, sorted. */
+  vertexTrianglePairs: Uint32Array;
+  vertexTriangleDistances: Float64Array;
+  /** The point of each triangle closest to its vertex (3 numbers per pair). */
+  vertexTrianglePoints: Float64Array;
+  /** (a, b) indices into edges per pair, a < b, sorted. */
+  edgeEdgePairs: Uint32Array;
+  edgeEdgeDistances: Float64Array;
+  edgeEdgePointsA: Float64Array;
+  edgeEdgePointsB: Float64Array;
+}
+
 export interface RayHit {
   object: number;
   triangle: number;
@@ -107,7 +141,16 @@ export declare class Model {
   readonly vertexCount: number;
   readonly isClosed: boolean;
   readonly name: string;
+  /** How much looser setVertices has made the hierarchy since it was built (1: as built). */
+  readonly refitGrowth: number;
   mesh(): { positions: Float64Array; indices: Uint32Array };
+  /**
+   * New vertex positions (3 numbers per vertex, the same count; triangles fixed): refits the
+   * hierarchy in O(n). Throws an Error naming the problem, the model unchanged (wrong type or
+   * length, non-finite number, a zero-area-at-build triangle gaining an area, a model held by a
+   * World, no WebAssembly memory).
+   */
+  setVertices(positions: Float32Array | Float64Array | number[]): void;
   /** Frees the model (Worlds holding it keep their own reference). */
   delete(): void;
   static box(hx: number, hy: number, hz: number, subdivisions?: number): Model;
@@ -141,6 +184,10 @@ export interface Antcd {
   sweep(a: Model, poseA0: Pose, poseA1: Pose, b: Model, poseB0: Pose, poseB1: Pose,
         options?: SweepOptions): SweepResult;
   penetration(a: Model, poseA: Pose, b: Model, poseB: Pose, options?: PenetrationOptions): PenetrationResult;
+  /** Triangle pairs of one model that intersect beyond their shared vertices or edge (exact). */
+  selfIntersections(model: Model, options?: { firstOnly?: boolean }): SelfIntersectionResult;
+  /** Vertex-triangle and edge-edge pairs of one model within delta (>= 0). */
+  selfProximity(model: Model, delta: number): SelfProximityResult;
   version: string;
   CONTACT_STRIDE: 10;
 }

@@ -123,10 +123,13 @@ export default async function createAntcd(options = {}) {
   }
   function info(model) {
     check('Model', core.modelInfo(modelOf('Model', 'this', model)));
-    return out(4);
+    return out(5);
   }
 
-  /** A triangle mesh with its bounding-volume hierarchy (built once; immutable). */
+  /**
+   * A triangle mesh with its bounding-volume hierarchy (built once). Its triangles are fixed; its
+   * vertex positions change only through setVertices (a deforming mesh).
+   */
   class Model {
     /**
      * positions: x y z per vertex (Float32Array, Float64Array or numbers); indices: three vertex
@@ -183,6 +186,35 @@ export default async function createAntcd(options = {}) {
     /** Closed and consistently oriented (bounds a solid): volume queries and penetration apply. */
     get isClosed() { return info(this)[2] === 1; }
     get name() { return cString(core._antcd_model_name(modelOf('Model', 'this', this))); }
+    /** How much looser setVertices has made the hierarchy since it was built (1: as built). */
+    get refitGrowth() { return info(this)[4]; }
+    /**
+     * New positions for the vertices (x y z per vertex, as many vertices as the model has; the
+     * triangles are fixed): refits the hierarchy in O(n), every query then answers as on a model
+     * built from the moved mesh. Throws an Error naming the problem, the model unchanged: a wrong
+     * type or length, a non-finite number, a triangle of zero area at build time that has an area
+     * now, a model held by a World (remove it from the World first), or no WebAssembly memory.
+     */
+    setVertices(positions) {
+      const fn = 'Model.setVertices';
+      const id = modelOf(fn, 'this', this);
+      const f32 = positions instanceof Float32Array;
+      if (!(f32 || positions instanceof Float64Array || Array.isArray(positions))) {
+        throw new Error(`${fn}: positions must be a Float32Array, Float64Array or array of numbers, got ${describe(positions)}`);
+      }
+      const nv = info(this)[1];
+      if (positions.length !== 3 * nv) {
+        throw new Error(`${fn}: positions has ${positions.length} numbers, the model has ${nv} vertices (${3 * nv})`);
+      }
+      const p = alloc(fn, 'positions', positions.length * (f32 ? 4 : 8));
+      try {
+        if (f32) core.HEAPF32.set(positions, p / 4);
+        else core.HEAPF64.set(positions, p / 8);
+        check(fn, core.modelSetVertices(id, p, positions.length, f32));
+      } finally {
+        core.freeBytes(p);
+      }
+    }
     /** { positions: Float64Array, indices: Uint32Array } of the model's mesh. */
     mesh() {
       check('Model.mesh', core.modelMesh(modelOf('Model', 'this', this)));
@@ -296,6 +328,66 @@ export default async function createAntcd(options = {}) {
     };
   }
 
+  const SELF_STATS = ['nodePairs', 'volumeRejects', 'trianglePairs', 'adjacentPairs', 'coneCulled', 'coneTests',
+    'coneCacheBytes'];
+  /**
+   * Triangle pairs of one model that intersect beyond their shared vertices or edge (exact):
+   * { intersecting, pairs: Uint32Array (i, j per pair, i < j, sorted), degenerateTriangles, stats }.
+   * options.firstOnly: stop at the first pair found.
+   */
+  function selfIntersections(model, opts) {
+    const fn = 'selfIntersections';
+    const id = modelOf(fn, 'model', model);
+    const o = optionsOf(fn, opts);
+    check(fn, core.selfIntersections(id, Boolean(o.firstOnly)));
+    const head = out(10);
+    const k = head[1];
+    const d = head[2];
+    const stats = {};
+    SELF_STATS.forEach((name, c) => { stats[name] = head[3 + c]; });
+    const all = out(10 + 2 * k + d);
+    return {
+      intersecting: head[0] === 1, pairs: Uint32Array.from(all.subarray(10, 10 + 2 * k)),
+      degenerateTriangles: Uint32Array.from(all.subarray(10 + 2 * k)), stats,
+    };
+  }
+
+  /**
+   * Vertex-triangle pairs (the vertex not a corner of the triangle) and edge-edge pairs (no common
+   * vertex) of one model within delta, with closest points and distances (model frame).
+   */
+  function selfProximity(model, delta) {
+    const fn = 'selfProximity';
+    const id = modelOf(fn, 'model', model);
+    if (typeof delta !== 'number') throw new Error(`${fn}: delta must be a number, got ${describe(delta)}`);
+    check(fn, core.selfProximity(id, delta));
+    const head = out(3);
+    const [e, nvt, nee] = [head[0], head[1], head[2]];
+    const all = out(3 + 2 * e + 9 * (nvt + nee));
+    const edges = Uint32Array.from(all.subarray(3, 3 + 2 * e));
+    const group = (first, n, pointsA) => {
+      const pairs = new Uint32Array(2 * n);
+      const distances = new Float64Array(n);
+      const a = pointsA ? new Float64Array(3 * n) : null;
+      const b = new Float64Array(3 * n);
+      for (let k = 0; k < n; ++k) {
+        const r = first + 9 * k;
+        pairs[2 * k] = all[r];
+        pairs[2 * k + 1] = all[r + 1];
+        distances[k] = all[r + 2];
+        if (a) a.set(all.subarray(r + 3, r + 6), 3 * k);
+        b.set(all.subarray(r + 6, r + 9), 3 * k);
+      }
+      return { pairs, distances, a, b };
+    };
+    const vt = group(3 + 2 * e, nvt, false);
+    const ee = group(3 + 2 * e + 9 * nvt, nee, true);
+    return {
+      edges, vertexTrianglePairs: vt.pairs, vertexTriangleDistances: vt.distances, vertexTrianglePoints: vt.b,
+      edgeEdgePairs: ee.pairs, edgeEdgeDistances: ee.distances, edgeEdgePointsA: ee.a, edgeEdgePointsB: ee.b,
+    };
+  }
+
   /** A live set of posed objects; handles are numbers. */
   class World {
     constructor() {
@@ -381,7 +473,10 @@ export default async function createAntcd(options = {}) {
     }
   }
 
-  return { Model, World, collide, collides, distance, sweep, penetration, version: core.version(), CONTACT_STRIDE };
+  return {
+    Model, World, collide, collides, distance, sweep, penetration, selfIntersections, selfProximity,
+    version: core.version(), CONTACT_STRIDE,
+  };
 }
 
 function describe(v) {

@@ -4,13 +4,15 @@ Meshes are numpy arrays in and out: ``load_mesh`` gives ``(vertices float64[n, 3
 ``Model(vertices, faces)`` builds the Sphere-OBB hierarchy once, ``collide`` answers exactly,
 ``distance`` gives the exact minimum surface distance with its closest points, ``sweep`` the
 first time two moving models touch (continuous collision, never missing a contact),
-``random_collide`` runs the paper's improved ant colony (MACO) and its baselines, ``Scene`` /
+``random_collide`` runs the paper's improved ant colony (MACO) and its baselines,
+``self_intersections`` / ``self_proximity`` find where one (deforming: ``Model.set_vertices``)
+mesh meets or nears itself, ``Scene`` /
 ``run_scene`` play an antcd-scene/1 file, and ``CollisionManager`` is a drop-in for
 ``trimesh.collision.CollisionManager``.
 
 Poses are 4x4 homogeneous matrices or ``(rotation 3x3, translation 3)`` pairs (rigid motions
 only); contact points are in world coordinates. Queries release the GIL and Models may be shared
-by any number of threads.
+by any number of threads (``Model.set_vertices`` waits for the queries reading the Model).
 """
 from ._antcd import (
     CollisionResult,
@@ -20,6 +22,8 @@ from ._antcd import (
     RandomResult,
     Scene,
     SceneRun,
+    SelfIntersectionResult,
+    SelfProximityResult,
     SweepContact,
     SweepResult,
     __version__,
@@ -32,6 +36,8 @@ from ._antcd import (
     penetration,
     random_collide,
     run_scene,
+    self_intersections,
+    self_proximity,
     sweep,
 )
 from .collision import CollisionManager, ContactData, DistanceData
@@ -47,6 +53,8 @@ __all__ = [
     "RandomResult",
     "Scene",
     "SceneRun",
+    "SelfIntersectionResult",
+    "SelfProximityResult",
     "SweepContact",
     "SweepResult",
     "__version__",
@@ -59,5 +67,7 @@ __all__ = [
     "penetration",
     "random_collide",
     "run_scene",
+    "self_intersections",
+    "self_proximity",
     "sweep",
 ]

@@ -19,6 +19,7 @@
 
 #include "bindings.hpp"
 #include "convert.hpp"
+#include "model_guard.hpp"
 
 namespace antcd::python {
 
@@ -103,6 +104,7 @@ void bind_batch(py::module_& m) {
         bool* verdicts = out.mutable_data();
         {
           py::gil_scoped_release release;
+          const ModelReadLock lock(a, b);
           run_parallel(batch.n, workers, [&](std::size_t i) {
             thread_local CollisionResult result;  // storage reused across queries of a thread
             verdicts[i] = collide(a, batch.pose_a(i), b, batch.pose_b(i), request, result);
@@ -129,6 +131,7 @@ void bind_batch(py::module_& m) {
         double* distances = out.mutable_data();
         {
           py::gil_scoped_release release;
+          const ModelReadLock lock(a, b);
           run_parallel(batch.n, workers, [&](std::size_t i) {
             distances[i] = distance(a, batch.pose_a(i), b, batch.pose_b(i)).distance;
           });

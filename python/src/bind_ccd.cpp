@@ -9,6 +9,7 @@
 
 #include "bindings.hpp"
 #include "convert.hpp"
+#include "model_guard.hpp"
 
 namespace antcd::python {
 
@@ -79,6 +80,7 @@ void bind_ccd(py::module_& m) {
         }
         request.time_tolerance = time_tolerance;
         py::gil_scoped_release release;
+        const ModelReadLock lock(a, b);
         return sweep(a, a0, a1, b, b0, b1, request);
       },
       py::arg("a"), py::arg("pose_a0"), py::arg("pose_a1"), py::arg("b"), py::arg("pose_b0"),

@@ -8,6 +8,7 @@
 
 #include "bindings.hpp"
 #include "convert.hpp"
+#include "model_guard.hpp"
 
 namespace antcd::python {
 
@@ -124,6 +125,7 @@ void bind_collide(py::module_& m) {
         CollisionResult result;
         {
           py::gil_scoped_release release;
+          const ModelReadLock lock(a, b);
           collide(a, pa, b, pb, request, result);
         }
         return result;
@@ -155,6 +157,7 @@ void bind_collide(py::module_& m) {
         const Transform pb = to_transform(pose_b, "pose_b");
         const auto repeats = to_count(repeats_in, "repeats", 1, 1'000'000'000);
         py::gil_scoped_release release;
+        const ModelReadLock lock(a, b);
         CollisionResult result;
         const CollisionRequest request;
         std::uint64_t hits = 0;

@@ -11,6 +11,7 @@
 
 #include "bindings.hpp"
 #include "convert.hpp"
+#include "model_guard.hpp"
 
 namespace antcd::python {
 
@@ -73,6 +74,7 @@ void bind_distance(py::module_& m) {
           throw py::value_error("rel_tolerance must be < 1, got " + std::to_string(rel_tolerance));
         }
         py::gil_scoped_release release;
+        const ModelReadLock lock(a, b);
         return signed_distance ? antcd::signed_distance(a, pa, b, pb, request)
                                : distance(a, pa, b, pb, request);
       },

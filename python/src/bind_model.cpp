@@ -15,6 +15,7 @@
 
 #include "bindings.hpp"
 #include "convert.hpp"
+#include "model_guard.hpp"
 #include "paths.hpp"
 
 namespace antcd::python {
@@ -60,9 +61,30 @@ py::bytes to_bytes(const Model& model) {
   std::vector<std::uint8_t> bytes;
   {
     py::gil_scoped_release release;
+    const ModelReadLock lock(model);
     bytes = model.to_bytes();
   }
   return {reinterpret_cast<const char*>(bytes.data()), bytes.size()};
+}
+
+/// Model.set_vertices: the checks, then Model::refit under the Model's exclusive lock, the GIL
+/// released. On any error the Model keeps its positions (refit checks everything first).
+void set_vertices(Model& model, const py::handle vertices) {
+  const std::vector<Vec3> positions =
+      to_positions(vertices, "vertices", model.mesh().vertices.size());
+  bool pinned = false;
+  {
+    py::gil_scoped_release release;
+    const ModelWriteLock lock(model);
+    pinned = model_pinned(model);
+    if (!pinned) model.refit(positions);
+  }
+  if (pinned) {
+    throw py::value_error(
+        "set_vertices: model '" + model.source() +
+        "' is held by a CollisionManager or a Scene, whose broad phase keeps the bounds of its "
+        "current positions; remove it from the manager first (or build a new Model)");
+  }
 }
 
 Mesh load(const py::handle path_in) {
@@ -100,10 +122,14 @@ void bind_model(py::module_& m) {
 
   py::class_<Model, std::shared_ptr<Model>>(
       m, "Model",
-      "A triangle mesh and its Sphere-OBB hierarchy, built once; immutable afterwards.\n\n"
+      "A triangle mesh and its Sphere-OBB hierarchy, built once. Its triangles are fixed; its "
+      "vertex positions change only through set_vertices (a deforming mesh).\n\n"
       "Queries only read a Model, so one Model may be used by any number of threads at once and "
       "by any number of objects in a CollisionManager. Its arrays are stored once (never copied "
-      "per query); `vertices` and `faces` are read-only views of them.")
+      "per query); `vertices` and `faces` are read-only views of them.\n"
+      "Threads and set_vertices: each query holds a shared lock on the Models it reads while it "
+      "runs, set_vertices the exclusive one while it refits, so a query answers on the positions "
+      "before or after a set_vertices, never a mix of them.")
       .def(py::init([](const py::object& vertices, const py::object& faces,
                        const py::object& leaf_size, const std::string& covariance,
                        std::string name) {
@@ -136,6 +162,7 @@ void bind_model(py::module_& m) {
           [](const Model& model, const py::object& path) {
             const std::filesystem::path p = to_path(path);
             py::gil_scoped_release release;
+            const ModelReadLock lock(model);
             model.save(p);
           },
           py::arg("path"),
@@ -163,7 +190,34 @@ void bind_model(py::module_& m) {
             return readonly_view<double>(mesh.vertices.front().data(), mesh.vertices.size(), 3,
                                          self);
           },
-          "float64[n, 3], model frame (read-only view, no copy).")
+          "float64[n, 3], model frame (read-only view, no copy). set_vertices writes the new "
+          "positions into this same storage, so a view shows them afterwards; the view itself is "
+          "not locked: read it (or copy it, numpy.array(model.vertices)) when no set_vertices "
+          "runs on the model in another thread.")
+      .def("set_vertices", &set_vertices, py::arg("vertices"),
+           "New positions for the vertices (same count and order; the faces are fixed): a "
+           "deforming mesh. vertices: (n, 3) real numbers, finite, n = vertex_count; copied "
+           "once.\n\n"
+           "Refits the hierarchy in O(n): its topology is kept, every volume recomputed to hold "
+           "its triangles at the new positions; every query then answers exactly as on a Model "
+           "built from the moved mesh (only its cost may differ: see refit_growth). The GIL is "
+           "released during the refit.\n"
+           "Thread-safe: it waits for the queries in flight on this model and holds later ones "
+           "until it is done (an exclusive lock per model; queries share it).\n"
+           "Raises ValueError naming the problem, the model unchanged: a wrong shape, dtype or "
+           "row count, a non-finite entry, a triangle of zero area at build time that has an "
+           "area now (build a new Model), or a model held by a CollisionManager or a Scene "
+           "(their broad phase keeps its bounds; remove it from the manager first).")
+      .def_property_readonly(
+          "refit_growth",
+          [](const Model& model) {
+            py::gil_scoped_release release;
+            const ModelReadLock lock(model);
+            return model.refit_growth();
+          },
+          "How much looser set_vertices has made the hierarchy since it was built (1 for a built "
+          "one): the internal boxes' summed extents now over then, relative to the leaves'. A "
+          "Model built afresh, Model(model.vertices, model.faces), is tight again.")
       .def_property_readonly(
           "faces",
           [](const py::object& self) {
@@ -191,7 +245,12 @@ void bind_model(py::module_& m) {
       .def_property_readonly(
           "bounds",
           [](const Model& model) {
-            const Aabb box = model.mesh().bounds();
+            Aabb box;
+            {
+              py::gil_scoped_release release;
+              const ModelReadLock lock(model);
+              box = model.mesh().bounds();
+            }
             return make_rows<double>(2, 3, [&](std::size_t row, double* out) {
               for (int k = 0; k < 3; ++k) out[k] = row == 0 ? box.min[k] : box.max[k];
             });
@@ -200,7 +259,12 @@ void bind_model(py::module_& m) {
       .def_property_readonly(
           "stats",
           [](const Model& model) {
-            const BvhStats& s = model.stats();
+            BvhStats s;
+            {
+              py::gil_scoped_release release;
+              const ModelReadLock lock(model);
+              s = model.stats();
+            }
             py::dict d;
             d["triangles"] = s.triangles;
             d["degenerate_triangles"] = s.degenerate_triangles;

@@ -8,6 +8,7 @@
 
 #include "bindings.hpp"
 #include "convert.hpp"
+#include "model_guard.hpp"
 
 namespace antcd::python {
 
@@ -79,6 +80,7 @@ void bind_penetration(py::module_& m) {
         }
         request.max_evaluations = max_evaluations;
         py::gil_scoped_release release;
+        const ModelReadLock lock(a, b);
         return penetration(a, pa, b, pb, request);
       },
       py::arg("a"), py::arg("pose_a"), py::arg("b"), py::arg("pose_b"),
@@ -91,7 +93,13 @@ void bind_penetration(py::module_& m) {
       "for an open model. The GIL is released while the query runs.");
 
   m.def(
-      "is_convex", [](const Model& model) { return is_convex(model); }, py::arg("model"),
+      "is_convex",
+      [](const Model& model) {
+        py::gil_scoped_release release;
+        const ModelReadLock lock(model);
+        return is_convex(model);
+      },
+      py::arg("model"),
       "Whether a closed model is convex: one piece, no reflex edge (heights within 1e-10 of its "
       "size count as flat). False for an open model.");
 }

@@ -10,6 +10,7 @@
 
 #include "bindings.hpp"
 #include "convert.hpp"
+#include "model_guard.hpp"
 
 namespace antcd::python {
 
@@ -151,6 +152,7 @@ void bind_random(py::module_& m) {
         result.delta = sampling.delta;
         {
           py::gil_scoped_release release;
+          const ModelReadLock lock(a, b);
           result.search = random_collide(a, pa, b, pb, request, sampling);
         }
         return result;

@@ -13,6 +13,7 @@
 
 #include "bindings.hpp"
 #include "convert.hpp"
+#include "model_guard.hpp"
 #include "paths.hpp"
 
 namespace antcd::python {
@@ -39,7 +40,15 @@ PyScene open_scene(const py::handle path_in, const py::handle leaf_size,
   const std::filesystem::path path = to_path(path_in);
   require_readable_file(path, "scene file");
   py::gil_scoped_release release;
-  return PyScene{std::make_shared<Scene>(load_scene(path), options), path.string()};
+  // Every object's Model is pinned while the scene lives (its broad phase fits boxes to the
+  // positions at build time, so Model.set_vertices refuses them). No other thread can reach these
+  // Models before this returns: no lock needed to pin them.
+  auto scene = std::shared_ptr<Scene>(new Scene(load_scene(path), options), [](Scene* dead) {
+    for (std::size_t o = 0; o < dead->object_count(); ++o) unpin_model(dead->model_of(o));
+    delete dead;
+  });
+  for (std::size_t o = 0; o < scene->object_count(); ++o) pin_model(scene->model_of(o));
+  return PyScene{std::move(scene), path.string()};
 }
 
 py::array_t<std::uint32_t> pair_array(

@@ -14,5 +14,6 @@ void bind_penetration(pybind11::module_& m);
 void bind_manager(pybind11::module_& m);
 void bind_batch(pybind11::module_& m);
 void bind_ccd(pybind11::module_& m);
+void bind_self(pybind11::module_& m);
 
 }  // namespace antcd::python

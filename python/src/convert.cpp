@@ -241,6 +241,23 @@ Mesh to_mesh(py::handle vertices_in, py::handle faces_in) {
   return mesh;
 }
 
+std::vector<Vec3> to_positions(py::handle vertices_in, std::string_view name, std::size_t count) {
+  const auto vertices = as_float64(as_array(vertices_in, name), name);
+  if (vertices.ndim() != 2 || vertices.shape(1) != 3) {
+    throw py::value_error(str(name) + " must have shape (n, 3), got " + shape_of(vertices));
+  }
+  const auto n = static_cast<std::size_t>(vertices.shape(0));
+  if (n != count) {
+    throw py::value_error(str(name) + " has " + std::to_string(n) + " rows, the model has " +
+                          std::to_string(count) + " vertices");
+  }
+  require_finite(vertices.data(), n * 3, name);
+  std::vector<Vec3> out(n);
+  const double* v = vertices.data();
+  for (std::size_t i = 0; i < n; ++i) out[i] = Vec3(v[3 * i], v[3 * i + 1], v[3 * i + 2]);
+  return out;
+}
+
 CovarianceMethod parse_covariance(std::string_view name) {
   if (name == "area") return CovarianceMethod::AreaWeightedCentroid;
   if (name == "vertex") return CovarianceMethod::VertexMean;

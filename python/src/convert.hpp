@@ -41,6 +41,10 @@ py::array_t<double> to_matrix(const Transform& t);
 /// vertices: numeric (n, 3), finite; faces: integer (m, 3), indices in [0, n). Copied once.
 Mesh to_mesh(py::handle vertices, py::handle faces);
 
+/// New positions for a Model's vertices: numeric (count, 3), finite, copied once. ValueError
+/// naming `name` for a wrong shape or dtype, a row count other than `count`, a non-finite entry.
+std::vector<Vec3> to_positions(py::handle vertices, std::string_view name, std::size_t count);
+
 /// "area" (area-weighted centroid, the paper's Eq. 3; default) or "vertex" (Eqs. 1-2).
 CovarianceMethod parse_covariance(std::string_view name);
 std::string_view covariance_name(CovarianceMethod method);

@@ -1,6 +1,8 @@
 // python/src/manager.cpp — see manager.hpp.
 #include "manager.hpp"
 
+#include "model_guard.hpp"
+
 #include <algorithm>
 #include <functional>
 #include <mutex>
@@ -66,13 +68,23 @@ ManagedWorld::Nearest as_nearest(const std::optional<NearestPair>& n, bool pack_
 Id ManagedWorld::add(std::shared_ptr<const Model> model, const Transform& pose) {
   if (!model) throw std::invalid_argument("ManagedWorld::add: null model");
   std::unique_lock lock(mutex_);
-  return pack(world_.add(std::move(model), pose));
+  const ModelReadLock model_lock(*model);  // no set_vertices while the World reads it
+  const Model& pinned = *model;
+  const Id id = pack(world_.add(std::move(model), pose));
+  pin_model(pinned);
+  return id;
+}
+
+ManagedWorld::~ManagedWorld() {
+  for (const ObjectId id : world_.objects()) unpin_model(world_.model(id));
 }
 
 bool ManagedWorld::remove(Id id) {
   std::unique_lock lock(mutex_);
   if (!world_.contains(unpack(id))) return false;
+  const std::shared_ptr<const Model> model = world_.model_ptr(unpack(id));
   world_.remove(unpack(id));
+  unpin_model(*model);
   return true;
 }
 

@@ -11,7 +11,9 @@
 //
 // Thread safety: the World forbids mutations concurrent with anything else, so queries take a
 // shared lock and add / remove / set_pose an exclusive one: Python threads may query one manager
-// while another moves its objects.
+// while another moves its objects. Every Model added is pinned (model_guard.hpp) until its object
+// is removed or the manager destroyed: the broad phase keeps boxes of its positions at add time, so
+// Model.set_vertices refuses it meanwhile.
 #pragma once
 
 #include <antcd/collide.hpp>
@@ -53,9 +55,15 @@ class ManagedWorld {
     DistanceResult result;  ///< A = object a's model, B = object b's (or the query's)
   };
 
-  /// Adds an object.
+  ManagedWorld() = default;
+  ManagedWorld(const ManagedWorld&) = delete;
+  ManagedWorld& operator=(const ManagedWorld&) = delete;
+  /// Unpins every object's Model.
+  ~ManagedWorld();
+
+  /// Adds an object and pins its Model (under the Model's shared lock).
   Id add(std::shared_ptr<const Model> model, const Transform& pose);
-  /// False if there is no such object.
+  /// False if there is no such object. Unpins its Model.
   bool remove(Id id);
   bool set_pose(Id id, const Transform& pose);
   [[nodiscard]] std::size_t size() const;

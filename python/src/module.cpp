@@ -14,8 +14,8 @@ PYBIND11_MODULE(_antcd, m) {
       "antcd: exact and random (ant colony) mesh-vs-mesh collision detection.\n\n"
       "Frames: a Model's vertices are in its own frame; a pose maps them to the world "
       "(p_world = R p + t), as a 4x4 homogeneous matrix or a (R, t) pair. Contact points are in "
-      "world coordinates. Queries release the GIL; a Model is immutable and may be shared by any "
-      "number of threads.";
+      "world coordinates. Queries release the GIL; a Model may be shared by any number of threads: "
+      "queries hold a shared lock on it, Model.set_vertices the exclusive one.";
 
   m.attr("__version__") = antcd::kVersion;
 
@@ -39,4 +39,5 @@ PYBIND11_MODULE(_antcd, m) {
   antcd::python::bind_manager(m);
   antcd::python::bind_batch(m);
   antcd::python::bind_ccd(m);
+  antcd::python::bind_self(m);
 }

@@ -24,6 +24,7 @@
 #include <antcd/mesh.hpp>
 #include <antcd/penetration.hpp>
 #include <antcd/pose.hpp>
+#include <antcd/self.hpp>
 #include <antcd/sweep.hpp>
 #include <antcd/version.hpp>
 #include <antcd/world.hpp>
@@ -172,11 +173,12 @@ CollisionRequest collision_request(bool all_contacts, double delta, bool normals
 namespace {
 
 // Models by id (a JS Model holds its id), shared with the Worlds they were added to: JS may
-// release a model while a World still uses it.
-std::vector<std::shared_ptr<const Model>> g_models;
+// release a model while a World still uses it. Held as mutable Models for Model.setVertices
+// (Model::refit), which refuses a model a World also holds (use_count() > 1).
+std::vector<std::shared_ptr<Model>> g_models;
 std::vector<int> g_free_ids;
 
-int register_model(std::shared_ptr<const Model> m) {
+int register_model(std::shared_ptr<Model> m) {
   if (!g_free_ids.empty()) {
     const int id = g_free_ids.back();
     g_free_ids.pop_back();
@@ -187,7 +189,7 @@ int register_model(std::shared_ptr<const Model> m) {
   return static_cast<int>(g_models.size()) - 1;
 }
 
-const std::shared_ptr<const Model>& model_ref(int id, const char* what) {
+const std::shared_ptr<Model>& model_ref(int id, const char* what) {
   if (id < 0 || static_cast<std::size_t>(id) >= g_models.size() ||
       !g_models[static_cast<std::size_t>(id)]) {
     throw ArgumentError(std::string(what) + " is not a live model");
@@ -220,7 +222,7 @@ int model_create(std::uintptr_t positions, double n_coords, bool f32, std::uintp
     mesh.triangles.resize(nt);
     for (std::size_t i = 0; i < nt; ++i)
       mesh.triangles[i] = {ix[3 * i], ix[3 * i + 1], ix[3 * i + 2]};
-    return register_model(std::make_shared<const Model>(std::move(mesh), BuildOptions{}, name));
+    return register_model(std::make_shared<Model>(std::move(mesh), BuildOptions{}, name));
   } catch (const std::exception& e) {
     return fail_with("Model", e);
   }
@@ -244,8 +246,7 @@ int model_shape(int kind, double a, double b, double c, int n1, int n2) {
       mesh = make_torus(a, b, n1, n2);
     }
     static constexpr const char* kNames[] = {"box", "sphere", "cylinder", "torus"};
-    return register_model(
-        std::make_shared<const Model>(std::move(mesh), BuildOptions{}, kNames[kind]));
+    return register_model(std::make_shared<Model>(std::move(mesh), BuildOptions{}, kNames[kind]));
   } catch (const std::exception& e) {
     return fail_with(kFunctions[kind], e);
   }
@@ -274,15 +275,109 @@ void model_release(int id) {
   }
 }
 
-// Out: triangle count, vertex count, closed (0/1), degenerate triangles.
+// Out: triangle count, vertex count, closed (0/1), degenerate triangles, refit growth.
 int model_info(int id) {
   return guarded("Model", [&] {
     const Model& m = *model_ref(id, "this");
-    double* out = out_resize(4);
+    double* out = out_resize(5);
     out[0] = static_cast<double>(m.mesh().triangles.size());
     out[1] = static_cast<double>(m.mesh().vertices.size());
     out[2] = m.is_closed() ? 1 : 0;
     out[3] = static_cast<double>(m.stats().degenerate_triangles);
+    out[4] = m.refit_growth();
+    return 1;
+  });
+}
+
+// New vertex positions (Model::refit): n_coords numbers (float32 when f32, else float64) at
+// `positions`, three per vertex, as many vertices as the model has. Everything is checked before
+// the model changes; a model held by a World is refused (the World's broad phase keeps boxes of
+// the current positions).
+int model_set_vertices(int id, std::uintptr_t positions, double n_coords, bool f32) {
+  return guarded("Model.setVertices", [&] {
+    const std::shared_ptr<Model>& m = model_ref(id, "this");
+    const std::size_t nv = m->mesh().vertices.size();
+    if (n_coords != 3.0 * static_cast<double>(nv)) {
+      throw ArgumentError("positions has " + number_text(n_coords) + " numbers, the model has " +
+                          std::to_string(nv) + " vertices (" + std::to_string(3 * nv) + ")");
+    }
+    if (m.use_count() > 1) {
+      throw ArgumentError("model '" + m->source() +
+                          "' is held by a World, whose broad phase keeps the bounds of its current "
+                          "positions; remove it from the World first");
+    }
+    std::vector<Vec3> v(nv);
+    for (std::size_t i = 0; i < nv; ++i) {
+      for (int c = 0; c < 3; ++c) {
+        const double x = f32 ? reinterpret_cast<const float*>(positions)[3 * i + c]
+                             : reinterpret_cast<const double*>(positions)[3 * i + c];
+        if (!std::isfinite(x)) {
+          throw ArgumentError("positions[" + std::to_string(3 * i + c) + "] = " + number_text(x) +
+                              " is not finite");
+        }
+        v[i][c] = x;
+      }
+    }
+    m->refit(v);
+    return 0;
+  });
+}
+
+// Out: intersecting (0/1), pair count k, degenerate count d, the 7 counters of
+// SelfIntersectionStats in declaration order, k pairs (i, j), d triangle indices.
+int wasm_self_intersections(int id, bool first_only) {
+  return guarded("selfIntersections", [&] {
+    SelfIntersectionRequest request;
+    request.first_only = first_only;
+    const SelfIntersectionResult r = self_intersections(*model_ref(id, "model"), request);
+    const std::size_t k = r.pairs.size();
+    const std::size_t d = r.degenerate_triangles.size();
+    double* out = out_resize(10 + 2 * k + d);
+    out[0] = r.intersecting ? 1 : 0;
+    out[1] = static_cast<double>(k);
+    out[2] = static_cast<double>(d);
+    const SelfIntersectionStats& s = r.stats;
+    const std::uint64_t counters[] = {s.node_pairs,      s.volume_rejects, s.triangle_pairs,
+                                      s.adjacent_pairs,  s.cone_culled,    s.cone_tests,
+                                      s.cone_cache_bytes};
+    for (int c = 0; c < 7; ++c) out[3 + c] = static_cast<double>(counters[c]);
+    double* p = out + 10;
+    for (const auto& pair : r.pairs) {
+      *p++ = pair[0];
+      *p++ = pair[1];
+    }
+    for (const std::uint32_t t : r.degenerate_triangles) *p++ = t;
+    return 1;
+  });
+}
+
+// Out: edge count e, vertex-triangle count, edge-edge count, e edges (lower, higher), then per
+// pair (vertex-triangle ones first): a, b, distance, point_a (3), point_b (3).
+int wasm_self_proximity(int id, double delta) {
+  return guarded("selfProximity", [&] {
+    const SelfProximityResult r = self_proximity(*model_ref(id, "model"), delta);
+    const std::size_t e = r.edges.size();
+    double* out = out_resize(3 + 2 * e + 9 * r.pairs.size());
+    std::size_t vertex_triangle = 0;
+    for (const SelfProximityPair& q : r.pairs) {
+      if (q.kind == SelfProximityPair::Kind::vertex_triangle) ++vertex_triangle;
+    }
+    out[0] = static_cast<double>(e);
+    out[1] = static_cast<double>(vertex_triangle);
+    out[2] = static_cast<double>(r.pairs.size() - vertex_triangle);
+    double* p = out + 3;
+    for (const auto& edge : r.edges) {
+      *p++ = edge[0];
+      *p++ = edge[1];
+    }
+    for (const SelfProximityPair& q : r.pairs) {
+      p[0] = q.a;
+      p[1] = q.b;
+      p[2] = q.distance;
+      write_vec(p + 3, q.point_a);
+      write_vec(p + 6, q.point_b);
+      p += 9;
+    }
     return 1;
   });
 }
@@ -563,6 +658,9 @@ EMSCRIPTEN_BINDINGS(antcd_core) {
   function("modelMesh", &model_mesh);
   function("modelRelease", &model_release);
   function("modelInfo", &model_info);
+  function("modelSetVertices", &model_set_vertices);
+  function("selfIntersections", &wasm_self_intersections);
+  function("selfProximity", &wasm_self_proximity);
   function("sweep", &wasm_sweep);
   function("penetration", &wasm_penetration);
   function("allocBytes", &alloc_bytes);

@@ -45,6 +45,22 @@ test('out of WebAssembly memory: an Error, then the module answers again', { tim
   assert.deepEqual(query(), before);
   assert.equal(kept[0].vertexCount, 4 * 1024 * 1024);
   assert.equal(kept[kept.length - 1].name, `big ${kept.length - 1}`);
+  // setVertices (a positions buffer, then the C++ copy) and the self queries with memory full:
+  // an answer or an out-of-memory Error, and the module answers as before.
+  const calls = {
+    setVertices: () => kept[0].setVertices(positions),
+    selfIntersections: () => antcd.selfIntersections(kept[0]),
+    selfProximity: () => antcd.selfProximity(box, 0.01),
+  };
+  for (const [name, call] of Object.entries(calls)) {
+    try {
+      call();
+    } catch (e) {
+      assert.ok(e instanceof Error && /out of WebAssembly memory/.test(e.message), `${name}: ${e}`);
+    }
+  }
+  assert.deepEqual(query(), before);
+  assert.equal(kept[0].vertexCount, 4 * 1024 * 1024);
   // A World can be made (or is refused with an Error), and used.
   let world = null;
   try {
