@@ -14,9 +14,18 @@ namespace {
 
 constexpr std::size_t kStripes = 64;  // one bit each in ModelReadLock::stripes_
 
-std::array<std::shared_mutex, kStripes>& stripes() {
+/// A reader/writer lock that lets a waiting writer in: readers pass the gate before they take
+/// their shared lock, and a writer holds the gate while it waits for the readers in flight, so
+/// readers arriving meanwhile wait behind it. (std::shared_mutex alone, on glibc, prefers readers:
+/// two threads querying in turn could keep set_vertices out indefinitely.)
+struct Stripe {
+  std::mutex gate;
+  std::shared_mutex rw;
+};
+
+std::array<Stripe, kStripes>& stripes() {
   // Leaked on purpose: a daemon thread may still hold a guard while the interpreter exits.
-  static auto* const table = new std::array<std::shared_mutex, kStripes>();
+  static auto* const table = new std::array<Stripe, kStripes>();
   return *table;
 }
 
@@ -28,7 +37,9 @@ std::size_t stripe_of(const Model& model) {
 
 void lock_shared(std::uint64_t mask) {
   for (std::uint64_t m = mask; m != 0; m &= m - 1) {
-    stripes()[static_cast<std::size_t>(std::countr_zero(m))].lock_shared();
+    Stripe& s = stripes()[static_cast<std::size_t>(std::countr_zero(m))];
+    const std::scoped_lock pass(s.gate);
+    s.rw.lock_shared();
   }
 }
 
@@ -55,11 +66,12 @@ ModelReadLock::ModelReadLock(const Model& a, const Model& b)
 
 ModelReadLock::~ModelReadLock() {
   for (std::uint64_t m = stripes_; m != 0; m &= m - 1) {
-    stripes()[static_cast<std::size_t>(std::countr_zero(m))].unlock_shared();
+    stripes()[static_cast<std::size_t>(std::countr_zero(m))].rw.unlock_shared();
   }
 }
 
-ModelWriteLock::ModelWriteLock(const Model& model) : mutex_(stripes()[stripe_of(model)]) {
+ModelWriteLock::ModelWriteLock(const Model& model) : mutex_(stripes()[stripe_of(model)].rw) {
+  const std::scoped_lock hold(stripes()[stripe_of(model)].gate);  // while the readers drain
   mutex_.lock();
 }
 

@@ -7,7 +7,8 @@
 //   set_vertices, never a mix. The locks are a fixed table of stripes, a Model's stripe chosen by
 //   its address (two Models on one stripe only wait for each other's set_vertices); a guard locks
 //   its stripes in ascending order and writers hold one stripe, so no two guards can deadlock.
-//   Nothing here is held while the GIL is taken.
+//   A waiting writer goes before readers that arrive after it (no set_vertices starved by
+//   queries in turn). Nothing here is held while the GIL is taken.
 // - Pins: a Model held by a CollisionManager or a Scene is pinned. Their broad phase keeps boxes
 //   derived from the positions at the time it took the Model, so set_vertices refuses a pinned
 //   Model (ValueError) instead of leaving those boxes stale. Pinning happens under the Model's
