@@ -8,7 +8,6 @@
 #include "bindings.hpp"
 #include "convert.hpp"
 #include "manager.hpp"
-#include "model_guard.hpp"
 
 namespace antcd::python {
 
@@ -107,7 +106,6 @@ void bind_manager(py::module_& m) {
             std::vector<ManagedWorld::Hit> hits;
             {
               py::gil_scoped_release release;
-              const ModelReadLock lock(model);
               hits = w.collide_single(model, t, md, d);
             }
             return to_python(std::move(hits));
@@ -148,10 +146,7 @@ void bind_manager(py::module_& m) {
           "distance_single",
           [](const ManagedWorld& w, const Model& model, const py::handle pose) {
             const Transform t = to_transform(pose, "transform");
-            return nearest([&] {
-              const ModelReadLock lock(model);
-              return w.distance_single(model, t);
-            });
+            return nearest([&] { return w.distance_single(model, t); });
           },
           py::arg("model"), py::arg("transform"),
           "(id, 0, DistanceResult) of the object closest to the model (A = object, B = model), or "

@@ -126,6 +126,7 @@ std::vector<ManagedWorld::Hit> ManagedWorld::collide_single(const Model& model,
                                                             const Transform& pose, Mode mode,
                                                             Scalar delta) const {
   std::shared_lock lock(mutex_);
+  const ModelReadLock model_lock(model);  // after the manager's lock, as in add()
   std::vector<Hit> hits;
   for (ObjectContacts& o : world_.collide_model(model, pose, request_for(mode, delta))) {
     swap_sides(o.contacts);
@@ -170,6 +171,7 @@ ManagedWorld::Nearest ManagedWorld::distance_object(Id id) const {
 ManagedWorld::Nearest ManagedWorld::distance_single(const Model& model,
                                                     const Transform& pose) const {
   std::shared_lock lock(mutex_);
+  const ModelReadLock model_lock(model);  // after the manager's lock, as in add()
   return as_nearest(world_.nearest_to(model, pose, kNearest), false);
 }
 

@@ -13,7 +13,9 @@
 // shared lock and add / remove / set_pose an exclusive one: Python threads may query one manager
 // while another moves its objects. Every Model added is pinned (model_guard.hpp) until its object
 // is removed or the manager destroyed: the broad phase keeps boxes of its positions at add time, so
-// Model.set_vertices refuses it meanwhile.
+// Model.set_vertices refuses it meanwhile. Lock order: this manager's lock, then a Model's
+// (model_guard.hpp) — add() and the *_single queries take them so, set_vertices takes a Model's
+// alone — so a set_vertices waiting at a Model's gate cannot close a cycle with them.
 #pragma once
 
 #include <antcd/collide.hpp>

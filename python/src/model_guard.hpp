@@ -8,7 +8,9 @@
 //   its address (two Models on one stripe only wait for each other's set_vertices); a guard locks
 //   its stripes in ascending order and writers hold one stripe, so no two guards can deadlock.
 //   A waiting writer goes before readers that arrive after it (no set_vertices starved by
-//   queries in turn). Nothing here is held while the GIL is taken.
+//   queries in turn). Nothing here is held while the GIL is taken. With a Model's lock held, the
+//   only lock taken is the pin table's mutex (nothing is locked under it); a CollisionManager
+//   takes its own lock before a Model's, never after (manager.hpp).
 // - Pins: a Model held by a CollisionManager or a Scene is pinned. Their broad phase keeps boxes
 //   derived from the positions at the time it took the Model, so set_vertices refuses a pinned
 //   Model (ValueError) instead of leaving those boxes stale. Pinning happens under the Model's

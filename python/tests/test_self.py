@@ -356,3 +356,44 @@ def test_queries_never_see_a_torn_model():
         thread.join()
     assert not bad, bad[:5]
     assert flips[0] >= 2 and seen == {"flat", "folded"}, (flips[0], seen)
+
+
+def test_set_vertices_with_manager_queries_and_adds_does_not_deadlock():
+    """One thread queries a manager's world with a free Model, one adds that Model to it and
+    removes it again, one calls set_vertices on it (refused while it is held): the three lock
+    orders must not close a cycle. Every thread finishes. (The engine under CollisionManager,
+    antcd._antcd._World, is driven directly: the manager's name table is not what is tested.)"""
+    v, f = sphere_mesh(0.5, 40, 20)
+    m = antcd.Model(v, f, name="shared")
+    world = antcd._antcd._World()
+    world.add(antcd.Model(*box_mesh()), None)
+    stop = threading.Event()
+    counts = {"query": 0, "add": 0, "set": 0, "refused": 0}
+
+    def query():
+        while not stop.is_set():
+            world.collide_single(m, (np.eye(3), [0.3, 0, 0]), "verdict")
+            counts["query"] += 1
+
+    def add_remove():
+        while not stop.is_set():
+            world.remove(world.add(m, None))
+            counts["add"] += 1
+
+    def set_vertices():
+        while not stop.is_set():
+            try:
+                m.set_vertices(v)
+                counts["set"] += 1
+            except ValueError:
+                counts["refused"] += 1
+
+    threads = [threading.Thread(target=t, daemon=True) for t in (query, add_remove, set_vertices)]
+    for t in threads:
+        t.start()
+    stop.wait(2.0)
+    stop.set()
+    for t in threads:
+        t.join(timeout=30)
+    assert not any(t.is_alive() for t in threads), f"a thread is stuck: {counts}"
+    assert counts["query"] > 0 and counts["add"] > 0 and counts["set"] > 0 and counts["refused"] > 0, counts
