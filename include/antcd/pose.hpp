@@ -75,8 +75,9 @@ struct PoseCheck {
   PoseCheck c = check_pose(pose);
   if (c.rigid() &&
       !(std::abs(r30) + std::abs(r31) + std::abs(r32) + std::abs(r33 - 1) <= tolerance::kRigid)) {
-    c.fault = std::isfinite(r30 + r31 + r32 + r33) ? PoseCheck::Fault::NotAffine
-                                                   : PoseCheck::Fault::NotFinite;
+    const bool finite =
+        std::isfinite(r30) && std::isfinite(r31) && std::isfinite(r32) && std::isfinite(r33);
+    c.fault = finite ? PoseCheck::Fault::NotAffine : PoseCheck::Fault::NotFinite;
   }
   return c;
 }

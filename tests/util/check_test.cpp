@@ -105,6 +105,7 @@ TEST(Tolerances, Definitions) {
   EXPECT_EQ(check_pose(t, 0.1, 0, 0, 1).fault, Fault::NotAffine);
   EXPECT_EQ(check_pose(t, 0, 0, 0, 2).fault, Fault::NotAffine);
   EXPECT_EQ(check_pose(t, 0, kNaN, 0, 1).fault, Fault::NotFinite);
+  EXPECT_EQ(check_pose(t, 1e308, 1e308, 0, 1).fault, Fault::NotAffine);  // finite, sum overflows
   // Each fault names itself; a rigid pose has no problem.
   EXPECT_EQ(check_pose(t).problem(), "");
   EXPECT_NE(check_pose(Transform(-turn, Vec3::Zero())).problem().find("reflection"),
