@@ -28,11 +28,23 @@
 
 namespace antcd::parallel {
 
+#if defined(ANTCD_WITH_TBB)
+/// The calling thread's arena has one slot (an arena of one thread, as `--threads 1` and the TSan
+/// tests make): the helpers below then run the serial path without making oneTBB tasks at all.
+/// Same answers (every caller is split-independent, see the top of this file), less overhead, and
+/// oneTBB's uninstrumented task pool stays out of a ThreadSanitizer run.
+inline bool single_slot() { return tbb::this_task_arena::max_concurrency() == 1; }
+#endif
+
 /// body(first, last) over subranges that together cover [begin, end) once, none shorter than
 /// `grain` unless the whole range is (tbb::blocked_range's grain size).
 template <class Body>
 void for_ranges(std::size_t begin, std::size_t end, std::size_t grain, const Body& body) {
 #if defined(ANTCD_WITH_TBB)
+  if (single_slot()) {
+    if (begin < end) body(begin, end);
+    return;
+  }
   tbb::parallel_for(tbb::blocked_range<std::size_t>(begin, end, grain),
                     [&](const tbb::blocked_range<std::size_t>& r) { body(r.begin(), r.end()); });
 #else
@@ -45,6 +57,10 @@ void for_ranges(std::size_t begin, std::size_t end, std::size_t grain, const Bod
 template <class Body>
 void for_each_index(std::size_t begin, std::size_t end, const Body& body) {
 #if defined(ANTCD_WITH_TBB)
+  if (single_slot()) {
+    for (std::size_t k = begin; k < end; ++k) body(k);
+    return;
+  }
   tbb::parallel_for(begin, end, [&](std::size_t k) { body(k); });
 #else
   for (std::size_t k = begin; k < end; ++k) body(k);
@@ -55,6 +71,11 @@ void for_each_index(std::size_t begin, std::size_t end, const Body& body) {
 template <class F, class G>
 void invoke(const F& f, const G& g) {
 #if defined(ANTCD_WITH_TBB)
+  if (single_slot()) {
+    f();
+    g();
+    return;
+  }
   tbb::parallel_invoke(f, g);
 #else
   f();
@@ -67,6 +88,7 @@ void invoke(const F& f, const G& g) {
 template <class T, class Body, class Join>
 T reduce(std::size_t begin, std::size_t end, T identity, const Body& body, const Join& join) {
 #if defined(ANTCD_WITH_TBB)
+  if (single_slot()) return begin < end ? body(begin, end, identity) : identity;
   return tbb::parallel_reduce(
       tbb::blocked_range<std::size_t>(begin, end), identity,
       [&](const tbb::blocked_range<std::size_t>& r, T acc) {
