@@ -18,24 +18,18 @@
 #include <cmath>
 #include <vector>
 
+#include "ccd/deform_support.hpp"
+
 namespace {
 
 using antcd::Mesh;
 using antcd::Scalar;
 using antcd::Vec3;
 
+// A flat grid at height z: the tests' grid (tests/ccd/deform_support.hpp), lifted.
 Mesh grid(int nx, int ny, Scalar sx, Scalar sy, Scalar z) {
-  Mesh m;
-  for (int j = 0; j <= ny; ++j) {
-    for (int i = 0; i <= nx; ++i) m.vertices.emplace_back(sx * i / nx, sy * j / ny, z);
-  }
-  auto id = [&](int i, int j) { return static_cast<std::uint32_t>(j * (nx + 1) + i); };
-  for (int j = 0; j < ny; ++j) {
-    for (int i = 0; i < nx; ++i) {
-      m.triangles.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
-      m.triangles.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
-    }
-  }
+  Mesh m = antcd::test::make_grid(nx, ny, sx, sy);
+  for (Vec3& v : m.vertices) v.z() += z;
   return m;
 }
 

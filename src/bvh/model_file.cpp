@@ -9,6 +9,10 @@
 // (finite coordinates, indices in range, the tree's depth-first shape, leaves covering the leaf
 // order, only degenerate triangles left out, volumes that hold their subtrees) before the Model
 // exists.
+//
+// One piece on purpose (about 600 lines): the writer and the reader of one format, field by
+// field, side by side, so that a field changed in one is seen to change in the other; the shared
+// byte layout and checksum are bvh/model_file.hpp's.
 #include <antcd/bvh.hpp>
 #include <antcd/file.hpp>
 #include <antcd/geometry.hpp>
