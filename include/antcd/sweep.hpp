@@ -20,7 +20,10 @@
 // advances there. A rounding allowance (1e-12 of the scene's size: coordinates, radii,
 // translations) is taken off every L, covering the rounding of the interpolated poses, of the
 // distance and of t.
-// Interval proofs first: an earliest-first bisection of [0, 1] (pieces down to 1/16) tests each
+// Contact at the start first: surfaces that intersect at t = 0 (collide()'s exact boolean test at
+// the start poses) have toi 0, proven, with that intersecting pair as the contact; a resting
+// contact costs one discrete test.
+// Then interval proofs: an earliest-first bisection of [0, 1] (pieces down to 1/16) tests each
 // piece with one bounded boolean traversal at its midpoint pose, where a node pair is apart over
 // the piece if its spheres at the midpoint are farther apart than min_separation plus their
 // centres' motion bound over half the piece (|relative translation| + theta rho(centre) per node:
@@ -70,9 +73,9 @@
 //   allowance. Otherwise the surfaces are at toi within min_separation + mu * time_tolerance +
 //   allowance (result.distance is a pair's distance there): the search stops only that close, and
 //   a step from any farther reaches at least time_tolerance / 2 ahead.
-// - After max_iterations iterations (interval tests, distance queries and traversals) the search
-//   stops with a hit at the time reached (tolerance_decided and budget_exhausted set): still
-//   toi <= t*.
+// - After max_iterations iterations (the test at the start, interval tests, distance queries and
+//   traversals) the search stops with a hit at the time reached (tolerance_decided and
+//   budget_exhausted set): still toi <= t*.
 // - contact: a triangle pair at toi whose distance is within mu * time_tolerance / 2 + allowance
 //   of the minimum (an intersecting pair when the surfaces intersect), world frame: point is the
 //   common point or the closest points' midpoint, normal and depth as in collide.hpp (from B
@@ -111,7 +114,8 @@ struct SweepRequest {
   Scalar min_separation = 0;
   /// Time tolerance (> 0), see the guarantees above.
   Scalar time_tolerance = 1e-6;
-  /// Largest number of iterations: interval tests, distance queries and traversals (>= 1).
+  /// Largest number of iterations: the test at the start, interval tests, distance queries and
+  /// traversals (>= 1).
   std::uint32_t max_iterations = 100000;
 };
 
@@ -133,7 +137,7 @@ struct SweepResult {
   Scalar distance = 0;
   /// mu: the bound on the relative speed of the surfaces (mesh units per unit time).
   Scalar motion_bound = 0;
-  /// Iterations made: interval tests, distance queries and traversals.
+  /// Iterations made: the test at the start, interval tests, distance queries and traversals.
   std::uint32_t iterations = 0;
 };
 

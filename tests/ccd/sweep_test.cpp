@@ -4,6 +4,7 @@
 #include <antcd/collide.hpp>
 #include <antcd/distance.hpp>
 #include <antcd/error.hpp>
+#include <antcd/geometry.hpp>
 #include <antcd/load.hpp>
 #include <antcd/mesh.hpp>
 #include <antcd/sweep.hpp>
@@ -152,6 +153,24 @@ TEST(Sweep, FreeMotionsAndRestingContact) {
   ASSERT_TRUE(rest.hit);
   EXPECT_EQ(rest.toi, 0);
   EXPECT_FALSE(rest.tolerance_decided);
+  // Settled by the one exact test at the start, its contact an intersecting pair at t = 0.
+  EXPECT_EQ(rest.iterations, 1u);
+  EXPECT_EQ(rest.contact.distance, 0);
+  // Overlapping at t = 0 and moving apart: still toi 0, and a pair that intersects there.
+  const Transform deep = Transform::from_axis_angle(Vec3::UnitZ(), 0.3, {0.6, 0.2, 0.1});
+  const SweepResult overlap = sweep(a, Transform::identity(), Transform::identity(), b, deep, far1);
+  ASSERT_TRUE(overlap.hit);
+  EXPECT_EQ(overlap.toi, 0);
+  EXPECT_FALSE(overlap.tolerance_decided);
+  {
+    const auto& ta = a.mesh().triangles[overlap.contact.triangle_a];
+    const auto& tb = b.mesh().triangles[overlap.contact.triangle_b];
+    const auto& va = a.mesh().vertices;
+    const auto& vb = b.mesh().vertices;
+    EXPECT_TRUE(geometry::triangles_intersect(va[ta[0]], va[ta[1]], va[ta[2]],
+                                              deep.apply(vb[tb[0]]), deep.apply(vb[tb[1]]),
+                                              deep.apply(vb[tb[2]])));
+  }
   // Separation: B passes 0.2 above A; a hit with min_separation 0.25, none with 0.15.
   const Transform over0 = Transform::from_axis_angle(Vec3::UnitX(), 0, {-3, 0, 1.2});
   const Transform over1 = Transform::from_axis_angle(Vec3::UnitX(), 0, {3, 0, 1.2});
