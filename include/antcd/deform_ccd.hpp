@@ -38,6 +38,18 @@
 //   checked before its (at most) 6 vertex–face and 9 edge–edge primitive queries; every primitive
 //   pair is queried from one triangle pair only (the lowest-indexed triangle holding the vertex or
 //   the edge).
+// - Normal cones (self, min_separation 0, DeformSweepRequest::normal_cones): a subtree of at least
+//   64 triangles that is one surface patch (each edge used by at most two of its triangles, in
+//   opposite directions, its boundary one cycle; the static self test's subtrees, antcd/self.hpp)
+//   is skipped when, for one axis direction, every triangle's normal has a certified positive
+//   component along it at every t in [0, 1] (from the normal's quadratic Bezier form: the normals
+//   at t = 0 and 1 and the cross term (e1(0) x e2(1) + e1(1) x e2(0)) / 2), and the boundary,
+//   projected along that axis, stays a simple polygon over the whole step (each edge within the
+//   hull of its ends' four positions; those hulls separated for edges with no common vertex,
+//   consecutive edges never folding back). Then no self pair under it ever touches (the proof is
+//   in src/ccd/normal_cone.cpp), so skipping it changes no answer a contact decides. The pairs
+//   between the subtree and the rest are kept. Cut pairs that only a tolerance, not a contact,
+//   reported (false positives) may go away with it.
 // - Rigid other (deform_sweep with two poses): B follows ccd::interpolate_pose. Its vertices run on
 //   arcs, which the primitives cannot take, so [0, 1] is cut into n equal pieces on which each
 //   vertex of B stays within delta = r (theta / n)^2 / 8 of its chord (theta: the rotation angle
@@ -93,6 +105,10 @@ struct DeformSweepRequest {
   /// Rigid other only: how far B's vertices may stray from the chords the search follows (0:
   /// 1e-3 times the largest |p| of B's vertices). See the header comment.
   Scalar pose_path_tolerance = 0;
+  /// Self sweeps with min_separation 0: skip the self pairs of subtrees whose continuous normal
+  /// cones prove they cannot touch (see "Normal cones" above). Off: every pair the bounds keep is
+  /// queried (same contacts; fewer tolerance-decided false positives may be culled when on).
+  bool normal_cones = true;
 };
 
 enum class DeformPairKind : std::uint8_t { VertexFace = 0, EdgeEdge = 1 };
@@ -124,6 +140,8 @@ struct DeformSweepResult {
   std::uint64_t node_pairs = 0;         ///< node pairs whose bounds were compared
   std::uint64_t primitive_queries = 0;  ///< ccd::vertex_face / edge_edge calls
   std::size_t tasks = 0;                ///< parallel tasks the traversal was cut into
+  std::uint64_t cone_tests = 0;         ///< subtrees whose normal cone was tested
+  std::uint64_t cone_culled = 0;        ///< subtrees culled by it (their self pairs skipped)
   std::size_t scratch_bytes = 0;        ///< bytes one call held (see Memory above)
 };
 

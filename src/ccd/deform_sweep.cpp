@@ -14,6 +14,7 @@
 #include <tuple>
 
 #include "ccd/deform_bounds.hpp"
+#include "ccd/normal_cone.hpp"
 #include "util/check.hpp"
 #include "util/parallel.hpp"
 
@@ -44,6 +45,9 @@ struct Context {
   Scalar tol = 1e-6;
   Scalar pad = 0;
   bool all_pairs = false;
+  /// Self, min_separation 0: the continuous normal-cone cull of self items (null: none).
+  const Model* model = nullptr;
+  const detail::DeformCones* cones = nullptr;
   /// First-hit mode: the earliest toi any task has found (shared; read for pruning only).
   std::atomic<Scalar>* shared_best = nullptr;
 };
@@ -61,6 +65,8 @@ struct TaskOut {
   std::vector<DeformPair> pairs;
   std::uint64_t node_pairs = 0;
   std::uint64_t primitive_queries = 0;
+  std::uint64_t cone_tests = 0;
+  std::uint64_t cone_culled = 0;
   std::size_t stack_peak = 0;
 };
 
@@ -108,7 +114,7 @@ class Traversal {
         const SweptNode& n = c_.a.bounds->nodes[it.a];
         if (n.is_leaf()) {
           leaf_pairs(n, n, true);
-        } else {
+        } else if (!cone_culls(it.a)) {
           stack.push_back({n.left, n.right, false});
           stack.push_back({n.right, 0, true});
           stack.push_back({n.left, 0, true});
@@ -138,6 +144,21 @@ class Traversal {
     detail::swept_box(na, horizon(), c_.pad, lo_a, hi_a);
     detail::swept_box(nb, horizon(), c_.pad, lo_b, hi_b);
     return boxes_overlap(lo_a, hi_a, lo_b, hi_b, c_.sep);
+  }
+
+  /// Whether the self pairs under node `node` are culled by its normal cone (ccd/normal_cone.hpp:
+  /// none of them touches over [0, 1]).
+  bool cone_culls(std::uint32_t node) {
+    if (c_.cones == nullptr || node >= c_.cones->node_signs.size() ||
+        c_.cones->node_signs[node] == 0 || c_.cones->topology->find(node) == nullptr) {
+      return false;
+    }
+    ++out_.cone_tests;
+    if (!detail::deform_cone_culls(*c_.model, *c_.cones, node, c_.a.v0, c_.a.v1, edge_boxes_)) {
+      return false;
+    }
+    ++out_.cone_culled;
+    return true;
   }
 
   /// Split node a (else b): the internal one, the larger swept box when both are.
@@ -262,13 +283,14 @@ class Traversal {
 
   const Context& c_;
   TaskOut& out_;
+  std::vector<detail::EdgeBox> edge_boxes_;  ///< the cone tests' scratch
 };
 
 /// The fixed task list: the root item expanded breadth-first (pairs culled over [0, 1]) until there
 /// are kTasks items or none can be expanded. Depends on the bounds only.
-std::vector<Item> make_tasks(const Context& c, Item root, std::uint64_t& node_pairs) {
+std::vector<Item> make_tasks(const Context& c, Item root, TaskOut& scratch) {
   std::vector<Item> items = {root};
-  TaskOut scratch;
+  std::uint64_t& node_pairs = scratch.node_pairs;
   Context whole = c;  // culled over [0, 1]: no shared best yet
   whole.all_pairs = true;
   Traversal probe(whole, scratch);
@@ -280,7 +302,7 @@ std::vector<Item> make_tasks(const Context& c, Item root, std::uint64_t& node_pa
         const SweptNode& n = c.a.bounds->nodes[it.a];
         if (n.is_leaf()) {
           next.push_back(it);
-        } else {
+        } else if (!probe.cone_culls(it.a)) {
           next.push_back({n.left, 0, true});
           next.push_back({n.right, 0, true});
           next.push_back({n.left, n.right, false});
@@ -313,7 +335,11 @@ std::vector<Item> make_tasks(const Context& c, Item root, std::uint64_t& node_pa
 
 DeformSweepResult run_sweep(const Context& c, Item root, std::size_t bounds_bytes) {
   DeformSweepResult result;
-  const std::vector<Item> tasks = make_tasks(c, root, result.node_pairs);
+  TaskOut split;
+  const std::vector<Item> tasks = make_tasks(c, root, split);
+  result.node_pairs = split.node_pairs;
+  result.cone_tests = split.cone_tests;
+  result.cone_culled = split.cone_culled;
   std::vector<TaskOut> outs(tasks.size());
   std::atomic<Scalar> shared_best{std::numeric_limits<Scalar>::infinity()};
   Context ctx = c;
@@ -326,6 +352,8 @@ DeformSweepResult run_sweep(const Context& c, Item root, std::size_t bounds_byte
   for (const TaskOut& o : outs) {
     result.node_pairs += o.node_pairs;
     result.primitive_queries += o.primitive_queries;
+    result.cone_tests += o.cone_tests;
+    result.cone_culled += o.cone_culled;
     stack_bytes = std::max(stack_bytes, std::max<std::size_t>(o.stack_peak, 64) * sizeof(Item));
     if (o.hit && (!result.hit || earlier(o.best, result.pair))) {
       result.hit = true;
@@ -419,7 +447,16 @@ DeformSweepResult deform_sweep(const Model& model, std::span<const Vec3> V0,
   c.tol = request.time_tolerance;
   c.pad = pad_for(bounds, bounds, c.sep, c.tol);
   c.all_pairs = request.all_pairs;
-  return run_sweep(c, {bounds.root, 0, true}, bounds.scratch_bytes);
+  // The cull proves that no pair touches (distance 0): with a separation it does not apply.
+  detail::DeformCones cones;
+  if (request.normal_cones && c.sep == 0) {
+    cones = detail::make_deform_cones(model, V0, V1);
+    if (cones.topology) {
+      c.model = &model;
+      c.cones = &cones;
+    }
+  }
+  return run_sweep(c, {bounds.root, 0, true}, bounds.scratch_bytes + cones.bytes());
 }
 
 DeformSweepResult deform_sweep(const Model& a, std::span<const Vec3> A0, std::span<const Vec3> A1,
