@@ -380,20 +380,31 @@ DeformSweepResult run_sweep(const Context& c, Item root, std::size_t bounds_byte
   return result;
 }
 
-void check_positions(const char* function, const char* name, std::span<const Vec3> v,
-                     const Model& model) {
+/// Checks the positions; returns their largest |coordinate|.
+Scalar check_positions(const char* function, const char* name, std::span<const Vec3> v,
+                       const Model& model) {
   const std::size_t expected = model.mesh().vertices.size();
   if (v.size() != expected) {
     throw ArgumentError(std::string(function) + ": " + name + " has " + std::to_string(v.size()) +
                         " positions, model '" + model.source() + "' has " +
                         std::to_string(expected) + " vertices");
   }
+  // One branch-free pass (a NaN fails every comparison), then the first bad index if any.
+  bool ok = true;
+  Scalar m = 0;
+  for (const Vec3& p : v) {
+    const Scalar x = std::abs(p.x()), y = std::abs(p.y()), z = std::abs(p.z());
+    ok &= (x <= kDeformMaxCoordinate) & (y <= kDeformMaxCoordinate) & (z <= kDeformMaxCoordinate);
+    m = std::max(m, std::max(x, std::max(y, z)));
+  }
+  if (ok) return m;
   for (std::size_t i = 0; i < v.size(); ++i) {
     if (!v[i].allFinite() || v[i].cwiseAbs().maxCoeff() > kDeformMaxCoordinate) {
       throw ArgumentError(std::string(function) + ": " + name + "[" + std::to_string(i) +
                           "] must be finite with |coordinate| <= 1e150");
     }
   }
+  return m;
 }
 
 void check_request(const char* function, const DeformSweepRequest& r) {
@@ -435,9 +446,21 @@ DeformSweepResult two_meshes(const Model& a, std::span<const Vec3> A0, std::span
 DeformSweepResult deform_sweep(const Model& model, std::span<const Vec3> V0,
                                std::span<const Vec3> V1, const DeformSweepRequest& request) {
   constexpr const char* kFn = "deform_sweep";
-  check_positions(kFn, "V0", V0, model);
-  check_positions(kFn, "V1", V1, model);
+  const Scalar m =
+      std::max(check_positions(kFn, "V0", V0, model), check_positions(kFn, "V1", V1, model));
   check_request(kFn, request);
+  // The cull proves that no pair touches (distance 0): with a separation it does not apply.
+  detail::DeformCones cones;
+  if (request.normal_cones && request.min_separation == 0) {
+    cones = detail::make_deform_cones(model, V0, V1, m);
+  }
+  if (cones.root_culled && model.leaf_triangles().size() == model.mesh().triangles.size()) {
+    // The root holds every triangle and none of its pairs touches: no bounds, no traversal.
+    DeformSweepResult result;
+    result.cone_tests = result.cone_culled = 1;
+    result.scratch_bytes = cones.bytes();
+    return result;
+  }
   const DeformBounds bounds = detail::make_deform_bounds(model, V0, V1);
   Context c;
   c.a = {&model.mesh(), V0, V1, &bounds};
@@ -447,14 +470,9 @@ DeformSweepResult deform_sweep(const Model& model, std::span<const Vec3> V0,
   c.tol = request.time_tolerance;
   c.pad = pad_for(bounds, bounds, c.sep, c.tol);
   c.all_pairs = request.all_pairs;
-  // The cull proves that no pair touches (distance 0): with a separation it does not apply.
-  detail::DeformCones cones;
-  if (request.normal_cones && c.sep == 0) {
-    cones = detail::make_deform_cones(model, V0, V1);
-    if (cones.topology) {
-      c.model = &model;
-      c.cones = &cones;
-    }
+  if (cones.topology) {
+    c.model = &model;
+    c.cones = &cones;
   }
   return run_sweep(c, {bounds.root, 0, true}, bounds.scratch_bytes + cones.bytes());
 }

@@ -205,32 +205,48 @@ constexpr double kTiny = 16 * std::numeric_limits<double>::min();
 
 enum class Form { Cross, Dot };
 
+/// A coefficient is a signed sum of products of two coordinate differences, each difference at
+/// most 2 m in magnitude (m: the largest coordinate magnitude of the points), so each product at
+/// most 4 m^2: bounds on the rounding of the two-product (end) and four-product (middle)
+/// coefficients that hold for every triangle of the call (the error bound of bernstein_sign with
+/// every product at its largest), with room for the rounding of the bound itself.
+struct StaticBound {
+  double end = std::numeric_limits<double>::infinity();
+  double middle = std::numeric_limits<double>::infinity();
+};
+StaticBound static_bound(double m) {
+  const double p = 4 * m * m * (1 + 8 * kUnitRoundoff);
+  return {16 * kUnitRoundoff * 2 * p + kTiny, 16 * kUnitRoundoff * 4 * p + kTiny};
+}
+
 /// The certified sign over t in [0, 1] of x(t) x y(t) (Cross) or x(t) . y(t) (Dot) in the
 /// coordinates (u, v), x = p - o and y = q - o of three linearly moving points (o0 -> o1, ...):
 /// +1 (-1) when its three Bernstein coefficients are certified > 0 (< 0), else 0 (header comment,
-/// (i)). The middle coefficient is taken doubled (same sign).
+/// (i)). The middle coefficient is taken doubled (same sign). `sb` (when its points' magnitudes
+/// are within its m) decides first; the coefficients' own bound, smaller, decides the rest.
 template <Form kForm>
 int bernstein_sign(const Vec3& o0, const Vec3& p0, const Vec3& q0, const Vec3& o1, const Vec3& p1,
-                   const Vec3& q1, int u, int v) {
+                   const Vec3& q1, int u, int v, const StaticBound& sb = {}) {
   const double x0u = p0[u] - o0[u], x0v = p0[v] - o0[v], y0u = q0[u] - o0[u], y0v = q0[v] - o0[v];
   const double x1u = p1[u] - o1[u], x1v = p1[v] - o1[v], y1u = q1[u] - o1[u], y1v = q1[v] - o1[v];
-  // Each coefficient is a signed sum of products x_i y_j; `mag` sums their magnitudes.
-  auto term = [](double a, double b, double c, double d, double& mag) {
-    const double l = a * b, r = c * d;
-    mag += std::abs(l) + std::abs(r);
-    return kForm == Form::Cross ? l - r : l + r;
-  };
-  double m0 = 0, m1 = 0, m2 = 0;
-  const double b0 =
-      kForm == Form::Cross ? term(x0u, y0v, x0v, y0u, m0) : term(x0u, y0u, x0v, y0v, m0);
-  const double b2 =
-      kForm == Form::Cross ? term(x1u, y1v, x1v, y1u, m2) : term(x1u, y1u, x1v, y1v, m2);
-  const double b1 = kForm == Form::Cross
-                        ? term(x0u, y1v, x0v, y1u, m1) + term(x1u, y0v, x1v, y0u, m1)
-                        : term(x0u, y1u, x0v, y1v, m1) + term(x1u, y0u, x1v, y0v, m1);
-  const double e0 = 16 * kUnitRoundoff * m0 + kTiny;
-  const double e1 = 16 * kUnitRoundoff * m1 + kTiny;
-  const double e2 = 16 * kUnitRoundoff * m2 + kTiny;
+  // Each coefficient is a signed sum of products x_i y_j (l - r for Cross, l + r for Dot).
+  constexpr double kS = kForm == Form::Cross ? -1 : 1;
+  const std::array<double, 8> l =
+      kForm == Form::Cross ? std::array<double, 8>{x0u * y0v, x0v * y0u, x1u * y1v, x1v * y1u,
+                                                   x0u * y1v, x0v * y1u, x1u * y0v, x1v * y0u}
+                           : std::array<double, 8>{x0u * y0u, x0v * y0v, x1u * y1u, x1v * y1v,
+                                                   x0u * y1u, x0v * y1v, x1u * y0u, x1v * y0v};
+  const double b0 = l[0] + kS * l[1];
+  const double b2 = l[2] + kS * l[3];
+  const double b1 = (l[4] + kS * l[5]) + (l[6] + kS * l[7]);
+  if (b0 > sb.end && b1 > sb.middle && b2 > sb.end) return 1;
+  if (b0 < -sb.end && b1 < -sb.middle && b2 < -sb.end) return -1;
+  // The coefficients' own bounds: 16 u times the sum of their products' magnitudes.
+  const double e0 = 16 * kUnitRoundoff * (std::abs(l[0]) + std::abs(l[1])) + kTiny;
+  const double e2 = 16 * kUnitRoundoff * (std::abs(l[2]) + std::abs(l[3])) + kTiny;
+  const double e1 =
+      16 * kUnitRoundoff * (std::abs(l[4]) + std::abs(l[5]) + std::abs(l[6]) + std::abs(l[7])) +
+      kTiny;
   if (b0 > e0 && b1 > e1 && b2 > e2) return 1;
   if (b0 < -e0 && b1 < -e1 && b2 < -e2) return -1;
   return 0;
@@ -320,12 +336,13 @@ bool cycle_stays_simple(const Mesh& m, std::span<const std::uint32_t> cycle, int
 
 }  // namespace
 
+/// swept_normal_signs with the call's static bound.
 std::uint8_t swept_normal_signs(const Vec3& a0, const Vec3& b0, const Vec3& c0, const Vec3& a1,
-                                const Vec3& b1, const Vec3& c1) {
+                                const Vec3& b1, const Vec3& c1, const StaticBound& sb) {
   std::uint8_t bits = 0;
   for (int k = 0; k < 3; ++k) {
     // Dropping axis k leaves the cyclic pair (k + 1, k + 2): the 2-D cross product is n_k.
-    const int s = bernstein_sign<Form::Cross>(a0, b0, c0, a1, b1, c1, (k + 1) % 3, (k + 2) % 3);
+    const int s = bernstein_sign<Form::Cross>(a0, b0, c0, a1, b1, c1, (k + 1) % 3, (k + 2) % 3, sb);
     if (s > 0) bits = static_cast<std::uint8_t>(bits | (1u << (2 * k)));
     if (s < 0) bits = static_cast<std::uint8_t>(bits | (1u << (2 * k + 1)));
   }
@@ -333,14 +350,38 @@ std::uint8_t swept_normal_signs(const Vec3& a0, const Vec3& b0, const Vec3& c0, 
 }
 
 DeformCones make_deform_cones(const Model& model, std::span<const Vec3> V0,
-                              std::span<const Vec3> V1) {
+                              std::span<const Vec3> V1, Scalar max_coordinate) {
   DeformCones c;
+  const StaticBound sb = static_bound(max_coordinate);
   std::shared_ptr<const ConeTopology> topology = cone_topology(model);
   if (topology->entries.empty()) return c;
   const Mesh& mesh = model.mesh();
   const std::span<const BvhNode> nodes = model.nodes();
   const std::span<const std::uint32_t> leaves = model.leaf_triangles();
   c.node_signs.assign(nodes.size(), 0);
+  if (topology->find(0) != nullptr && !leaves.empty()) {
+    // The root along one axis, until a triangle has no certified sign along it.
+    const TriangleIndices& f = mesh.triangles[leaves[0]];
+    const Vec3 n = (V0[f[1]] - V0[f[0]]).cross(V0[f[2]] - V0[f[0]]).cwiseAbs();
+    const int k = n.x() >= n.y() && n.x() >= n.z() ? 0 : (n.y() >= n.z() ? 1 : 2);
+    const int u = (k + 1) % 3, v = (k + 2) % 3;
+    int sign = 2;  // 2: none yet
+    for (std::size_t i = 0; i < leaves.size() && sign != 0; ++i) {
+      const TriangleIndices& t = mesh.triangles[leaves[i]];
+      const int s = bernstein_sign<Form::Cross>(V0[t[0]], V0[t[1]], V0[t[2]], V1[t[0]], V1[t[1]],
+                                                V1[t[2]], u, v, sb);
+      sign = (sign == 2 || s == sign) ? s : 0;
+    }
+    if (sign == 1 || sign == -1) {
+      c.node_signs[0] = static_cast<std::uint8_t>(1u << (2 * k + (sign < 0 ? 1 : 0)));
+      c.topology = topology;
+      std::vector<EdgeBox> scratch;
+      if (deform_cone_culls(model, c, 0, V0, V1, scratch)) {
+        c.root_culled = true;
+        return c;
+      }
+    }
+  }
   // Leaves in parallel (independent), then the internal nodes bottom-up (children follow their
   // parent in the depth-first layout).
   parallel::for_ranges(0, nodes.size(), 1024, [&](std::size_t b, std::size_t e) {
@@ -350,7 +391,7 @@ DeformCones make_deform_cones(const Model& model, std::span<const Vec3> V0,
       std::uint8_t s = 0x3f;
       for (std::uint32_t k = n.first_or_right; k < n.first_or_right + n.count && s != 0; ++k) {
         const TriangleIndices& t = mesh.triangles[leaves[k]];
-        s &= swept_normal_signs(V0[t[0]], V0[t[1]], V0[t[2]], V1[t[0]], V1[t[1]], V1[t[2]]);
+        s &= swept_normal_signs(V0[t[0]], V0[t[1]], V0[t[2]], V1[t[0]], V1[t[1]], V1[t[2]], sb);
       }
       c.node_signs[i] = s;
     }

@@ -92,22 +92,24 @@ bool cycle_is_simple(std::vector<EdgeBox>& boxes, const Apart& apart, const NoFo
 
 /// Per-call data of the continuous cull: node_signs[i] (for each node i of the model's tree) has
 /// bit 2k set when, for every triangle under node i, normal component k is certified > 0 at every
-/// t in [0, 1] of the motion V0 -> V1, and bit 2k + 1 when certified < 0 (swept_normal_signs).
+/// t in [0, 1] of the motion V0 -> V1, and bit 2k + 1 when certified < 0 (normal_cone.cpp, (i)).
 struct DeformCones {
   std::shared_ptr<const ConeTopology> topology;  ///< null: no subtree can be culled
   std::vector<std::uint8_t> node_signs;
+  /// The tree's root (node 0) is culled: then node_signs holds the root's signs only (every other
+  /// node 0), as no other node is tested.
+  bool root_culled = false;
   [[nodiscard]] std::size_t bytes() const { return node_signs.capacity(); }
 };
 
-/// Normal signs certified over the whole step for the triangle (a, b, c) moving linearly from
-/// (a0, b0, c0) to (a1, b1, c1): bits as DeformCones::node_signs (0: none certified).
-std::uint8_t swept_normal_signs(const Vec3& a0, const Vec3& b0, const Vec3& c0, const Vec3& a1,
-                                const Vec3& b1, const Vec3& c1);
-
 /// The cull data of `model`'s tree for the motion V0 -> V1 (one finite position per vertex).
-/// O(n); topology is null when the model has no cone entry.
+/// O(n); topology is null when the model has no cone entry. The root is tried first, along one
+/// axis (that of the first triangle's largest normal component at t = 0: a choice, not a
+/// certificate), stopping at the first triangle without a certified sign along it; only when
+/// the root is not culled are all the nodes' signs computed.
+/// max_coordinate: the largest |coordinate| of V0 and V1.
 DeformCones make_deform_cones(const Model& model, std::span<const Vec3> V0,
-                              std::span<const Vec3> V1);
+                              std::span<const Vec3> V1, Scalar max_coordinate);
 
 /// Whether no self pair (antcd/deform_ccd.hpp) of triangles under tree node `node` comes into
 /// contact (distance 0) at any t in [0, 1]: the node has a cone entry, a certified direction, and
