@@ -15,6 +15,7 @@
 
 #include "ccd/deform_bounds.hpp"
 #include "ccd/normal_cone.hpp"
+#include "ccd/primitive_unchecked.hpp"
 #include "util/check.hpp"
 #include "util/parallel.hpp"
 
@@ -232,7 +233,7 @@ class Traversal {
     const std::array<Vec3, 4> p0 = {vs.v0[v], fs.v0[t[0]], fs.v0[t[1]], fs.v0[t[2]]};
     const std::array<Vec3, 4> p1 = {vs.v1[v], fs.v1[t[0]], fs.v1[t[1]], fs.v1[t[2]]};
     ++out_.primitive_queries;
-    const ccd::PrimitiveResult r = ccd::vertex_face(p0, p1, c_.sep, c_.tol);
+    const ccd::PrimitiveResult r = ccd::unchecked::vertex_face(p0, p1, c_.sep, c_.tol);
     if (!r.hit) return;
     DeformPair p;
     p.kind = DeformPairKind::VertexFace;
@@ -253,7 +254,7 @@ class Traversal {
     const std::array<Vec3, 4> p0 = {sa.v0[a0], sa.v0[a1], sb.v0[b0], sb.v0[b1]};
     const std::array<Vec3, 4> p1 = {sa.v1[a0], sa.v1[a1], sb.v1[b0], sb.v1[b1]};
     ++out_.primitive_queries;
-    const ccd::PrimitiveResult r = ccd::edge_edge(p0, p1, c_.sep, c_.tol);
+    const ccd::PrimitiveResult r = ccd::unchecked::edge_edge(p0, p1, c_.sep, c_.tol);
     if (!r.hit) return;
     DeformPair p;
     p.kind = DeformPairKind::EdgeEdge;
