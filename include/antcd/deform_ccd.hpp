@@ -48,8 +48,9 @@
 //   hull of its ends' four positions; those hulls separated for edges with no common vertex,
 //   consecutive edges never folding back). Then no self pair under it ever touches (the proof is
 //   in src/ccd/normal_cone.cpp), so skipping it changes no answer a contact decides. The pairs
-//   between the subtree and the rest are kept. Cut pairs that only a tolerance, not a contact,
-//   reported (false positives) may go away with it.
+//   between the subtree and the rest are kept. Pairs that only the tolerance, not a contact,
+//   reported (false positives) may go away with it. The tree's root is tried first; when it is
+//   culled and holds every triangle, the call builds no bounds at all.
 // - Rigid other (deform_sweep with two poses): B follows ccd::interpolate_pose. Its vertices run on
 //   arcs, which the primitives cannot take, so [0, 1] is cut into n equal pieces on which each
 //   vertex of B stays within delta = r (theta / n)^2 / 8 of its chord (theta: the rotation angle
@@ -62,14 +63,17 @@
 //   mode they share the earliest toi found so far; a pair is pruned only when its bounds over [0,
 //   that toi + time_tolerance], grown by the primitives' tolerance reach (3W + rounding, ccd.hpp),
 //   are apart, which proves its own toi later. So the answer is the earliest (toi, then pair kind
-//   and indices) over every pair the bounds keep over [0, 1], the same at any thread count and
+//   and indices) over every pair the bounds and the normal cones keep over [0, 1], the same at any thread count and
 //   equal to all_pairs' first entry. One exception: a primitive query that exhausts its box budget
 //   (DeformPair::budget_exhausted, very degenerate input) stops at a time its geometry does not
 //   bound, so whether such a pair was pruned may then depend on the timing.
 // - Memory: O(n) per call, none growing with the square of the mesh: the bounds (160 bytes per
 //   hierarchy node, about n / 2 nodes for leaf size 4), a copy of the leaf order (4 bytes per
 //   triangle), an ownership byte per triangle and a vertex->triangle index used while it is made
-//   (4 (V + 1) + 12 n bytes, freed), and per task a traversal stack of at most 2 * depth + 2 items.
+//   (4 (V + 1) + 12 n bytes, freed), per task a traversal stack of at most 2 * depth + 2 items,
+//   and with the normal cones one byte per hierarchy node (their signs). The cones' subtree
+//   boundaries are kept with the Model (built on its first self query, kept by refit, shared with
+//   self_intersections) and not counted.
 //   With all_pairs, the result holds every hit pair. DeformSweepResult::scratch_bytes reports the
 //   bytes held by one call (outputs excluded).
 //
