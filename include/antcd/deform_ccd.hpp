@@ -63,10 +63,10 @@
 //   mode they share the earliest toi found so far; a pair is pruned only when its bounds over [0,
 //   that toi + time_tolerance], grown by the primitives' tolerance reach (3W + rounding, ccd.hpp),
 //   are apart, which proves its own toi later. So the answer is the earliest (toi, then pair kind
-//   and indices) over every pair the bounds and the normal cones keep over [0, 1], the same at any thread count and
-//   equal to all_pairs' first entry. One exception: a primitive query that exhausts its box budget
-//   (DeformPair::budget_exhausted, very degenerate input) stops at a time its geometry does not
-//   bound, so whether such a pair was pruned may then depend on the timing.
+//   and indices) over every pair the bounds and the normal cones keep over [0, 1], the same at any
+//   thread count and equal to all_pairs' first entry. One exception: a primitive query that
+//   exhausts its box budget (DeformPair::budget_exhausted, very degenerate input) stops at a time
+//   its geometry does not bound, so whether such a pair was pruned may then depend on the timing.
 // - Memory: O(n) per call, none growing with the square of the mesh: the bounds (160 bytes per
 //   hierarchy node, about n / 2 nodes for leaf size 4), a copy of the leaf order (4 bytes per
 //   triangle), an ownership byte per triangle and a vertex->triangle index used while it is made

@@ -172,7 +172,6 @@ class Traversal {
   }
 
  private:
-  /// The time up to which contacts still matter: the earliest toi so far (first-hit mode).
   /// The time up to which contacts still matter: the earliest toi any task found so far, plus the
   /// time tolerance (first-hit mode). A pair apart over [0, horizon] by more than the pad (which
   /// holds the primitives' tolerance reach, see pad_for) has a toi later than that earliest one,
