@@ -41,6 +41,7 @@ set(ANTCD_CORE_SOURCES
   ccd/swept_proximity.cpp
   ccd/deform_bounds.cpp
   ccd/deform_sweep.cpp
+  ccd/normal_cone.cpp
 )
 set(ANTCD_CORE_TREE_SOURCE world/aabb_tree.cpp)
 # Self-collision of one Model (antcd/self.hpp).

@@ -38,6 +38,19 @@
 //   checked before its (at most) 6 vertex–face and 9 edge–edge primitive queries; every primitive
 //   pair is queried from one triangle pair only (the lowest-indexed triangle holding the vertex or
 //   the edge).
+// - Normal cones (self, min_separation 0, DeformSweepRequest::normal_cones): a subtree of at least
+//   64 triangles that is one surface patch (each edge used by at most two of its triangles, in
+//   opposite directions, its boundary one cycle; the static self test's subtrees, antcd/self.hpp)
+//   is skipped when, for one axis direction, every triangle's normal has a certified positive
+//   component along it at every t in [0, 1] (from the normal's quadratic Bezier form: the normals
+//   at t = 0 and 1 and the cross term (e1(0) x e2(1) + e1(1) x e2(0)) / 2), and the boundary,
+//   projected along that axis, stays a simple polygon over the whole step (each edge within the
+//   hull of its ends' four positions; those hulls separated for edges with no common vertex,
+//   consecutive edges never folding back). Then no self pair under it ever touches (the proof is
+//   in src/ccd/normal_cone.cpp), so skipping it changes no answer a contact decides. The pairs
+//   between the subtree and the rest are kept. Pairs that only the tolerance, not a contact,
+//   reported (false positives) may go away with it. The tree's root is tried first; when it is
+//   culled and holds every triangle, the call builds no bounds at all.
 // - Rigid other (deform_sweep with two poses): B follows ccd::interpolate_pose. Its vertices run on
 //   arcs, which the primitives cannot take, so [0, 1] is cut into n equal pieces on which each
 //   vertex of B stays within delta = r (theta / n)^2 / 8 of its chord (theta: the rotation angle
@@ -50,14 +63,17 @@
 //   mode they share the earliest toi found so far; a pair is pruned only when its bounds over [0,
 //   that toi + time_tolerance], grown by the primitives' tolerance reach (3W + rounding, ccd.hpp),
 //   are apart, which proves its own toi later. So the answer is the earliest (toi, then pair kind
-//   and indices) over every pair the bounds keep over [0, 1], the same at any thread count and
-//   equal to all_pairs' first entry. One exception: a primitive query that exhausts its box budget
-//   (DeformPair::budget_exhausted, very degenerate input) stops at a time its geometry does not
-//   bound, so whether such a pair was pruned may then depend on the timing.
+//   and indices) over every pair the bounds and the normal cones keep over [0, 1], the same at any
+//   thread count and equal to all_pairs' first entry. One exception: a primitive query that
+//   exhausts its box budget (DeformPair::budget_exhausted, very degenerate input) stops at a time
+//   its geometry does not bound, so whether such a pair was pruned may then depend on the timing.
 // - Memory: O(n) per call, none growing with the square of the mesh: the bounds (160 bytes per
 //   hierarchy node, about n / 2 nodes for leaf size 4), a copy of the leaf order (4 bytes per
 //   triangle), an ownership byte per triangle and a vertex->triangle index used while it is made
-//   (4 (V + 1) + 12 n bytes, freed), and per task a traversal stack of at most 2 * depth + 2 items.
+//   (4 (V + 1) + 12 n bytes, freed), per task a traversal stack of at most 2 * depth + 2 items,
+//   and with the normal cones one byte per hierarchy node (their signs). The cones' subtree
+//   boundaries are kept with the Model (built on its first self query, kept by refit, shared with
+//   self_intersections) and not counted.
 //   With all_pairs, the result holds every hit pair. DeformSweepResult::scratch_bytes reports the
 //   bytes held by one call (outputs excluded).
 //
@@ -93,6 +109,10 @@ struct DeformSweepRequest {
   /// Rigid other only: how far B's vertices may stray from the chords the search follows (0:
   /// 1e-3 times the largest |p| of B's vertices). See the header comment.
   Scalar pose_path_tolerance = 0;
+  /// Self sweeps with min_separation 0: skip the self pairs of subtrees whose continuous normal
+  /// cones prove they cannot touch (see "Normal cones" above). Off: every pair the bounds keep is
+  /// queried (same contacts; fewer tolerance-decided false positives may be culled when on).
+  bool normal_cones = true;
 };
 
 enum class DeformPairKind : std::uint8_t { VertexFace = 0, EdgeEdge = 1 };
@@ -124,6 +144,8 @@ struct DeformSweepResult {
   std::uint64_t node_pairs = 0;         ///< node pairs whose bounds were compared
   std::uint64_t primitive_queries = 0;  ///< ccd::vertex_face / edge_edge calls
   std::size_t tasks = 0;                ///< parallel tasks the traversal was cut into
+  std::uint64_t cone_tests = 0;         ///< subtrees whose normal cone was tested
+  std::uint64_t cone_culled = 0;        ///< subtrees culled by it (their self pairs skipped)
   std::size_t scratch_bytes = 0;        ///< bytes one call held (see Memory above)
 };
 

@@ -14,6 +14,8 @@
 #include <tuple>
 
 #include "ccd/deform_bounds.hpp"
+#include "ccd/normal_cone.hpp"
+#include "ccd/primitive_unchecked.hpp"
 #include "util/check.hpp"
 #include "util/parallel.hpp"
 
@@ -44,6 +46,9 @@ struct Context {
   Scalar tol = 1e-6;
   Scalar pad = 0;
   bool all_pairs = false;
+  /// Self, min_separation 0: the continuous normal-cone cull of self items (null: none).
+  const Model* model = nullptr;
+  const detail::DeformCones* cones = nullptr;
   /// First-hit mode: the earliest toi any task has found (shared; read for pruning only).
   std::atomic<Scalar>* shared_best = nullptr;
 };
@@ -61,6 +66,8 @@ struct TaskOut {
   std::vector<DeformPair> pairs;
   std::uint64_t node_pairs = 0;
   std::uint64_t primitive_queries = 0;
+  std::uint64_t cone_tests = 0;
+  std::uint64_t cone_culled = 0;
   std::size_t stack_peak = 0;
 };
 
@@ -108,7 +115,7 @@ class Traversal {
         const SweptNode& n = c_.a.bounds->nodes[it.a];
         if (n.is_leaf()) {
           leaf_pairs(n, n, true);
-        } else {
+        } else if (!cone_culls(it.a)) {
           stack.push_back({n.left, n.right, false});
           stack.push_back({n.right, 0, true});
           stack.push_back({n.left, 0, true});
@@ -140,6 +147,21 @@ class Traversal {
     return boxes_overlap(lo_a, hi_a, lo_b, hi_b, c_.sep);
   }
 
+  /// Whether the self pairs under node `node` are culled by its normal cone (ccd/normal_cone.hpp:
+  /// none of them touches over [0, 1]).
+  bool cone_culls(std::uint32_t node) {
+    if (c_.cones == nullptr || node >= c_.cones->node_signs.size() ||
+        c_.cones->node_signs[node] == 0 || c_.cones->topology->find(node) == nullptr) {
+      return false;
+    }
+    ++out_.cone_tests;
+    if (!detail::deform_cone_culls(*c_.model, *c_.cones, node, c_.a.v0, c_.a.v1, edge_boxes_)) {
+      return false;
+    }
+    ++out_.cone_culled;
+    return true;
+  }
+
   /// Split node a (else b): the internal one, the larger swept box when both are.
   static bool split_first(const SweptNode& na, const SweptNode& nb) {
     if (na.is_leaf()) return false;
@@ -150,7 +172,6 @@ class Traversal {
   }
 
  private:
-  /// The time up to which contacts still matter: the earliest toi so far (first-hit mode).
   /// The time up to which contacts still matter: the earliest toi any task found so far, plus the
   /// time tolerance (first-hit mode). A pair apart over [0, horizon] by more than the pad (which
   /// holds the primitives' tolerance reach, see pad_for) has a toi later than that earliest one,
@@ -211,7 +232,7 @@ class Traversal {
     const std::array<Vec3, 4> p0 = {vs.v0[v], fs.v0[t[0]], fs.v0[t[1]], fs.v0[t[2]]};
     const std::array<Vec3, 4> p1 = {vs.v1[v], fs.v1[t[0]], fs.v1[t[1]], fs.v1[t[2]]};
     ++out_.primitive_queries;
-    const ccd::PrimitiveResult r = ccd::vertex_face(p0, p1, c_.sep, c_.tol);
+    const ccd::PrimitiveResult r = ccd::unchecked::vertex_face(p0, p1, c_.sep, c_.tol);
     if (!r.hit) return;
     DeformPair p;
     p.kind = DeformPairKind::VertexFace;
@@ -232,7 +253,7 @@ class Traversal {
     const std::array<Vec3, 4> p0 = {sa.v0[a0], sa.v0[a1], sb.v0[b0], sb.v0[b1]};
     const std::array<Vec3, 4> p1 = {sa.v1[a0], sa.v1[a1], sb.v1[b0], sb.v1[b1]};
     ++out_.primitive_queries;
-    const ccd::PrimitiveResult r = ccd::edge_edge(p0, p1, c_.sep, c_.tol);
+    const ccd::PrimitiveResult r = ccd::unchecked::edge_edge(p0, p1, c_.sep, c_.tol);
     if (!r.hit) return;
     DeformPair p;
     p.kind = DeformPairKind::EdgeEdge;
@@ -262,13 +283,14 @@ class Traversal {
 
   const Context& c_;
   TaskOut& out_;
+  std::vector<detail::EdgeBox> edge_boxes_;  ///< the cone tests' scratch
 };
 
 /// The fixed task list: the root item expanded breadth-first (pairs culled over [0, 1]) until there
 /// are kTasks items or none can be expanded. Depends on the bounds only.
-std::vector<Item> make_tasks(const Context& c, Item root, std::uint64_t& node_pairs) {
+std::vector<Item> make_tasks(const Context& c, Item root, TaskOut& scratch) {
   std::vector<Item> items = {root};
-  TaskOut scratch;
+  std::uint64_t& node_pairs = scratch.node_pairs;
   Context whole = c;  // culled over [0, 1]: no shared best yet
   whole.all_pairs = true;
   Traversal probe(whole, scratch);
@@ -280,7 +302,7 @@ std::vector<Item> make_tasks(const Context& c, Item root, std::uint64_t& node_pa
         const SweptNode& n = c.a.bounds->nodes[it.a];
         if (n.is_leaf()) {
           next.push_back(it);
-        } else {
+        } else if (!probe.cone_culls(it.a)) {
           next.push_back({n.left, 0, true});
           next.push_back({n.right, 0, true});
           next.push_back({n.left, n.right, false});
@@ -313,7 +335,11 @@ std::vector<Item> make_tasks(const Context& c, Item root, std::uint64_t& node_pa
 
 DeformSweepResult run_sweep(const Context& c, Item root, std::size_t bounds_bytes) {
   DeformSweepResult result;
-  const std::vector<Item> tasks = make_tasks(c, root, result.node_pairs);
+  TaskOut split;
+  const std::vector<Item> tasks = make_tasks(c, root, split);
+  result.node_pairs = split.node_pairs;
+  result.cone_tests = split.cone_tests;
+  result.cone_culled = split.cone_culled;
   std::vector<TaskOut> outs(tasks.size());
   std::atomic<Scalar> shared_best{std::numeric_limits<Scalar>::infinity()};
   Context ctx = c;
@@ -326,6 +352,8 @@ DeformSweepResult run_sweep(const Context& c, Item root, std::size_t bounds_byte
   for (const TaskOut& o : outs) {
     result.node_pairs += o.node_pairs;
     result.primitive_queries += o.primitive_queries;
+    result.cone_tests += o.cone_tests;
+    result.cone_culled += o.cone_culled;
     stack_bytes = std::max(stack_bytes, std::max<std::size_t>(o.stack_peak, 64) * sizeof(Item));
     if (o.hit && (!result.hit || earlier(o.best, result.pair))) {
       result.hit = true;
@@ -352,20 +380,31 @@ DeformSweepResult run_sweep(const Context& c, Item root, std::size_t bounds_byte
   return result;
 }
 
-void check_positions(const char* function, const char* name, std::span<const Vec3> v,
-                     const Model& model) {
+/// Checks the positions; returns their largest |coordinate|.
+Scalar check_positions(const char* function, const char* name, std::span<const Vec3> v,
+                       const Model& model) {
   const std::size_t expected = model.mesh().vertices.size();
   if (v.size() != expected) {
     throw ArgumentError(std::string(function) + ": " + name + " has " + std::to_string(v.size()) +
                         " positions, model '" + model.source() + "' has " +
                         std::to_string(expected) + " vertices");
   }
+  // One branch-free pass (a NaN fails every comparison), then the first bad index if any.
+  bool ok = true;
+  Scalar m = 0;
+  for (const Vec3& p : v) {
+    const Scalar x = std::abs(p.x()), y = std::abs(p.y()), z = std::abs(p.z());
+    ok &= (x <= kDeformMaxCoordinate) & (y <= kDeformMaxCoordinate) & (z <= kDeformMaxCoordinate);
+    m = std::max(m, std::max(x, std::max(y, z)));
+  }
+  if (ok) return m;
   for (std::size_t i = 0; i < v.size(); ++i) {
     if (!v[i].allFinite() || v[i].cwiseAbs().maxCoeff() > kDeformMaxCoordinate) {
       throw ArgumentError(std::string(function) + ": " + name + "[" + std::to_string(i) +
                           "] must be finite with |coordinate| <= 1e150");
     }
   }
+  return m;
 }
 
 void check_request(const char* function, const DeformSweepRequest& r) {
@@ -407,9 +446,21 @@ DeformSweepResult two_meshes(const Model& a, std::span<const Vec3> A0, std::span
 DeformSweepResult deform_sweep(const Model& model, std::span<const Vec3> V0,
                                std::span<const Vec3> V1, const DeformSweepRequest& request) {
   constexpr const char* kFn = "deform_sweep";
-  check_positions(kFn, "V0", V0, model);
-  check_positions(kFn, "V1", V1, model);
+  const Scalar m =
+      std::max(check_positions(kFn, "V0", V0, model), check_positions(kFn, "V1", V1, model));
   check_request(kFn, request);
+  // The cull proves that no pair touches (distance 0): with a separation it does not apply.
+  detail::DeformCones cones;
+  if (request.normal_cones && request.min_separation == 0) {
+    cones = detail::make_deform_cones(model, V0, V1, m);
+  }
+  if (cones.root_culled && model.leaf_triangles().size() == model.mesh().triangles.size()) {
+    // The root holds every triangle and none of its pairs touches: no bounds, no traversal.
+    DeformSweepResult result;
+    result.cone_tests = result.cone_culled = 1;
+    result.scratch_bytes = cones.bytes();
+    return result;
+  }
   const DeformBounds bounds = detail::make_deform_bounds(model, V0, V1);
   Context c;
   c.a = {&model.mesh(), V0, V1, &bounds};
@@ -419,7 +470,11 @@ DeformSweepResult deform_sweep(const Model& model, std::span<const Vec3> V0,
   c.tol = request.time_tolerance;
   c.pad = pad_for(bounds, bounds, c.sep, c.tol);
   c.all_pairs = request.all_pairs;
-  return run_sweep(c, {bounds.root, 0, true}, bounds.scratch_bytes);
+  if (cones.topology) {
+    c.model = &model;
+    c.cones = &cones;
+  }
+  return run_sweep(c, {bounds.root, 0, true}, bounds.scratch_bytes + cones.bytes());
 }
 
 DeformSweepResult deform_sweep(const Model& a, std::span<const Vec3> A0, std::span<const Vec3> A1,

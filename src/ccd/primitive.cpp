@@ -35,6 +35,7 @@
 #include <string>
 
 #include "ccd/primitive_cubic.hpp"
+#include "ccd/primitive_unchecked.hpp"
 #include "util/check.hpp"
 
 namespace antcd::ccd {
@@ -421,6 +422,18 @@ PrimitiveResult vertex_face(const std::array<Vec3, 4>& at_t0, const std::array<V
 PrimitiveResult edge_edge(const std::array<Vec3, 4>& at_t0, const std::array<Vec3, 4>& at_t1,
                           Scalar min_separation, Scalar time_tolerance) {
   check_input(at_t0, at_t1, min_separation, time_tolerance, "ccd::edge_edge");
+  return solve<Kind::EdgeEdge>(at_t0, at_t1, min_separation, time_tolerance);
+}
+
+PrimitiveResult unchecked::vertex_face(const std::array<Vec3, 4>& at_t0,
+                                       const std::array<Vec3, 4>& at_t1, Scalar min_separation,
+                                       Scalar time_tolerance) {
+  return solve<Kind::VertexFace>(at_t0, at_t1, min_separation, time_tolerance);
+}
+
+PrimitiveResult unchecked::edge_edge(const std::array<Vec3, 4>& at_t0,
+                                     const std::array<Vec3, 4>& at_t1, Scalar min_separation,
+                                     Scalar time_tolerance) {
   return solve<Kind::EdgeEdge>(at_t0, at_t1, min_separation, time_tolerance);
 }
 
