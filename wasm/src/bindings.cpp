@@ -1,7 +1,8 @@
 // Embind bindings of the core for the npm package `antcd` (wasm/index.mjs wraps them in the
-// documented JS API; index.d.ts states it). One piece on purpose (about 670 lines): the package's
-// whole C ABI, whose shared pose block, output block, error buffer and checked allocation every
-// export uses; a split would hand those globals across files. Each export is a thin call of the
+// documented JS API; index.d.ts states it). The package's C ABI (about 680 lines): its pose block,
+// output block, error buffer and checked allocation stay in this file; the few functions other
+// export files use (the deforming sweeps, bind_deform.cpp) are declared in abi.hpp, the globals
+// themselves never leave it. Each export is a thin call of the
 // library. The two hot queries, antcd_collide and antcd_distance,
 // are raw exports (Module._antcd_collide: no Embind call wrapper; a rejected query from node fell
 // from about 1.2 to 0.55 us); models are passed by id (the table g_models), World objects by
