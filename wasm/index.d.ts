@@ -154,7 +154,8 @@ export interface DeformSweepResult {
   /** The earliest pair's hit came from the tolerance, not from a proof. */
   toleranceDecided: boolean;
   pair: DeformPair | null;
-  /** allPairs: every hit pair, sorted by (toi, kind, vertexInFirst, indices); else empty. */
+  /** allPairs: every hit pair, sorted by toi, then kind (vertexFace first), then vertexInFirst
+   * (true first), then indices; else empty. */
   pairs: DeformPair[];
   nodePairs: number;
   primitiveQueries: number;

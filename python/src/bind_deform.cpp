@@ -104,8 +104,8 @@ void bind_deform(py::module_& m) {
           },
           "The earliest DeformPair, or None without a hit.")
       .def_readonly("pairs", &DeformSweepResult::pairs,
-                    "all_pairs=True: every hit DeformPair, sorted by (toi, kind, "
-                    "vertex_in_first, indices). Empty otherwise.")
+                    "all_pairs=True: every hit DeformPair, sorted by toi, then kind (vertex_face "
+                    "first), then vertex_in_first (True first), then indices. Empty otherwise.")
       .def_readonly("node_pairs", &DeformSweepResult::node_pairs,
                     "Hierarchy node pairs whose bounds were compared.")
       .def_readonly("primitive_queries", &DeformSweepResult::primitive_queries,
