@@ -25,12 +25,12 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
-#include <cstring>
 #include <exception>
 #include <string>
 #include <vector>
 
 #include "finding.hpp"
+#include "reader.hpp"
 
 namespace {
 
@@ -44,21 +44,7 @@ using Pairs = std::vector<std::array<std::uint32_t, 2>>;
   antcd::fuzz::finding("fuzz_self", what, detail);
 }
 
-/// Reads the input front to back; past its end every read gives 0.
-struct Reader {
-  const std::uint8_t* data;
-  std::size_t size;
-  std::size_t at = 0;
-  std::uint8_t byte() { return at < size ? data[at++] : 0; }
-  double coordinate(bool raw) {
-    if (!raw) return static_cast<double>(static_cast<std::int8_t>(byte()) % 5);
-    std::uint64_t bits = 0;
-    for (int k = 0; k < 8; ++k) bits |= std::uint64_t{byte()} << (8 * k);
-    double x = 0;
-    std::memcpy(&x, &bits, sizeof x);
-    return x;
-  }
-};
+using antcd::fuzz::Reader;
 
 /// Every coordinate 0 or of magnitude within the documented range (docs/guarantees.md).
 bool in_range(const std::vector<Vec3>& vertices) {

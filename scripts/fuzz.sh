@@ -43,6 +43,8 @@ fuzzers+=(fuzz_points_csv fuzz_run_result)
 fuzzers+=(fuzz_model_file)
 # Self-collision and the vertex update (issue 41), corpus fuzz/corpus/self.
 fuzzers+=(fuzz_self)
+# The deforming sweeps and World::set_vertices (issue 41), corpus fuzz/corpus/deform.
+fuzzers+=(fuzz_deform_ccd)
 cmake --build "$build_dir" -j "$jobs" --target "${fuzzers[@]}"
 
 # ---- run ----
@@ -55,7 +57,7 @@ status=0
 summary=()
 for fuzzer in "${fuzzers[@]}"; do
   corpus_name="${fuzzer#fuzz_}"
-  corpus_name="${corpus_name%%_*}"  # fuzz_mesh_load -> mesh, fuzz_run_result -> run
+  corpus_name="${corpus_name%%_*}"  # fuzz_mesh_load -> mesh, fuzz_deform_ccd -> deform
   run_dir="$build_dir/fuzz-run/$fuzzer"
   rm -rf "$run_dir"
   mkdir -p "$run_dir/corpus"

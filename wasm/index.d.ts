@@ -124,6 +124,45 @@ export interface SelfProximityResult {
   edgeEdgePointsB: Float64Array;
 }
 
+export interface DeformSweepOptions {
+  /** Contact distance (>= 0, default 0). */
+  minSeparation?: number;
+  /** Time tolerance (> 0, default 1e-6). */
+  timeTolerance?: number;
+  /** Every hit primitive pair in pairs (default false: the earliest only, in pair). */
+  allPairs?: boolean;
+  /** Rigid b only: how far its vertices may stray from the chords followed (0: 1e-3 of its radius). */
+  posePathTolerance?: number;
+}
+
+export interface DeformPair {
+  kind: 'vertexFace' | 'edgeEdge';
+  /** vertexFace: [vertex, triangle]; edgeEdge: [a0, a1, b0, b1] (each edge's ends ascending). */
+  indices: number[];
+  /** Two meshes, vertexFace: the vertex is a's (else the triangle is). */
+  vertexInFirst: boolean;
+  toi: number;
+  toleranceDecided: boolean;
+  budgetExhausted: boolean;
+}
+
+export interface DeformSweepResult {
+  /** A miss is a proof that no pair comes within minSeparation over [0, 1]. */
+  hit: boolean;
+  /** Never later than the first contact (1 without a hit). */
+  toi: number;
+  /** The earliest pair's hit came from the tolerance, not from a proof. */
+  toleranceDecided: boolean;
+  pair: DeformPair | null;
+  /** allPairs: every hit pair, sorted by toi, then kind (vertexFace first), then vertexInFirst
+   * (true first), then indices; else empty. */
+  pairs: DeformPair[];
+  nodePairs: number;
+  primitiveQueries: number;
+  tasks: number;
+  scratchBytes: number;
+}
+
 export interface RayHit {
   object: number;
   triangle: number;
@@ -188,6 +227,19 @@ export interface Antcd {
   selfIntersections(model: Model, options?: { firstOnly?: boolean }): SelfIntersectionResult;
   /** Vertex-triangle and edge-edge pairs of one model within delta (>= 0). */
   selfProximity(model: Model, delta: number): SelfProximityResult;
+  /**
+   * Continuous collision of a deforming mesh a (vertex i from a0 to a1, x y z per vertex): against
+   * itself, against a second deforming model b (b0, b1 its positions) or against a rigid b moving
+   * between two poses (b0, b1 poses).
+   */
+  deformSweep(a: Model, a0: Float64Array, a1: Float64Array, options?: DeformSweepOptions): DeformSweepResult;
+  deformSweep(a: Model, a0: Float64Array, a1: Float64Array, b: Model, b0: Float64Array, b1: Float64Array,
+              options?: DeformSweepOptions): DeformSweepResult;
+  deformSweep(a: Model, a0: Float64Array, a1: Float64Array, b: Model, poseB0: Pose, poseB1: Pose,
+              options?: DeformSweepOptions): DeformSweepResult;
+  /** The collision-free step (IPC): no self pair closer than minSeparation over [0, step]. */
+  collisionFreeStep(model: Model, v0: Float64Array, v1: Float64Array, minSeparation: number,
+                    options?: { timeTolerance?: number }): number;
   version: string;
   CONTACT_STRIDE: 10;
 }

@@ -14,6 +14,7 @@
 // nothing in JS either. Every WebAssembly allocation is checked: when memory runs out the call
 // throws an Error saying "out of WebAssembly memory" and the module keeps answering (delete()
 // models and Worlds to make room).
+import { deformApi } from './deform.mjs';
 import factory from './dist/antcd_core.cjs';
 
 const isNode = typeof process !== 'undefined' && process.versions != null && process.versions.node != null;
@@ -388,6 +389,10 @@ export default async function createAntcd(options = {}) {
     };
   }
 
+  const { deformSweep, collisionFreeStep } = deformApi({
+    core, alloc, check, out, outCopy, number, modelOf, optionsOf, writePose, isPose, describe, Model,
+  });
+
   /** A live set of posed objects; handles are numbers. */
   class World {
     constructor() {
@@ -475,6 +480,7 @@ export default async function createAntcd(options = {}) {
 
   return {
     Model, World, collide, collides, distance, sweep, penetration, selfIntersections, selfProximity,
+    deformSweep, collisionFreeStep,
     version: core.version(), CONTACT_STRIDE,
   };
 }

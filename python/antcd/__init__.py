@@ -6,7 +6,8 @@ Meshes are numpy arrays in and out: ``load_mesh`` gives ``(vertices float64[n, 3
 first time two moving models touch (continuous collision, never missing a contact),
 ``random_collide`` runs the paper's improved ant colony (MACO) and its baselines,
 ``self_intersections`` / ``self_proximity`` find where one (deforming: ``Model.set_vertices``)
-mesh meets or nears itself, ``Scene`` /
+mesh meets or nears itself, ``deform_sweep`` / ``collision_free_step`` the first contact and
+the collision-free step of meshes whose vertices move one by one (cloth), ``Scene`` /
 ``run_scene`` play an antcd-scene/1 file, and ``CollisionManager`` is a drop-in for
 ``trimesh.collision.CollisionManager``.
 
@@ -16,6 +17,8 @@ by any number of threads (``Model.set_vertices`` waits for the queries reading t
 """
 from ._antcd import (
     CollisionResult,
+    DeformPair,
+    DeformSweepResult,
     DistanceResult,
     Model,
     PenetrationResult,
@@ -29,6 +32,8 @@ from ._antcd import (
     __version__,
     collide,
     collide_batch,
+    collision_free_step,
+    deform_sweep,
     distance,
     distance_batch,
     is_convex,
@@ -45,6 +50,8 @@ from .collision import CollisionManager, ContactData, DistanceData
 __all__ = [
     "CollisionManager",
     "CollisionResult",
+    "DeformPair",
+    "DeformSweepResult",
     "ContactData",
     "DistanceData",
     "DistanceResult",
@@ -60,6 +67,8 @@ __all__ = [
     "__version__",
     "collide",
     "collide_batch",
+    "collision_free_step",
+    "deform_sweep",
     "distance",
     "distance_batch",
     "is_convex",

@@ -74,11 +74,7 @@ void bind_ccd(py::module_& m) {
         const Transform b1 = to_transform(pose_b1, "pose_b1");
         SweepRequest request;
         request.min_separation = to_non_negative(min_separation, "min_separation");
-        if (!(time_tolerance > 0) || !std::isfinite(time_tolerance)) {
-          throw py::value_error("time_tolerance must be finite and > 0, got " +
-                                std::to_string(time_tolerance));
-        }
-        request.time_tolerance = time_tolerance;
+        request.time_tolerance = to_positive(time_tolerance, "time_tolerance");
         py::gil_scoped_release release;
         const ModelReadLock lock(a, b);
         return sweep(a, a0, a1, b, b0, b1, request);

@@ -15,5 +15,6 @@ void bind_manager(pybind11::module_& m);
 void bind_batch(pybind11::module_& m);
 void bind_ccd(pybind11::module_& m);
 void bind_self(pybind11::module_& m);
+void bind_deform(pybind11::module_& m);
 
 }  // namespace antcd::python

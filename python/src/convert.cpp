@@ -291,6 +291,13 @@ std::uint64_t to_count(py::handle value, std::string_view name, std::uint64_t lo
   return big.cast<std::uint64_t>();
 }
 
+double to_positive(double value, std::string_view name) {
+  if (!std::isfinite(value) || !(value > 0)) {
+    throw py::value_error(str(name) + " must be finite and > 0, got " + std::to_string(value));
+  }
+  return value;
+}
+
 double to_non_negative(double value, std::string_view name) {
   if (!std::isfinite(value) || value < 0) {
     throw py::value_error(str(name) + " must be a finite number >= 0, got " +

@@ -53,6 +53,8 @@ std::string_view covariance_name(CovarianceMethod method);
 std::uint64_t to_count(py::handle value, std::string_view name, std::uint64_t lo, std::uint64_t hi);
 /// A finite float >= 0.
 double to_non_negative(double value, std::string_view name);
+/// A finite float > 0 (a time tolerance).
+double to_positive(double value, std::string_view name);
 
 /// A read-only numpy view of `count` x `cols` elements at `data`, kept alive by `owner`.
 template <typename T>

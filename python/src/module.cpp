@@ -40,4 +40,5 @@ PYBIND11_MODULE(_antcd, m) {
   antcd::python::bind_batch(m);
   antcd::python::bind_ccd(m);
   antcd::python::bind_self(m);
+  antcd::python::bind_deform(m);
 }

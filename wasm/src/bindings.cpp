@@ -1,7 +1,8 @@
 // Embind bindings of the core for the npm package `antcd` (wasm/index.mjs wraps them in the
-// documented JS API; index.d.ts states it). One piece on purpose (about 670 lines): the package's
-// whole C ABI, whose shared pose block, output block, error buffer and checked allocation every
-// export uses; a split would hand those globals across files. Each export is a thin call of the
+// documented JS API; index.d.ts states it). The package's C ABI (about 680 lines): its pose block,
+// output block, error buffer and checked allocation stay in this file; the few functions other
+// export files use (the deforming sweeps, bind_deform.cpp) are declared in abi.hpp, the globals
+// themselves never leave it. Each export is a thin call of the
 // library. The two hot queries, antcd_collide and antcd_distance,
 // are raw exports (Module._antcd_collide: no Embind call wrapper; a rejected query from node fell
 // from about 1.2 to 0.55 us); models are passed by id (the table g_models), World objects by
@@ -47,9 +48,12 @@
 #include <string_view>
 #include <vector>
 
+#include "abi.hpp"
+
 namespace {
 
 using namespace antcd;
+using namespace antcd::wasm;
 
 constexpr int kPoseSlots = 4;
 constexpr int kContactStride = 10;
@@ -83,6 +87,10 @@ int fail(std::string_view first, std::string_view second = {}, std::string_view 
   return -1;
 }
 
+}  // namespace
+
+namespace antcd::wasm {
+
 // The message of exception `e` thrown in `function`: "<function>: <what>" (once), or the
 // out-of-memory message; allocates nothing. Returns -1.
 int fail_with(const char* function, const std::exception& e) {
@@ -90,17 +98,6 @@ int fail_with(const char* function, const std::exception& e) {
   const std::string_view what = e.what();
   if (what.rfind(function, 0) == 0) return fail(what);
   return fail(function, ": ", what);
-}
-
-// Runs `body` (returning an int), turning a thrown antcd or standard exception into -1 and its
-// message. Hot paths do not throw; only argument errors and exhausted memory do.
-template <class F>
-int guarded(const char* function, F&& body) {
-  try {
-    return body();
-  } catch (const std::exception& e) {
-    return fail_with(function, e);
-  }
 }
 
 // Pose k of the input block as a rigid Transform; throws ArgumentError naming `what`.
@@ -127,6 +124,15 @@ Transform pose_at(int k, const char* function, const char* what) {
   return t;
 }
 
+double* out_resize(std::size_t n) {
+  if (g_out.size() < n) g_out.resize(n);
+  return g_out.data();
+}
+
+}  // namespace antcd::wasm
+
+namespace {
+
 void write_vec(double* out, const Vec3& v) {
   out[0] = v.x();
   out[1] = v.y();
@@ -141,11 +147,6 @@ void write_contact(double* out, const Contact& c) {
   out[5] = c.distance;
   write_vec(out + 6, c.normal);
   out[9] = c.depth;
-}
-
-double* out_resize(std::size_t n) {
-  if (g_out.size() < n) g_out.resize(n);
-  return g_out.data();
 }
 
 // An integer in [1, 2^32) given as a JS number; throws ArgumentError naming it.
@@ -192,6 +193,10 @@ int register_model(std::shared_ptr<Model> m) {
   return static_cast<int>(g_models.size()) - 1;
 }
 
+}  // namespace
+
+namespace antcd::wasm {
+
 const std::shared_ptr<Model>& model_ref(int id, const char* what) {
   if (id < 0 || static_cast<std::size_t>(id) >= g_models.size() ||
       !g_models[static_cast<std::size_t>(id)]) {
@@ -199,6 +204,10 @@ const std::shared_ptr<Model>& model_ref(int id, const char* what) {
   }
   return g_models[static_cast<std::size_t>(id)];
 }
+
+}  // namespace antcd::wasm
+
+namespace {
 
 // positions: n_coords numbers (float32 when f32, else float64) at `positions`; indices: n_indices
 // uint32 at `indices` (the JS wrapper converted and range-checked the types).

@@ -51,6 +51,8 @@ test('out of WebAssembly memory: an Error, then the module answers again', { tim
     setVertices: () => kept[0].setVertices(positions),
     selfIntersections: () => antcd.selfIntersections(kept[0]),
     selfProximity: () => antcd.selfProximity(box, 0.01),
+    deformSweep: () => antcd.deformSweep(box, box.mesh().positions, box.mesh().positions),
+    collisionFreeStep: () => antcd.collisionFreeStep(box, box.mesh().positions, box.mesh().positions, 0.01),
   };
   for (const [name, call] of Object.entries(calls)) {
     try {
@@ -59,6 +61,10 @@ test('out of WebAssembly memory: an Error, then the module answers again', { tim
       assert.ok(e instanceof Error && /out of WebAssembly memory/.test(e.message), `${name}: ${e}`);
     }
   }
+  // The deforming sweep of a kept model needs two more position buffers of its size (then the
+  // C++ copies): the allocation is refused with an Error, nothing written over address 0.
+  assert.throws(() => antcd.deformSweep(kept[0], positions, positions),
+    (e) => e instanceof Error && /^deformSweep: out of WebAssembly memory/.test(e.message), 'deformSweep');
   assert.deepEqual(query(), before);
   assert.equal(kept[0].vertexCount, 4 * 1024 * 1024);
   // A World can be made (or is refused with an Error), and used.

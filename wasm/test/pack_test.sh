@@ -20,6 +20,11 @@ const at = (x) => [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, x, 0, 0, 1];
 const touching = antcd.collide(box, at(0), box, at(0.9)).colliding;
 const apart = antcd.collide(box, at(0), box, at(1.1)).colliding;
 if (!touching || apart) throw new Error(`wrong verdicts from the installed package: ${touching}, ${apart}`);
+// deform.mjs is in the tarball too: a vertex of the box moving out through the opposite face.
+const p0 = box.mesh().positions;
+const p1 = p0.slice();
+p1[0] += 2;
+if (!antcd.deformSweep(box, p0, p1).hit) throw new Error('deformSweep from the installed package missed');
 console.log(`installed ${process.argv[2]}: antcd ${antcd.version} answers`);
 JS
 node check.mjs "$tarball"
