@@ -100,6 +100,15 @@ int run_run(const RunOptions& o) {
     const QuietStderr quiet;  // the scene's mesh loads
     return Scene(load_scene(o.scene));
   }();
+  if (learned) {
+    // The learned baselines read bounding-volume features of Scene::model_of, the rest shape.
+    for (const SceneObject& obj : scene.description().objects) {
+      if (obj.deforming()) {
+        throw UsageError("--method " + o.method + " does not handle deforming objects ('" +
+                         obj.name + "' deforms); use exact, sphere-obb or a random method");
+      }
+    }
+  }
   shared::RunResult result =
       learned ? run_learned(scene, o.scene, o.method, o.model, o.delta, progress)
               : shared::run_scene(scene, query, o.scene, progress, 1, !o.no_memory);
