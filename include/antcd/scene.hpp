@@ -22,7 +22,8 @@
 //   its saved order. The Scene refuses a side file whose vertex count is not the loaded mesh's.
 // - "self_collision": true (optional, default false): the exact method also reports where the
 //   object's mesh intersects itself (self.hpp), as the pair (object, object) with its triangle
-//   pairs (FrameResult::self_pairs). For rigid and deforming objects alike.
+//   pairs (FrameResult::self_pairs). For rigid and deforming objects alike; continuous queries
+//   report pairs of distinct objects only.
 //
 // Vertex-frames side file (".avf"; every number little-endian):
 //   offset 0   8 bytes   magic "ANTCDVFR"
