@@ -53,7 +53,24 @@ struct ProductionLineOptions {
   /// that spins and moves from well apart (bounding spheres disjoint) to the other's centre and
   /// back, so their surfaces meet on the way.
   std::vector<std::filesystem::path> mesh_files;
+  /// The veneer sheets of the roller conveyors (dryers' included) become deforming objects
+  /// (`antcd scene generate --flexible`; production_line/flexible.hpp): tessellated sheets of zero
+  /// thickness (a grid of about vertices / 2 vertices) that sag between the rollers, droop past
+  /// the conveyor's ends, and (the first of them) fold onto themselves period after period, their
+  /// flap passing through the sheet for some frames. Each has its vertices per frame (a side file,
+  /// SceneObject::vertex_frames) and self_collision. The press's sheets stay rigid boxes (a
+  /// sheet of no thickness cannot be held between both platens). Not with mesh_files.
+  bool flexible = false;
 };
+
+/// flexible: the largest (sheet vertices) x frames, positions of one sheet held in memory and
+/// written to its side file (24 bytes each).
+inline constexpr std::size_t kMaxSheetPositions = 20'000'000;
+
+/// A flat sheet of columns x rows vertices (each >= 2) in its z = 0 plane over [-half_x, half_x] x
+/// [-half_y, half_y], two triangles per grid cell; vertices numbered in order of first use by the
+/// triangles, so that an OBJ of it loads back in the same vertex order (load_mesh).
+Mesh flexible_sheet_mesh(std::size_t columns, std::size_t rows, Scalar half_x, Scalar half_y);
 
 struct GeneratedScene {
   /// Mesh paths are relative to the scene folder (mesh_text == mesh, e.g. "meshes/roller.obj").
@@ -70,10 +87,11 @@ void validate_options(const ProductionLineOptions& options);
 /// antcd::ArgumentError for bad options and MeshError for an unreadable mesh file.
 GeneratedScene generate_production_line(const ProductionLineOptions& options);
 
-/// Writes DIR/meshes/*.obj (save_obj) and then DIR/scene.json (save_scene), creating folders as
-/// needed; every file is written atomically. Returns the path of scene.json. Throws
-/// antcd::ArgumentError for a mesh name that is absolute or leaves the folder, antcd::Error when
-/// writing fails.
+/// Writes DIR/meshes/*.obj (save_obj), the side files of the deforming objects
+/// (save_vertex_frames, at their vertex_file_text, e.g. DIR/frames/sheet_03.avf) and then
+/// DIR/scene.json (save_scene), creating folders as needed; every file is written atomically.
+/// Returns the path of scene.json. Throws antcd::ArgumentError for a mesh name that is absolute or
+/// leaves the folder, antcd::Error when writing fails.
 std::filesystem::path write_scene(const GeneratedScene& generated,
                                   const std::filesystem::path& dir);
 

@@ -159,6 +159,9 @@ RunResult run_scene(const Scene& scene, const SceneQuery& query, const std::stri
     rec.pairs = names_of(scene, r.pairs);
     rec.candidates = names_of(scene, r.candidates);
     rec.time_ms = r.time_ms;
+    for (const SelfPairs& sp : r.self_pairs) {
+      rec.self_pairs.emplace_back(scene.description().objects[sp.object].name, sp.triangles);
+    }
     if (random) {
       rec.feature_hits = r.feature_hits;
       if (query.random.count_truth) rec.feature_truth = r.feature_truth;
@@ -193,6 +196,14 @@ void add_distances(const Scene& scene, RunResult& result) {
     }
     std::vector<double> d;
     d.reserve(f.pairs.size());
+    for (const auto& [na, nb] : f.pairs) {
+      for (const std::string* name : {&na, &nb}) {
+        if (objects[find(*name)].deforming()) {
+          throw Error("surface distances are not computed for deforming objects ('" + *name +
+                      "' deforms)");
+        }
+      }
+    }
     for (const auto& [na, nb] : f.pairs) {
       const std::uint32_t i = find(na);
       const std::uint32_t j = find(nb);
@@ -236,6 +247,13 @@ std::string to_json(const RunResult& result) {
     if (f.distances) jf["distances"] = *f.distances;
     if (f.toi) jf["toi"] = *f.toi;
     if (f.contact_points) jf["contact_points"] = *f.contact_points;
+    if (!f.self_pairs.empty()) {
+      json self = json::array();
+      for (const auto& [name, triangles] : f.self_pairs) {
+        self.push_back({{"object", name}, {"triangles", triangles}});
+      }
+      jf["self_pairs"] = std::move(self);
+    }
     frames.push_back(std::move(jf));
   }
   root["frames"] = std::move(frames);
@@ -320,6 +338,26 @@ RunResult parse_run_result(std::string_view text, const std::string& source) {
           fail(source, where + "'contact_points' must hold points [x, y, z]");
         }
         f.contact_points->push_back({p[0].get<double>(), p[1].get<double>(), p[2].get<double>()});
+      }
+    }
+    if (jf.contains("self_pairs")) {
+      const json& sp = jf["self_pairs"];
+      if (!sp.is_array()) fail(source, where + "'self_pairs' must be an array");
+      for (const json& e : sp) {
+        if (!e.is_object() || !e.contains("object") || !e["object"].is_string() ||
+            !e.contains("triangles") || !e["triangles"].is_array()) {
+          fail(source, where + "'self_pairs' must hold {\"object\": name, \"triangles\": [...]}");
+        }
+        std::vector<std::array<std::uint32_t, 2>> triangles;
+        for (const json& t : e["triangles"]) {
+          if (!t.is_array() || t.size() != 2 || !t[0].is_number_unsigned() ||
+              !t[1].is_number_unsigned() || t[0].get<std::uint64_t>() > UINT32_MAX ||
+              t[1].get<std::uint64_t>() > UINT32_MAX) {
+            fail(source, where + "'self_pairs' triangles must be pairs of triangle indices");
+          }
+          triangles.push_back({t[0].get<std::uint32_t>(), t[1].get<std::uint32_t>()});
+        }
+        f.self_pairs.emplace_back(e["object"].get<std::string>(), std::move(triangles));
       }
     }
     out.frames.push_back(std::move(f));

@@ -19,6 +19,10 @@
 // frame; per pair, in the order of "pairs", "toi" holds the first time of impact in [0, 1] over
 // that step (0: the previous frame, 1: this one) and "contact_points" the contact point there
 // ([x, y, z], world frame). Results without these fields (older files) still load.
+// Self pairs (exact method, objects with "self_collision"): a frame's "pairs" holds [name, name]
+// for each such object that intersects itself, and the frame has "self_pairs": one entry per such
+// pair, in the order of "pairs": {"object": name, "triangles": [[a, b], ...]} (mesh triangle
+// indices, a < b, sorted; FrameResult::self_pairs). Absent when a frame has no self pair.
 #pragma once
 
 #include <antcd/scene.hpp>
@@ -49,6 +53,8 @@ struct FrameRecord {
   std::optional<std::vector<double>> toi;
   /// Continuous runs: per pair, the contact point at that time (world frame).
   std::optional<std::vector<std::array<double, 3>>> contact_points;
+  /// Self pairs: the object's name and its intersecting triangle pairs.
+  std::vector<std::pair<std::string, std::vector<std::array<std::uint32_t, 2>>>> self_pairs;
 };
 
 struct RunResult {

@@ -100,6 +100,15 @@ int run_run(const RunOptions& o) {
     const QuietStderr quiet;  // the scene's mesh loads
     return Scene(load_scene(o.scene));
   }();
+  if (learned) {
+    // The learned baselines read bounding-volume features of Scene::model_of, the rest shape.
+    for (const SceneObject& obj : scene.description().objects) {
+      if (obj.deforming()) {
+        throw UsageError("--method " + o.method + " does not handle deforming objects ('" +
+                         obj.name + "' deforms); use exact, sphere-obb or a random method");
+      }
+    }
+  }
   shared::RunResult result =
       learned ? run_learned(scene, o.scene, o.method, o.model, o.delta, progress)
               : shared::run_scene(scene, query, o.scene, progress, 1, !o.no_memory);
@@ -168,6 +177,7 @@ struct GenerateOptions {
   std::size_t frames = 300;
   std::uint64_t seed = 1;
   std::vector<std::string> meshes;
+  bool flexible = false;
 };
 
 int run_generate(const GenerateOptions& o) {
@@ -176,6 +186,10 @@ int run_generate(const GenerateOptions& o) {
   options.vertices = o.vertices;
   options.frames = o.frames;
   options.seed = o.seed;
+  options.flexible = o.flexible;
+  if (o.flexible && !o.meshes.empty()) {
+    throw UsageError("--flexible makes the generated veneer sheets flexible: not with --mesh");
+  }
   for (const auto& m : o.meshes) {
     // Refuse a mesh no scene could use (e.g. only zero-area triangles) before writing anything.
     (void)load_model(m, {});
@@ -183,8 +197,12 @@ int run_generate(const GenerateOptions& o) {
   }
   const auto generated = shared::generate_production_line(options);
   const auto path = shared::write_scene(generated, o.out);
-  std::printf("wrote %s (%zu objects, %zu meshes, %zu frames)\n", path.string().c_str(),
+  std::size_t deforming = 0;
+  for (const SceneObject& obj : generated.scene.objects) deforming += obj.deforming() ? 1 : 0;
+  std::printf("wrote %s (%zu objects, %zu meshes, %zu frames", path.string().c_str(),
               generated.scene.objects.size(), generated.meshes.size(), generated.scene.frames);
+  if (o.flexible) std::printf(", %zu flexible sheets with their vertex frames", deforming);
+  std::printf(")\n");
   return 0;
 }
 
@@ -297,6 +315,10 @@ void add_scene_commands(CLI::App& app, int& code) {
   g->add_option("--seed", gen->seed, "Seed of the layout and motions")->check(unsigned_integer());
   g->add_option("--mesh", gen->meshes, "Place these mesh files instead of generated equipment")
       ->check(CLI::ExistingFile);
+  g->add_flag("--flexible", gen->flexible,
+              "Flexible veneer sheets: deforming grids (vertex frames in frames/*.avf, "
+              "self_collision on) that sag between the rollers, droop past the conveyor's ends, "
+              "and one of which folds onto itself");
   g->callback([gen, &code] { code = run_generate(*gen); });
 
   auto cmp = std::make_shared<CompareOptions>();

@@ -10,8 +10,32 @@
 // - "scale" is optional, uniform, > 0, default 1; it scales the mesh about its own origin before
 //   the pose is applied.
 // - Names are unique and non-empty. Quaternions within tolerance::kUnitQuaternion (1e-3) of unit
-// length are normalised; others
-//   are an error. Every error names the scene file and the object.
+//   length are normalised; others are an error. Every error names the scene file and the object.
+// - Deforming objects (optional; scenes without them load as before): "vertex_frames":
+//   "frames/sheet_03.avf" names a binary side file (relative to the scene folder, like "mesh")
+//   holding the object's vertex positions, one set per frame (layout below); they replace the
+//   mesh's positions at each frame, in the mesh's model frame, before "scale" and the pose apply.
+//   The triangles stay the mesh file's. Vertex order: the order of the mesh as loaded
+//   (antcd/load.hpp; Model::mesh().vertices): the loaders keep the vertices faces use, in order of
+//   first use, and join exactly coincident ones, so an OBJ whose vertices are distinct and listed
+//   in the order the faces first use them loads in its file order, and a model file (.antcd) keeps
+//   its saved order. The Scene refuses a side file whose vertex count is not the loaded mesh's.
+// - "self_collision": true (optional, default false): the exact method also reports where the
+//   object's mesh intersects itself (self.hpp), as the pair (object, object) with its triangle
+//   pairs (FrameResult::self_pairs). For rigid and deforming objects alike; continuous queries
+//   report pairs of distinct objects only.
+//
+// Vertex-frames side file (".avf"; every number little-endian):
+//   offset 0   8 bytes   magic "ANTCDVFR"
+//   offset 8   uint32    format version, 1
+//   offset 12  uint32    vertex count n (>= 1; the loaded mesh's vertex count)
+//   offset 16  uint64    frame count F (>= 1; the scene's "frames")
+//   offset 24  F x n x 3 float64: frame 0's vertex 0 x, y, z, vertex 1 x, y, z, ..., then frame 1
+// The file is exactly 24 + 24 n F bytes. Every coordinate must be finite. Reading checks the size
+// against the header before anything is allocated (memory is bounded by the file's real size);
+// a missing file, a wrong magic or version, a zero count, a truncated file or trailing bytes, a
+// non-finite coordinate (its frame and vertex), a frame count other than the scene's or a vertex
+// count other than the mesh's is a SceneError naming the scene file, the object and the side file.
 //
 // Engine: one Model per distinct (mesh file, scale), shared by the objects that use it, and one
 // World (world.hpp) holding every object, object index = ObjectId slot. Each frame: the frame's
@@ -28,6 +52,17 @@
 // ccd.hpp (World::sweep_poses, sweep.hpp: conservative, never a missed contact, toi <= the true
 // first contact). The candidates are the pairs whose swept boxes come within delta. Such frames
 // hold the World's mutex for their whole run, so concurrent continuous frames take turns.
+// Deforming objects: each frame first gives the World their vertices of that frame
+// (World::set_vertices: the object's own copy of the Model, refitted in O(n), hierarchy topology
+// kept, so the Model of frame f depends on frame f's vertices alone), then runs as above on the
+// refitted models. Every method handles them: exact and sphere-obb test the refitted hierarchies;
+// the random methods sample features of the refitted Models (their default centroid threshold
+// comes from the rest mesh's triangle sizes). Self pairs (self_collision) are the exact method's
+// only (the random methods search pairs of distinct objects; sphere-obb's leaf overlaps would
+// find every pair of neighbouring leaves of a mesh). Frames of a scene with deforming objects
+// hold the World's mutex for their whole run (the refitted Models are shared state), so
+// concurrent frames take turns; the answer is the same at any thread count. Continuous queries
+// refuse scenes with deforming objects (ArgumentError).
 #pragma once
 
 #include <antcd/bvh.hpp>
@@ -36,16 +71,34 @@
 #include <antcd/random.hpp>
 #include <antcd/scene_export.hpp>
 
+#include <array>
+
 #include <cstdint>
 #include <filesystem>
 #include <functional>
 #include <map>
 #include <memory>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
 
 namespace antcd {
+
+/// The first 8 bytes of a vertex-frames side file, and the version this build reads and writes.
+inline constexpr std::uint8_t kVertexFramesMagic[8] = {'A', 'N', 'T', 'C', 'D', 'V', 'F', 'R'};
+inline constexpr std::uint32_t kVertexFramesVersion = 1;
+
+/// A deforming object's vertex positions, frame by frame (a side file's contents).
+struct VertexFrames {
+  std::uint32_t vertex_count = 0;
+  std::size_t frames = 0;
+  std::vector<Vec3> positions;  ///< frames x vertex_count: frame 0's vertices, then frame 1's...
+
+  [[nodiscard]] std::span<const Vec3> frame(std::size_t f) const {
+    return {positions.data() + f * vertex_count, vertex_count};
+  }
+};
 
 struct SceneObject {
   std::string name;
@@ -53,9 +106,20 @@ struct SceneObject {
   std::string mesh_text;       ///< as written in the file
   Scalar scale = 1;
   std::vector<Transform> poses;  ///< 1 (static) or `frames`
+  /// Deforming objects: the side file ("vertex_frames"), resolved like `mesh`, and as written.
+  std::filesystem::path vertex_file;
+  std::string vertex_file_text;
+  /// Its contents: set by load_scene (parse_scene opens no file; Scene reads it when unset), or
+  /// directly for a scene built in memory (then vertex_file_text names where save writes it).
+  std::shared_ptr<const VertexFrames> vertex_frames;
+  /// "self_collision": the exact method also tests the object against itself.
+  bool self_collision = false;
 
   [[nodiscard]] const Transform& pose(std::size_t frame) const {
     return poses.size() == 1 ? poses.front() : poses[frame];
+  }
+  [[nodiscard]] bool deforming() const {
+    return vertex_frames != nullptr || !vertex_file_text.empty();
   }
 };
 
@@ -69,10 +133,28 @@ struct SceneDescription {
 ANTCD_SCENE_API SceneDescription parse_scene(std::string_view json_text,
                                              const std::filesystem::path& base_dir,
                                              const std::string& source);
-/// Reads and parses a scene file. Throws SceneError.
+/// Reads and parses a scene file, and reads the side files of its deforming objects
+/// (load_vertex_frames). Throws SceneError.
 ANTCD_SCENE_API SceneDescription load_scene(const std::filesystem::path& path);
-/// Serialises a scene (mesh paths as in mesh_text) and writes it atomically. Throws Error.
+/// Serialises a scene (mesh paths as in mesh_text) and writes it atomically. Throws Error. Side
+/// files are not written (save_vertex_frames).
 ANTCD_SCENE_API void save_scene(const SceneDescription& scene, const std::filesystem::path& path);
+
+/// Reads the side file of every deforming object of `scene` whose vertex_frames is unset, and
+/// checks its frame count against the scene's. `source` (the scene file) starts every error.
+/// Throws SceneError naming the object, the side file and the problem (see the file comment).
+ANTCD_SCENE_API void load_vertex_frames(SceneDescription& scene, const std::string& source);
+/// Reads one side file (layout in the file comment). Throws SceneError naming `path`.
+ANTCD_SCENE_API VertexFrames read_vertex_frames(const std::filesystem::path& path);
+/// Decodes a side file's bytes; errors as read_vertex_frames, named `source`.
+ANTCD_SCENE_API VertexFrames parse_vertex_frames(std::span<const std::uint8_t> bytes,
+                                                 const std::string& source);
+/// The side file's bytes for `frames`. Throws ArgumentError when positions.size() is not
+/// vertex_count x frames, a count is 0 or a position is not finite.
+ANTCD_SCENE_API std::string vertex_frames_bytes(const VertexFrames& frames);
+/// Writes vertex_frames_bytes(frames) to `path` atomically (temporary file, then rename).
+ANTCD_SCENE_API void save_vertex_frames(const VertexFrames& frames,
+                                        const std::filesystem::path& path);
 /// The JSON text save_scene writes.
 ANTCD_SCENE_API std::string scene_to_json(const SceneDescription& scene);
 
@@ -136,10 +218,21 @@ class SceneMemory {
   std::map<std::pair<std::uint32_t, std::uint32_t>, ColonyMemory> pairs_;
 };
 
+/// A self pair of a frame: an object with self_collision whose mesh intersects itself there.
+struct SelfPairs {
+  std::uint32_t object = 0;
+  /// SelfIntersectionResult::pairs (self.hpp): mesh triangle indices {a, b}, a < b, sorted.
+  std::vector<std::array<std::uint32_t, 2>> triangles;
+};
+
 struct FrameResult {
   std::size_t frame = 0;
-  /// Colliding object pairs (i < j, object indices), sorted.
+  /// Colliding object pairs (i < j, object indices), sorted; exact method: also the self pair
+  /// (i, i) of each self_collision object that intersects itself (sorted with the others, so just
+  /// before the pairs (i, j)).
   std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;
+  /// Exact method: the triangle pairs of each self pair of `pairs`, in the same order.
+  std::vector<SelfPairs> self_pairs;
   /// Broad-phase survivors (i < j), sorted: the pairs the narrow phase examined.
   std::vector<std::pair<std::uint32_t, std::uint32_t>> candidates;
   /// Random methods: distinct colliding feature pairs found, summed over the candidate pairs.
@@ -166,7 +259,10 @@ class ANTCD_SCENE_API Scene {
   /// Loads every mesh (once per distinct file and scale) and builds the hierarchies.
   /// Throws MeshError / SceneError naming the object whose mesh failed, and SceneError naming the
   /// object and frame of a pose that is not rigid (every pose is checked here, so a frame never
-  /// fails on one).
+  /// fails on one), and SceneError naming the object and its side file when a deforming object's
+  /// vertex frames cannot be read or do not fit (frame count, vertex count of the loaded mesh, a
+  /// mesh with zero-area triangles, positions not finite once scaled), so a frame never fails on
+  /// them either.
   explicit Scene(SceneDescription description, const BuildOptions& options = {});
   /// The meshes come from `mesh_source` instead of files: it is called once per distinct
   /// (SceneObject::mesh, scale) with the first object that uses that mesh, and returns the mesh
@@ -181,6 +277,9 @@ class ANTCD_SCENE_API Scene {
   [[nodiscard]] const SceneDescription& description() const { return description_; }
   [[nodiscard]] std::size_t object_count() const { return description_.objects.size(); }
   [[nodiscard]] std::size_t model_count() const { return models_.size(); }
+  /// The object's Model as built from its mesh file (scaled). For a deforming object: its rest
+  /// shape, the mesh file's positions; run_frame queries a copy refitted to each frame's vertices
+  /// (SceneObject::vertex_frames).
   [[nodiscard]] const Model& model_of(std::size_t object) const {
     return *models_[model_index_[object]];
   }

@@ -8,6 +8,7 @@
 #include "shared/production_line/modes.hpp"
 
 #include "shared/production_line/equipment.hpp"
+#include "shared/production_line/flexible.hpp"
 #include "shared/production_line/poses.hpp"
 #include "shared/production_line/robot_arm.hpp"
 #include "shared/production_line/tessellation.hpp"
@@ -18,6 +19,7 @@
 #include <cstdint>
 #include <functional>
 #include <map>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -69,6 +71,20 @@ class LineBuilder {
   const Equipment& roller() { return kind("roller", roller_parts()); }
   const Equipment& sheet() { return kind("veneer_sheet", sheet_parts()); }
   const Equipment& pallet() { return kind("pallet", pallet_parts(false), pallet_parts(true)); }
+  /// The flexible sheet (options.flexible): a grid of about vertices / 2 vertices, about twice
+  /// as many columns (along the travel, where it bends) per metre as rows.
+  const Equipment& flexible_sheet() {
+    return equipment("veneer_sheet_flexible", [&] {
+      const auto target = static_cast<Scalar>(std::max<std::size_t>(options_.vertices / 2, 16));
+      const auto columns =
+          static_cast<std::size_t>(std::max(4.0, std::round(std::sqrt(2 * target))));
+      const auto rows = static_cast<std::size_t>(
+          std::max(3.0, std::round(target / static_cast<Scalar>(columns))));
+      Equipment e;
+      e.mesh = flexible_sheet_mesh(columns, rows, kSheetHalfX, kSheetHalfY);
+      return e;
+    });
+  }
 
   // -- objects --
 
@@ -82,6 +98,30 @@ class LineBuilder {
     poses.reserve(frames_);
     for (std::size_t f = 0; f < frames_; ++f) poses.push_back(pose_at(f));
     add(prefix, mesh, std::move(poses));
+  }
+
+  /// A deforming object: its pose and its vertices (model frame) at each frame, with self
+  /// collision on; the side file is frames/<name>.avf.
+  void add_flexible(const std::string& prefix, const Equipment& e,
+                    const std::function<Transform(std::size_t)>& pose_at,
+                    const std::function<std::vector<Vec3>(std::size_t, const Transform&,
+                                                          const Mesh&)>& at_frame) {
+    std::vector<Transform> poses;
+    poses.reserve(frames_);
+    auto frames = std::make_shared<VertexFrames>();
+    frames->vertex_count = static_cast<std::uint32_t>(e.mesh.vertices.size());
+    frames->frames = frames_;
+    frames->positions.reserve(e.mesh.vertices.size() * frames_);
+    for (std::size_t f = 0; f < frames_; ++f) {
+      poses.push_back(pose_at(f));
+      const std::vector<Vec3> v = at_frame(f, poses.back(), e.mesh);
+      frames->positions.insert(frames->positions.end(), v.begin(), v.end());
+    }
+    SceneObject& o = add(prefix, e.file, std::move(poses));
+    o.vertex_file_text = "frames/" + o.name + ".avf";
+    o.vertex_file = o.vertex_file_text;
+    o.vertex_frames = std::move(frames);
+    o.self_collision = true;
   }
 
   // -- stations; each starts at x0 and returns its length along x --
@@ -107,14 +147,34 @@ class LineBuilder {
     // Loads travel with their centre from x0 to x0 + travel; consecutive loads 5 cm apart at least.
     const Scalar travel = std::max(length, static_cast<Scalar>(loads) * (2 * load_half_x + 0.05));
     const Scalar phase = rng.uniform(0, travel);
-    const std::string load_file = pallets ? pallet().file : sheet().file;
-    const Scalar load_z = pallets ? kRollerTop - depth : kRollerTop + kSheetHalfZ - depth;
+    const bool flexible = options_.flexible && !pallets;
+    const std::string load_file =
+        pallets ? pallet().file : (flexible ? flexible_sheet().file : sheet().file);
+    // A flexible sheet has no thickness: its surface lies where a rigid sheet's bottom does.
+    const Scalar load_z =
+        pallets || flexible ? kRollerTop - depth : kRollerTop + kSheetHalfZ - depth;
     for (std::size_t k = 0; k < loads; ++k) {
       const Scalar offset = phase + travel * static_cast<Scalar>(k) / static_cast<Scalar>(loads);
-      add_moving(pallets ? "pallet" : "sheet", load_file, [=](std::size_t f) {
+      const auto pose_at = [=](std::size_t f) {
         const Scalar s = travel * fraction((offset + speed * static_cast<Scalar>(f)) / travel);
         return at(Vec3(x0 + s, 0, load_z));
-      });
+      };
+      if (!flexible) {
+        add_moving(pallets ? "pallet" : "sheet", load_file, pose_at);
+        continue;
+      }
+      const RollerSupport support{x0 + kRollerPitch / 2, rollers, kRollerPitch, kRollerRadius};
+      const bool folds = !folded_;
+      folded_ = true;
+      // The fold's period: 80 frames, or the whole run when shorter (at least 8 frames), so that
+      // every run of 8 frames or more sees the flap pass through the sheet.
+      const Scalar period = static_cast<Scalar>(std::clamp<std::size_t>(frames_, 8, 80));
+      add_flexible("sheet", flexible_sheet(), pose_at,
+                   [=](std::size_t f, const Transform& t, const Mesh& rest) {
+                     const Fold fold =
+                         folds ? fold_at(fraction(static_cast<Scalar>(f) / period)) : Fold{};
+                     return sheet_frame(rest, support, t.translation.x(), fold);
+                   });
     }
     const Scalar middle = x0 + length / 2;
     if (with_bed) {
@@ -236,7 +296,8 @@ class LineBuilder {
   }
 
  private:
-  void add(const std::string& prefix, const std::string& mesh, std::vector<Transform> poses) {
+  SceneObject& add(const std::string& prefix, const std::string& mesh,
+                   std::vector<Transform> poses) {
     if (remaining() == 0) {
       throw std::logic_error("production line: more objects than requested (internal error)");
     }
@@ -248,6 +309,7 @@ class LineBuilder {
     o.mesh = mesh;
     o.poses = std::move(poses);
     out_.scene.objects.push_back(std::move(o));
+    return out_.scene.objects.back();
   }
 
   const ProductionLineOptions& options_;
@@ -256,6 +318,7 @@ class LineBuilder {
   GeneratedScene out_;
   std::map<std::string, Equipment> equipment_;
   std::map<std::string, std::size_t> counters_;
+  bool folded_ = false;  ///< the folding sheet has been placed
 };
 
 enum class Station { Conveyor, Dryer, Press, RobotCell };

@@ -36,6 +36,17 @@ void validate_options(const ProductionLineOptions& options) {
                                "frame is kept in memory), got " +
                                std::to_string(options.objects * options.frames));
   }
+  if (options.flexible && !options.mesh_files.empty()) {
+    throw antcd::ArgumentError(
+        "--flexible makes the generated veneer sheets flexible: not with --mesh");
+  }
+  if (options.flexible && options.vertices / 2 * options.frames > kMaxSheetPositions) {
+    throw antcd::ArgumentError(
+        "--flexible: --vertices / 2 × --frames must be at most " +
+        std::to_string(kMaxSheetPositions) +
+        " (a sheet's positions of every frame are kept in memory and written), got " +
+        std::to_string(options.vertices / 2 * options.frames));
+  }
   for (const std::filesystem::path& p : options.mesh_files) {
     if (p.empty()) throw antcd::ArgumentError("--mesh: an empty file name was given");
   }

@@ -1,9 +1,11 @@
 // The scene engine: shared models in one World (its incremental broad phase), and the narrow
 // phase of the chosen method on each surviving pair.
 #include <antcd/collide.hpp>
+#include <antcd/file.hpp>
 #include <antcd/load.hpp>
 #include <antcd/random.hpp>
 #include <antcd/scene.hpp>
+#include <antcd/self.hpp>
 #include <antcd/world.hpp>
 
 #include <algorithm>
@@ -33,6 +35,14 @@ struct Scene::Broad {
   std::vector<Transform> moving_poses;
   /// The World's candidate pairs of a frame (room reused from frame to frame).
   std::vector<ObjectPair> frame_pairs;
+  /// The deforming objects (SceneObject::deforming), and room for a frame's scaled vertices.
+  std::vector<std::uint32_t> deforming;
+  std::vector<Vec3> scaled;
+  /// Per object, the Model its queries use: the shared one of a rigid object; a deforming
+  /// object's own refitted copy in the World (World::model, updated by each frame's vertices).
+  std::vector<const Model*> current;
+  /// The objects with SceneObject::self_collision.
+  std::vector<std::uint32_t> self_objects;
 
   /// The exact method's per-pair hints from frame to frame (PairWitness), one per
   /// candidate pair of the last frame that used them, sorted by pair. A frame that finds them in
@@ -58,18 +68,36 @@ struct Scene::Broad {
     std::swap(witnesses, spare_witnesses);
   }
 
-  /// The frame's poses into the World (the moving objects' only), then its candidate pairs into
-  /// `out` as object indices: one caller at a time (the World's mutations must not overlap its
-  /// queries).
-  void candidates(const std::vector<SceneObject>& objects, std::size_t frame, Scalar delta,
-                  std::vector<std::pair<std::uint32_t, std::uint32_t>>& out) {
-    const std::lock_guard<std::mutex> lock(mutex);
+  /// The frame's poses into the World (the moving objects' only), the frame's vertices of the
+  /// deforming objects, then its candidate pairs into `out` as object indices. Hold `mutex` (one
+  /// caller at a time: the World's mutations must not overlap its queries).
+  void candidates_locked(const std::vector<SceneObject>& objects, std::size_t frame, Scalar delta,
+                         std::vector<std::pair<std::uint32_t, std::uint32_t>>& out) {
+    for (const std::uint32_t i : deforming) {
+      const SceneObject& o = objects[i];
+      const std::span<const Vec3> v = o.vertex_frames->frame(frame);
+      if (o.scale == 1) {
+        world.set_vertices(ids[i], v);
+      } else {
+        scaled.assign(v.begin(), v.end());
+        for (Vec3& p : scaled) p *= o.scale;
+        world.set_vertices(ids[i], scaled);
+      }
+      current[i] = &world.model(ids[i]);
+    }
     moving_poses.clear();
     for (const std::uint32_t i : moving) moving_poses.push_back(objects[i].pose(frame));
     world.set_poses(moving_ids, moving_poses);
     world.candidate_pairs(delta, frame_pairs);
     out.clear();
     for (const ObjectPair& p : frame_pairs) out.emplace_back(p.a.slot, p.b.slot);
+  }
+
+  /// candidates_locked under the mutex.
+  void candidates(const std::vector<SceneObject>& objects, std::size_t frame, Scalar delta,
+                  std::vector<std::pair<std::uint32_t, std::uint32_t>>& out) {
+    const std::lock_guard<std::mutex> lock(mutex);
+    candidates_locked(objects, frame, delta, out);
   }
 
   /// Continuous: the World to the poses of frame - 1 (frame 0: frame 0), then the swept broad
@@ -106,6 +134,56 @@ void check_frame(std::size_t frame, std::size_t frames, Scalar delta) {
   detail::require_non_negative("scene query", "delta", delta);
 }
 
+/// What would make a deforming object's frame fail, checked once at build: the side file's frame
+/// and vertex counts, the hierarchy's left-out triangles (a refit cannot bring them back) and the
+/// scaled positions' finiteness.
+void check_deforming(const SceneObject& o, const Model& model, std::size_t frames) {
+  const std::string where = "object '" + o.name + "': ";
+  const std::string file = o.vertex_file_text.empty() ? "its vertex frames" : o.vertex_file_text;
+  const VertexFrames& v = *o.vertex_frames;
+  if (v.frames != frames || v.positions.size() != std::size_t{v.vertex_count} * v.frames) {
+    throw SceneError(printable_line(where + file + ": holds " + std::to_string(v.frames) +
+                                    " frames; the scene has " + std::to_string(frames)));
+  }
+  if (v.vertex_count != model.mesh().vertices.size()) {
+    throw SceneError(printable_line(
+        where + file + ": holds " + std::to_string(v.vertex_count) + " vertices per frame; mesh " +
+        o.mesh_text + " has " + std::to_string(model.mesh().vertices.size()) +
+        " as loaded (exactly coincident vertices are joined; docs/cli.md)"));
+  }
+  if (model.stats().degenerate_triangles > 0) {
+    throw SceneError(printable_line(
+        where + "mesh " + o.mesh_text + " has " +
+        std::to_string(model.stats().degenerate_triangles) +
+        " zero-area triangles, which a deforming object's hierarchy cannot take in later; remove "
+        "them"));
+  }
+  if (o.scale != 1) {
+    for (std::size_t k = 0; k < v.positions.size(); ++k) {
+      if (!(v.positions[k] * o.scale).allFinite()) {
+        throw SceneError(
+            printable_line(where + file + ": frame " + std::to_string(k / v.vertex_count) +
+                           ", vertex " + std::to_string(k % v.vertex_count) +
+                           " is not finite once scaled by " + std::to_string(o.scale)));
+      }
+    }
+  }
+}
+
+/// The self pairs (i, i) of the objects `self_objects` (ascending) whose Models intersect
+/// themselves, merged into result.pairs (sorted: just before the pairs (i, b)), with their
+/// triangle pairs in result.self_pairs.
+void add_self_pairs(const std::vector<std::uint32_t>& self_objects,
+                    const std::vector<const Model*>& current, FrameResult& result) {
+  for (const std::uint32_t i : self_objects) {
+    SelfIntersectionResult r = self_intersections(*current[i]);
+    if (!r.intersecting) continue;
+    result.self_pairs.push_back({i, std::move(r.pairs)});
+    result.pairs.emplace_back(i, i);
+  }
+  if (!result.self_pairs.empty()) std::sort(result.pairs.begin(), result.pairs.end());
+}
+
 }  // namespace
 
 Scene::Scene(Scene&&) noexcept = default;
@@ -122,6 +200,7 @@ Scene::Scene(SceneDescription description,
              const BuildOptions& options)
     : description_(std::move(description)), broad_(std::make_unique<Broad>()) {
   const auto start = std::chrono::steady_clock::now();
+  load_vertex_frames(description_, "scene");  // the side files not read yet
   std::map<std::pair<std::string, Scalar>, std::size_t> built;
   model_index_.reserve(description_.objects.size());
   for (const SceneObject& o : description_.objects) {
@@ -150,11 +229,15 @@ Scene::Scene(SceneDescription description,
         throw SceneError("object '" + o.name + "': pose " + std::to_string(k) + " " + c.problem());
       }
     }
+    if (o.deforming()) check_deforming(o, model_of(i), description_.frames);
     broad_->ids.push_back(broad_->world.add(models_[model_index_[i]], o.pose(0), {o.name}));
+    broad_->current.push_back(&model_of(i));
     if (o.poses.size() > 1) {
       broad_->moving.push_back(static_cast<std::uint32_t>(i));
       broad_->moving_ids.push_back(broad_->ids.back());
     }
+    if (o.deforming()) broad_->deforming.push_back(static_cast<std::uint32_t>(i));
+    if (o.self_collision) broad_->self_objects.push_back(static_cast<std::uint32_t>(i));
   }
   // oneTBB's one-time set-up (its allocator library, the thread's stack bounds read from
   // /proc/self/maps: milliseconds in a process with many libraries mapped) belongs to the build,
@@ -187,6 +270,10 @@ FrameResult Scene::run_frame(std::size_t frame, const SceneQuery& query,
   if (query.continuous && query.volume) {
     throw ArgumentError("continuous queries test surfaces: volume must be off");
   }
+  if (query.continuous && !broad_->deforming.empty()) {
+    throw ArgumentError("continuous queries take rigid objects only; object '" +
+                        description_.objects[broad_->deforming.front()].name + "' deforms");
+  }
   if (query.method != Method::Exact && query.method != Method::SphereObb) {
     DetectRequest request = query.random;
     request.delta = query.delta;
@@ -200,6 +287,14 @@ FrameResult Scene::run_frame(std::size_t frame, const SceneQuery& query,
   const auto pose = [&](std::uint32_t i) -> const Transform& {
     return description_.objects[i].pose(frame);
   };
+  // The Model each object's queries use this frame (a deforming object's is refitted to the
+  // frame's vertices by the broad phase below).
+  const std::vector<const Model*>& current = broad_->current;
+  // With deforming objects the refitted Models are shared state: the frame holds the World's
+  // mutex from their update to the end of its narrow phase. Rigid scenes release it after the
+  // broad phase.
+  std::unique_lock<std::mutex> frame_lock(broad_->mutex, std::defer_lock);
+  if (!broad_->deforming.empty()) frame_lock.lock();
 
   // Exact narrow phase: collide() on each candidate pair, a boolean query. Serially into a
   // result kept by the thread (collide() spawns no tasks, so no other call can interleave on this
@@ -215,10 +310,10 @@ FrameResult Scene::run_frame(std::size_t frame, const SceneQuery& query,
     const auto hit = [&](std::size_t k, CollisionResult& scratch) {
       const auto [i, j] = cand[k];
       if (hints.owns_lock()) {
-        return collide(model_of(i), pose(i), model_of(j), pose(j), request, scratch,
+        return collide(*current[i], pose(i), *current[j], pose(j), request, scratch,
                        broad_->witnesses[k].second);
       }
-      return collide(model_of(i), pose(i), model_of(j), pose(j), request, scratch);
+      return collide(*current[i], pose(i), *current[j], pose(j), request, scratch);
     };
     result.pairs.reserve(m);  // one allocation, not a doubling series
     if (query.threads == 1 || m < 2) {
@@ -226,16 +321,17 @@ FrameResult Scene::run_frame(std::size_t frame, const SceneQuery& query,
       for (std::size_t k = 0; k < m; ++k) {
         if (hit(k, scratch)) result.pairs.push_back(cand[k]);
       }
-      return;
+    } else {
+      std::vector<char> colliding(m, 0);
+      parallel::for_ranges(0, m, 1, [&](std::size_t first, std::size_t last) {
+        CollisionResult scratch;
+        for (std::size_t k = first; k != last; ++k) colliding[k] = hit(k, scratch) ? 1 : 0;
+      });
+      for (std::size_t k = 0; k < m; ++k) {
+        if (colliding[k] != 0) result.pairs.push_back(cand[k]);
+      }
     }
-    std::vector<char> colliding(m, 0);
-    parallel::for_ranges(0, m, 1, [&](std::size_t first, std::size_t last) {
-      CollisionResult scratch;
-      for (std::size_t k = first; k != last; ++k) colliding[k] = hit(k, scratch) ? 1 : 0;
-    });
-    for (std::size_t k = 0; k < m; ++k) {
-      if (colliding[k] != 0) result.pairs.push_back(cand[k]);
-    }
+    if (!broad_->self_objects.empty()) add_self_pairs(broad_->self_objects, current, result);
   };
 
   // The other methods: one independent task per candidate pair.
@@ -251,7 +347,7 @@ FrameResult Scene::run_frame(std::size_t frame, const SceneQuery& query,
       }
     };
     const auto side = [&](std::uint32_t i) {
-      return detail::PairSide{&model_of(i), pose(i), feature_radius_[model_index_[i]], i};
+      return detail::PairSide{current[i], pose(i), feature_radius_[model_index_[i]], i};
     };
     if (query.method == Method::SphereObb) {
       for_each(m, [&](std::size_t k) {
@@ -285,7 +381,11 @@ FrameResult Scene::run_frame(std::size_t frame, const SceneQuery& query,
       broad_->continuous(description_.objects, frame, query.delta, result);
       return;
     }
-    broad_->candidates(description_.objects, frame, query.delta, result.candidates);
+    if (frame_lock.owns_lock()) {
+      broad_->candidates_locked(description_.objects, frame, query.delta, result.candidates);
+    } else {
+      broad_->candidates(description_.objects, frame, query.delta, result.candidates);
+    }
     if (query.method == Method::Exact) {
       exact_frame();
     } else {

@@ -157,7 +157,8 @@ class Parser {
       obj.name = o["name"].get<std::string>();
       where = "object '" + obj.name + "'";
       for (const auto& [key, value] : o.items()) {
-        if (key != "name" && key != "mesh" && key != "scale" && key != "poses") {
+        if (key != "name" && key != "mesh" && key != "scale" && key != "poses" &&
+            key != "vertex_frames" && key != "self_collision") {
           fail(where, "unknown field '" + key + "'");
         }
       }
@@ -170,6 +171,23 @@ class Parser {
       if (obj.mesh_text.find('\0') != std::string::npos) fail(where, "'mesh' holds a NUL byte");
       const std::filesystem::path mesh_path(obj.mesh_text);
       obj.mesh = mesh_path.is_absolute() ? mesh_path : base_dir / mesh_path;
+      if (o.contains("vertex_frames")) {
+        const json& v = o["vertex_frames"];
+        if (!v.is_string() || v.get<std::string>().empty()) {
+          fail(where, "'vertex_frames' must be a non-empty file name");
+        }
+        obj.vertex_file_text = v.get<std::string>();
+        if (obj.vertex_file_text.find('\0') != std::string::npos) {
+          fail(where, "'vertex_frames' holds a NUL byte");
+        }
+        const std::filesystem::path vertex_path(obj.vertex_file_text);
+        obj.vertex_file = vertex_path.is_absolute() ? vertex_path : base_dir / vertex_path;
+      }
+      if (o.contains("self_collision")) {
+        if (!o["self_collision"].is_boolean())
+          fail(where, "'self_collision' must be true or false");
+        obj.self_collision = o["self_collision"].get<bool>();
+      }
       if (o.contains("scale")) {
         obj.scale = number(o["scale"], where, "scale");
         if (!(obj.scale > 0)) fail(where, "'scale' must be > 0");
@@ -213,7 +231,9 @@ SceneDescription load_scene(const std::filesystem::path& path) {
   } catch (const Error& e) {
     throw SceneError(e.what());
   }
-  return parse_scene(text, path.parent_path(), path.string());
+  SceneDescription scene = parse_scene(text, path.parent_path(), path.string());
+  load_vertex_frames(scene, path.string());
+  return scene;
 }
 
 std::string scene_to_json(const SceneDescription& scene) {
@@ -226,6 +246,8 @@ std::string scene_to_json(const SceneDescription& scene) {
     jo["name"] = o.name;
     jo["mesh"] = o.mesh_text.empty() ? o.mesh.generic_string() : o.mesh_text;
     if (o.scale != 1) jo["scale"] = o.scale;
+    if (!o.vertex_file_text.empty()) jo["vertex_frames"] = o.vertex_file_text;
+    if (o.self_collision) jo["self_collision"] = true;
     json poses = json::array();
     for (const Transform& t : o.poses) {
       const Quat q(t.rotation);
