@@ -121,7 +121,8 @@ json pack_result(const shared::RunResult& r, const std::filesystem::path& path,
       }
       if (ia->second == ib->second) {
         throw UsageError(src + ": frame " + std::to_string(f.frame) + ": pair (" + a + ", " + b +
-                         ") names one object twice");
+                         ") is a self pair (an object touching itself): the viewer does not show "
+                         "deforming objects yet");
       }
       fp.push_back(
           json::array({std::min(ia->second, ib->second), std::max(ia->second, ib->second)}));

@@ -139,7 +139,8 @@ struct DeformSweepResult {
   bool tolerance_decided = false;
   /// The earliest pair (valid when hit).
   DeformPair pair;
-  /// all_pairs: every hit pair, sorted by (toi, kind, vertex_in_first, indices). Empty otherwise.
+  /// all_pairs: every hit pair, sorted by (toi, kind, vertex_in_first
+  /// (true first), indices). Empty otherwise.
   std::vector<DeformPair> pairs;
   std::uint64_t node_pairs = 0;         ///< node pairs whose bounds were compared
   std::uint64_t primitive_queries = 0;  ///< ccd::vertex_face / edge_edge calls
