@@ -2,11 +2,11 @@
 // documented JS API; index.d.ts states it). The package's C ABI (about 680 lines): its pose block,
 // output block, error buffer and checked allocation stay in this file; the few functions other
 // export files use (the deforming sweeps, bind_deform.cpp) are declared in abi.hpp, the globals
-// themselves never leave it. Each export is a thin call of the
-// library. The two hot queries, antcd_collide and antcd_distance,
-// are raw exports (Module._antcd_collide: no Embind call wrapper; a rejected query from node fell
-// from about 1.2 to 0.55 us); models are passed by id (the table g_models), World objects by
-// handle.
+// themselves never leave it. Each export is a thin call of the library. The two hot queries,
+// antcd_collide and antcd_distance, are raw exports (Module._antcd_collide: no Embind call
+// wrapper; a rejected query from node fell from about 1.2 to 0.55 us); models are passed by id
+// (the table g_models), World objects by handle. One piece on purpose: the ABI's shared blocks
+// and the exports that use them would otherwise need those globals exported between files.
 //
 // Calling convention (one thread, as in every Emscripten build without pthreads):
 // - Poses: JS writes up to kPoseSlots column-major 4x4 matrices (16 doubles each, three.js
