@@ -4,6 +4,7 @@
 
 #include "bvh/model_cache.hpp"
 #include "bvh/node_store.hpp"
+#include "util/check.hpp"
 
 #include <algorithm>
 #include <array>
@@ -84,8 +85,8 @@ bool Model::refit(std::span<const Vec3> new_vertices, double rebuild_above) {
   }
 
   if (!(rebuild_above >= 0)) {
-    throw ArgumentError(source_ + ": refit: rebuild_above must be >= 0, got " +
-                        std::to_string(rebuild_above));
+    detail::argument_error(source_ + ": refit", "rebuild_above", ">= 0 (or +inf)",
+                           number_text(rebuild_above));
   }
   if (built_looseness_ == 0) built_looseness_ = looseness();  // as built or loaded
   std::copy(new_vertices.begin(), new_vertices.end(), mesh_.vertices.begin());

@@ -108,6 +108,17 @@ TEST(Refit, BadInputIsAnArgumentErrorAndChangesNothing) {
   } catch (const ArgumentError& e) {
     EXPECT_NE(std::string(e.what()).find("vertex 3"), std::string::npos) << e.what();
   }
+  for (const double bad : {-1.0, std::nan("")}) {
+    try {
+      model.refit(mesh.vertices, bad);
+      FAIL() << "rebuild_above " << bad << " must throw";
+    } catch (const ArgumentError& e) {
+      EXPECT_NE(
+          std::string(e.what()).find("box: refit: rebuild_above must be >= 0 (or +inf), got "),
+          std::string::npos)
+          << e.what();
+    }
+  }
   EXPECT_EQ(model.mesh().vertices, mesh.vertices);
   for (std::size_t i = 0; i < before.size(); ++i) {
     EXPECT_EQ(model.nodes()[i].center, before[i].center);
