@@ -397,6 +397,12 @@ class ANTCD_API World {
   std::vector<PairToi> set_poses_continuous(std::span<const ObjectId> ids,
                                             std::span<const Transform> new_poses,
                                             const SweepRequest& request = {});
+  /// Broad phase of a motion with deforming objects (sweep_motion's arguments and checks): the
+  /// admitted pairs of distinct objects whose swept boxes (a deforming object's: the box of its
+  /// world vertices at both ends) come within `min_separation` >= 0, sorted.
+  [[nodiscard]] std::vector<ObjectPair> swept_candidate_pairs(
+      std::span<const ObjectId> ids, std::span<const Transform> new_poses,
+      std::span<const VertexMotion> deforming, Scalar min_separation = 0) const;
   /// Continuous motion with deforming objects (see the block above MotionToi): ids[k] moves to
   /// new_poses[k] and deforming[k].id gets deforming[k].vertices (model frame) at t = 1; each id at
   /// most once in each span. Every pair (and self pair) that comes within request.min_separation,

@@ -18,6 +18,7 @@
 #include <utility>
 #include <vector>
 
+#include "util/check.hpp"
 #include "util/parallel.hpp"
 #include "world/continuous.hpp"
 #include "world/world_impl.hpp"
@@ -146,7 +147,59 @@ DeformPair swapped(DeformPair p) {
   return p;
 }
 
+/// The checked arguments of a motion and its broad phase's boxes.
+struct Prepared {
+  std::vector<std::size_t> index;      ///< motion_index's: per slot, new pose index + 1
+  std::vector<std::size_t> def_index;  ///< per slot, its entry in `deforming` + 1 (0: rigid)
+  std::vector<Deforming> worlds;       ///< by entry of `deforming`
+  std::vector<Aabb> boxes;             ///< per slot, its swept box
+};
+
+Prepared prepare(const World::Impl& w, std::span<const ObjectId> ids,
+                 std::span<const Transform> new_poses, std::span<const VertexMotion> deforming,
+                 const char* function) {
+  Prepared p;
+  p.index = detail::motion_index(w, ids, new_poses, function, true);
+  p.def_index.assign(w.objects.size(), 0);
+  p.worlds.reserve(deforming.size());
+  for (std::size_t k = 0; k < deforming.size(); ++k) {
+    const ObjectId id = deforming[k].id;
+    const std::string arg = "deforming[" + std::to_string(k) + "].id";
+    w.get(id, function, arg.c_str());
+    if (p.def_index[id.slot] != 0) {
+      throw ArgumentError(std::string(function) + ": " + arg + " repeats deforming[" +
+                          std::to_string(p.def_index[id.slot] - 1) +
+                          "].id (a continuous motion gives each object one end shape)");
+    }
+    p.def_index[id.slot] = k + 1;
+    const std::size_t at = p.index[id.slot];
+    p.worlds.push_back(check_deforming(
+        w, deforming[k], k, at == 0 ? w.objects[id.slot].pose : new_poses[at - 1], function));
+  }
+  // Rigid swept boxes, deforming objects' replaced by their vertex boxes.
+  p.boxes = detail::swept_boxes(w, p.index, new_poses);
+  for (std::uint32_t s = 0; s < w.objects.size(); ++s) {
+    if (p.def_index[s] != 0) p.boxes[s] = deforming_box(p.worlds[p.def_index[s] - 1]);
+  }
+  return p;
+}
+
 }  // namespace
+
+std::vector<ObjectPair> World::swept_candidate_pairs(std::span<const ObjectId> ids,
+                                                     std::span<const Transform> new_poses,
+                                                     std::span<const VertexMotion> deforming,
+                                                     Scalar min_separation) const {
+  const char* function = "World::swept_candidate_pairs";
+  detail::require_non_negative(function, "min_separation", min_separation);
+  const Impl& w = *impl_;
+  const Prepared p = prepare(w, ids, new_poses, deforming, function);
+  std::vector<ObjectPair> out;
+  for (const auto& [i, j] : detail::swept_pairs(w, p.boxes, min_separation)) {
+    out.push_back({w.id_of(i), w.id_of(j)});
+  }
+  return out;
+}
 
 std::vector<MotionToi> World::sweep_motion(std::span<const ObjectId> ids,
                                            std::span<const Transform> new_poses,
@@ -155,33 +208,14 @@ std::vector<MotionToi> World::sweep_motion(std::span<const ObjectId> ids,
   const char* function = "World::sweep_motion";
   detail::check_request(request, function);
   const Impl& w = *impl_;
-  const std::vector<std::size_t> index = detail::motion_index(w, ids, new_poses, function, true);
+  const Prepared prep = prepare(w, ids, new_poses, deforming, function);
+  const std::vector<std::size_t>& index = prep.index;
+  const std::vector<std::size_t>& def_index = prep.def_index;
+  const std::vector<Deforming>& worlds = prep.worlds;
   const auto end_pose = [&](std::uint32_t s) -> const Transform& {
     return index[s] == 0 ? w.objects[s].pose : new_poses[index[s] - 1];
   };
-  // Per slot, the index + 1 of its entry in `deforming` (0: rigid this step).
-  std::vector<std::size_t> def_index(w.objects.size(), 0);
-  std::vector<Deforming> worlds;
-  worlds.reserve(deforming.size());
-  for (std::size_t k = 0; k < deforming.size(); ++k) {
-    const ObjectId id = deforming[k].id;
-    const std::string arg = "deforming[" + std::to_string(k) + "].id";
-    w.get(id, function, arg.c_str());
-    if (def_index[id.slot] != 0) {
-      throw ArgumentError(std::string(function) + ": " + arg + " repeats deforming[" +
-                          std::to_string(def_index[id.slot] - 1) +
-                          "].id (a continuous motion gives each object one end shape)");
-    }
-    def_index[id.slot] = k + 1;
-    worlds.push_back(check_deforming(w, deforming[k], k, end_pose(id.slot), function));
-  }
-
-  // Broad phase: rigid swept boxes, deforming objects' replaced by their vertex boxes.
-  std::vector<Aabb> boxes = detail::swept_boxes(w, index, new_poses);
-  for (std::uint32_t s = 0; s < w.objects.size(); ++s) {
-    if (def_index[s] != 0) boxes[s] = deforming_box(worlds[def_index[s] - 1]);
-  }
-  std::vector<detail::SlotPair> tasks = detail::swept_pairs(w, boxes, request.min_separation);
+  std::vector<detail::SlotPair> tasks = detail::swept_pairs(w, prep.boxes, request.min_separation);
   for (std::uint32_t s = 0; s < w.objects.size(); ++s) {
     if (w.alive(s) && w.bounds[s].self_collision) tasks.emplace_back(s, s);
   }
