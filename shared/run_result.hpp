@@ -18,7 +18,9 @@
 // top, and each frame's "pairs" are the pairs that touched during the step from the previous
 // frame; per pair, in the order of "pairs", "toi" holds the first time of impact in [0, 1] over
 // that step (0: the previous frame, 1: this one) and "contact_points" the contact point there
-// ([x, y, z], world frame). Results without these fields (older files) still load.
+// ([x, y, z], world frame). Results without these fields (older files) still load. A continuous
+// run's self pairs ([name, name], deforming or self_collision objects) have a toi and a contact
+// point like the others and no "self_pairs" entry.
 // Self pairs (exact method, objects with "self_collision"): a frame's "pairs" holds [name, name]
 // for each such object that intersects itself, and the frame has "self_pairs": one entry per such
 // pair, in the order of "pairs": {"object": name, "triangles": [[a, b], ...]} (mesh triangle

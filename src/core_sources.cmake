@@ -35,6 +35,7 @@ set(ANTCD_CORE_SOURCES
   world/raycast.cpp
   world/nearest.cpp
   world/continuous.cpp
+  world/deform_motion.cpp
   ccd/first_contact.cpp
   ccd/primitive.cpp
   ccd/sweep.cpp

@@ -23,7 +23,7 @@
 // - "self_collision": true (optional, default false): the exact method also reports where the
 //   object's mesh intersects itself (self.hpp), as the pair (object, object) with its triangle
 //   pairs (FrameResult::self_pairs). For rigid and deforming objects alike; continuous queries
-//   report pairs of distinct objects only.
+//   report the self pair (object, object) with a toi (below), without triangle pairs.
 //
 // Vertex-frames side file (".avf"; every number little-endian):
 //   offset 0   8 bytes   magic "ANTCDVFR"
@@ -52,6 +52,16 @@
 // ccd.hpp (World::sweep_poses, sweep.hpp: conservative, never a missed contact, toi <= the true
 // first contact). The candidates are the pairs whose swept boxes come within delta. Such frames
 // hold the World's mutex for their whole run, so concurrent continuous frames take turns.
+// With deforming objects (or self_collision ones) a continuous frame is World::sweep_motion
+// (world.hpp) from frame f - 1 to frame f: the World first holds frame f - 1's poses and
+// vertices, then each deforming object's WORLD vertices move linearly from frame f - 1's to frame
+// f's (pose(f-1) * V(f-1) to pose(f) * V(f), scaled; deform_sweep's convention), rigid ones as
+// above. Pairs with a deforming object get an exact discrete test at frame f - 1 (toi 0) and then
+// deform_sweep; self_collision objects get their self pair (i, i) the same way (self pairs as
+// deform_ccd.hpp defines them, plus self-intersection at t = 0). Conservative: a pair that comes
+// within delta during the step is reported, toi <= its first contact. FrameResult::self_pairs
+// stays empty (the pair that decided is a vertex-face or edge-edge primitive, not a triangle
+// pair); the toi and contact point are in toi / contact_points like the other pairs'.
 // Deforming objects: each frame first gives the World their vertices of that frame
 // (World::set_vertices: the object's own copy of the Model, refitted in O(n), hierarchy topology
 // kept, so the Model of frame f depends on frame f's vertices alone), then runs as above on the
@@ -61,8 +71,8 @@
 // only (the random methods search pairs of distinct objects; sphere-obb's leaf overlaps would
 // find every pair of neighbouring leaves of a mesh). Frames of a scene with deforming objects
 // hold the World's mutex for their whole run (the refitted Models are shared state), so
-// concurrent frames take turns; the answer is the same at any thread count. Continuous queries
-// refuse scenes with deforming objects (ArgumentError).
+// concurrent frames take turns; the answer is the same at any thread count (continuous frames:
+// up to deform_sweep's budget-exhausted pairs, world.hpp).
 #pragma once
 
 #include <antcd/bvh.hpp>
@@ -231,7 +241,8 @@ struct FrameResult {
   /// (i, i) of each self_collision object that intersects itself (sorted with the others, so just
   /// before the pairs (i, j)).
   std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;
-  /// Exact method: the triangle pairs of each self pair of `pairs`, in the same order.
+  /// Exact method, discrete frames: the triangle pairs of each self pair of `pairs`, in the same
+  /// order (continuous frames: empty, see the file comment).
   std::vector<SelfPairs> self_pairs;
   /// Broad-phase survivors (i < j), sorted: the pairs the narrow phase examined.
   std::vector<std::pair<std::uint32_t, std::uint32_t>> candidates;

@@ -19,11 +19,12 @@
 //   internal shape: pairs are sorted by (a, b) in ObjectId order with a < b, single-object results
 //   by the other object's id, ray hits by (distance, object, triangle).
 // - Threads: mutating member functions (add, remove, set_pose, set_poses, set_vertices,
-//   set_filter, ignore_pair) must not run concurrently with anything else on the same World. Every
-//   const member function (all queries) may run from any number of threads at once between
-//   mutations. Queries spread their work over oneTBB workers of the calling thread's task arena
-//   (wrap a call in a tbb::task_arena to bound it); the answer does not depend on how many. A build
-//   without oneTBB (ANTCD_USE_TBB=OFF) runs them on the calling thread, with the same answers.
+//   set_filter, ignore_pair, set_poses_continuous, set_motion_continuous) must not run concurrently
+//   with anything else on the same World. Every const member function (all queries) may run from
+//   any number of threads at once between mutations. Queries spread their work over oneTBB workers
+//   of the calling thread's task arena (wrap a call in a tbb::task_arena to bound it); the answer
+//   does not depend on how many. A build without oneTBB (ANTCD_USE_TBB=OFF) runs them on the
+//   calling thread, with the same answers.
 // - Errors: an invalid argument (an unknown or removed ObjectId, a non-finite or non-rigid pose, a
 //   negative or non-finite distance, a zero ray direction, a null model, a wrong vertex count or
 //   a non-finite vertex given to set_vertices) throws ArgumentError (error.hpp) whose message
@@ -57,6 +58,7 @@
 #pragma once
 
 #include <antcd/collide.hpp>
+#include <antcd/deform_ccd.hpp>
 #include <antcd/distance.hpp>
 #include <antcd/error.hpp>
 #include <antcd/export.hpp>
@@ -199,6 +201,83 @@ struct PairToi {
   SweepResult sweep;
 };
 
+// ---- continuous motion of deforming objects (src/world/deform_motion.cpp) ----
+//
+// Motion (World::sweep_motion): over t in [0, 1] each object moves from its current state (t = 0)
+// to a new one (t = 1). An object given only a new pose (or nothing: it stays put) is rigid this
+// step and moves as in sweep_poses (ccd.hpp). An object given new vertices (VertexMotion: model
+// frame, same count and order as set_vertices, and a new pose or its current one) deforms: its
+// WORLD vertices move linearly, x_i(t) = (1 - t) pose0 V0[i] + t pose1 V1[i], V0 its current
+// vertices and pose0 its current pose (the convention of deform_ccd.hpp's deform_sweep, which this
+// call uses; it is not a rigid motion of the model frame even when V0 = V1 and the pose turns).
+// Broad phase: a deforming object's swept box is the box of its world vertices at both ends
+// (linear paths stay in it; padded for rounding); rigid objects' as in sweep_poses. Pairs whose
+// swept boxes come within request.min_separation are tested:
+// - two rigid objects: antcd::sweep, as sweep_poses (kind RigidSweep);
+// - a pair with a deforming object: first the exact discrete test at t = 0, collide() of the two
+//   current Models at their current poses with delta = min_separation (kind StartContact, toi 0);
+//   if it finds nothing, deform_sweep (deform_ccd.hpp) of the world vertices against the other's
+//   world vertices (deforming) or its two poses (rigid) (kind Deform, toi deform_sweep's);
+// - every object with ObjectOptions::self_collision, against itself, pair (id, id): first
+//   self_intersections() of its current Model (exact, kind StartContact, toi 0); if none, a
+//   deforming object gets deform_sweep(model, world V0, world V1) (kind Deform; self primitive
+//   pairs as deform_ccd.hpp defines them), and a rigid one, whose shape a rigid motion keeps, with
+//   min_separation > 0 its model-frame vertices held still (deform_sweep(model, V, V), toi 0).
+//   Groups, masks and ignored pairs do not apply to self pairs (as collide_all).
+// Why the test at t = 0: deform_sweep finds vertex-face and edge-edge contacts only, so surfaces
+// that already cross at t = 0 (a sheet resting 2 mm into a roller, with crossing edges and no
+// vertex inside) would be missed. With it the answer is conservative: two closed triangle sets
+// apart (or not crossing) at t = 0 that come within min_separation later first do so where a
+// vertex meets a triangle or an edge meets an edge (the distance of disjoint triangles is taken
+// by such a pair, and crossing surfaces were first touching), which deform_sweep never misses.
+// Guarantees: every pair whose surfaces come within min_separation at some t in [0, 1] (self:
+// intersect themselves at t = 0, or a self primitive pair comes within min_separation) is
+// reported, with toi <= the true first such time (a miss is a proof); tolerance_decided as
+// sweep.hpp / deform_ccd.hpp say. Rigid-rigid pairs are exactly sweep_poses' answers.
+// Threads: const and thread-safe like sweep_poses; pairs are spread over oneTBB workers, and the
+// answer is the same at any thread count, with deform_sweep's one exception (deform_ccd.hpp,
+// "Determinism": a pair whose primitive.budget_exhausted is set may differ; in the tests' corpus
+// 7 of 26 deform pairs against a turning rigid object were, none against a deforming one). Memory:
+// two world-frame copies of each deforming object's vertices for the call, plus deform_sweep's O(n)
+// per pair being tested.
+
+/// New vertices of a deforming object for sweep_motion: model frame (as set_vertices), one per
+/// vertex of its current mesh, in order. The span must stay valid for the call.
+struct VertexMotion {
+  ObjectId id;
+  std::span<const Vec3> vertices;
+};
+
+/// How a continuous-motion pair was decided (see the block above).
+enum class MotionToiKind : std::uint8_t {
+  RigidSweep = 0,    ///< two rigid objects: antcd::sweep (MotionToi::sweep)
+  StartContact = 1,  ///< a deforming pair or a self pair in contact at t = 0 (exact discrete test)
+  Deform = 2,        ///< deform_sweep found it (MotionToi::primitive)
+};
+
+/// A pair that comes within min_separation during a sweep_motion, and what found it.
+struct MotionToi {
+  ObjectId a;  ///< a < b; a == b: a self pair
+  ObjectId b;
+  MotionToiKind kind = MotionToiKind::RigidSweep;
+  Scalar toi = 0;  ///< in [0, 1]
+  /// The hit rests on a tolerance, not a proof (sweep.hpp / deform_ccd.hpp); false for
+  /// StartContact.
+  bool tolerance_decided = false;
+  /// World point at toi: RigidSweep: sweep.contact.point; StartContact: the triangle pair's common
+  /// point, or the midpoint of its closest points (collide()'s Contact::point); Deform: the
+  /// vertex's position at toi (vertex-face), or the midpoint of the two edges' closest points
+  /// at toi (edge-edge). Reported for display; the certified numbers are toi and the pair.
+  Vec3 point = Vec3::Zero();
+  /// RigidSweep: antcd::sweep's result (hit true; contact's triangle_a indexes a's mesh).
+  SweepResult sweep;
+  /// StartContact: {triangle of a, triangle of b} (a self pair: {i, j}, i < j), mesh indices.
+  std::array<std::uint32_t, 2> triangles = {0, 0};
+  /// Deform: the primitive pair with a's mesh as the first model (vertex_in_first: the vertex is
+  /// a's; edge-edge: indices[0..1] is a's edge). Self pairs as deform_ccd.hpp's self pairs.
+  DeformPair primitive;
+};
+
 class ANTCD_API World {
  public:
   explicit World(const WorldOptions& options = {});
@@ -318,6 +397,31 @@ class ANTCD_API World {
   std::vector<PairToi> set_poses_continuous(std::span<const ObjectId> ids,
                                             std::span<const Transform> new_poses,
                                             const SweepRequest& request = {});
+  /// Broad phase of a motion with deforming objects (sweep_motion's arguments and checks): the
+  /// admitted pairs of distinct objects whose swept boxes (a deforming object's: the box of its
+  /// world vertices at both ends) come within `min_separation` >= 0, sorted.
+  [[nodiscard]] std::vector<ObjectPair> swept_candidate_pairs(
+      std::span<const ObjectId> ids, std::span<const Transform> new_poses,
+      std::span<const VertexMotion> deforming, Scalar min_separation = 0) const;
+  /// Continuous motion with deforming objects (see the block above MotionToi): ids[k] moves to
+  /// new_poses[k] and deforming[k].id gets deforming[k].vertices (model frame) at t = 1; each id at
+  /// most once in each span. Every pair (and self pair) that comes within request.min_separation,
+  /// sorted by (a, b). request.max_iterations bounds the rigid sweeps; deform_sweep gets
+  /// min_separation and time_tolerance. Throws ArgumentError naming the function, the argument
+  /// and the object: as sweep_poses for ids and poses; for deforming[k]: an unknown id, a repeat,
+  /// a wrong vertex count, a non-finite vertex or one whose world position (either end) exceeds
+  /// kDeformMaxCoordinate, or a zero-area triangle left out of the object's hierarchy that gains
+  /// an area (as set_vertices). The World is not changed.
+  [[nodiscard]] std::vector<MotionToi> sweep_motion(std::span<const ObjectId> ids,
+                                                    std::span<const Transform> new_poses,
+                                                    std::span<const VertexMotion> deforming,
+                                                    const SweepRequest& request = {}) const;
+  /// sweep_motion(), then set_poses(ids, new_poses) and set_vertices() of each deforming object:
+  /// a mutation. Every argument is checked first: on error nothing is changed.
+  std::vector<MotionToi> set_motion_continuous(std::span<const ObjectId> ids,
+                                               std::span<const Transform> new_poses,
+                                               std::span<const VertexMotion> deforming,
+                                               const SweepRequest& request = {});
 
   /// The implementation (opaque; defined inside the library).
   struct Impl;

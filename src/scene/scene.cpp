@@ -43,6 +43,11 @@ struct Scene::Broad {
   std::vector<const Model*> current;
   /// The objects with SceneObject::self_collision.
   std::vector<std::uint32_t> self_objects;
+  /// The frame whose vertices the deforming objects hold in the World (none yet: SIZE_MAX), and
+  /// room for a continuous frame's end vertices (per deforming object) and its motion.
+  std::size_t vertex_frame = SIZE_MAX;
+  std::vector<std::vector<Vec3>> end_vertices;
+  std::vector<VertexMotion> motions;
 
   /// The exact method's per-pair hints from frame to frame (PairWitness), one per
   /// candidate pair of the last frame that used them, sorted by pair. A frame that finds them in
@@ -73,24 +78,35 @@ struct Scene::Broad {
   /// caller at a time: the World's mutations must not overlap its queries).
   void candidates_locked(const std::vector<SceneObject>& objects, std::size_t frame, Scalar delta,
                          std::vector<std::pair<std::uint32_t, std::uint32_t>>& out) {
-    for (const std::uint32_t i : deforming) {
-      const SceneObject& o = objects[i];
-      const std::span<const Vec3> v = o.vertex_frames->frame(frame);
-      if (o.scale == 1) {
-        world.set_vertices(ids[i], v);
-      } else {
-        scaled.assign(v.begin(), v.end());
-        for (Vec3& p : scaled) p *= o.scale;
-        world.set_vertices(ids[i], scaled);
-      }
-      current[i] = &world.model(ids[i]);
-    }
+    set_vertices_locked(objects, frame);
     moving_poses.clear();
     for (const std::uint32_t i : moving) moving_poses.push_back(objects[i].pose(frame));
     world.set_poses(moving_ids, moving_poses);
     world.candidate_pairs(delta, frame_pairs);
     out.clear();
     for (const ObjectPair& p : frame_pairs) out.emplace_back(p.a.slot, p.b.slot);
+  }
+
+  /// Object i's vertices of `frame`, scaled (model frame; `buffer` holds them when scaled).
+  static std::span<const Vec3> frame_vertices(const SceneObject& o, std::size_t frame,
+                                              std::vector<Vec3>& buffer) {
+    const std::span<const Vec3> v = o.vertex_frames->frame(frame);
+    if (o.scale == 1) return v;
+    buffer.assign(v.begin(), v.end());
+    for (Vec3& p : buffer) p *= o.scale;
+    return buffer;
+  }
+
+  /// The deforming objects' vertices of `frame` into the World (a refit each, skipped when the
+  /// World holds that frame's already: a refit depends on the new vertices alone). Hold `mutex`.
+  void set_vertices_locked(const std::vector<SceneObject>& objects, std::size_t frame) {
+    if (vertex_frame == frame) return;
+    vertex_frame = SIZE_MAX;  // until every object has them (set_vertices does not throw here)
+    for (const std::uint32_t i : deforming) {
+      world.set_vertices(ids[i], frame_vertices(objects[i], frame, scaled));
+      current[i] = &world.model(ids[i]);
+    }
+    vertex_frame = frame;
   }
 
   /// candidates_locked under the mutex.
@@ -111,16 +127,41 @@ struct Scene::Broad {
     world.set_poses(moving_ids, moving_poses);
     moving_poses.clear();
     for (const std::uint32_t i : moving) moving_poses.push_back(objects[i].pose(frame));
-    for (const ObjectPair& p : world.swept_candidate_pairs(moving_ids, moving_poses, delta)) {
-      result.candidates.emplace_back(p.a.slot, p.b.slot);
-    }
     SweepRequest request;
     request.min_separation = delta;
-    for (const PairToi& p : world.set_poses_continuous(moving_ids, moving_poses, request)) {
-      result.pairs.emplace_back(p.a.slot, p.b.slot);
-      result.toi.push_back(p.sweep.toi);
-      result.contact_points.push_back(p.sweep.contact.point);
+    if (deforming.empty() && self_objects.empty()) {
+      for (const ObjectPair& p : world.swept_candidate_pairs(moving_ids, moving_poses, delta)) {
+        result.candidates.emplace_back(p.a.slot, p.b.slot);
+      }
+      for (const PairToi& p : world.set_poses_continuous(moving_ids, moving_poses, request)) {
+        result.pairs.emplace_back(p.a.slot, p.b.slot);
+        result.toi.push_back(p.sweep.toi);
+        result.contact_points.push_back(p.sweep.contact.point);
+      }
+      return;
     }
+    // Deforming objects (or self pairs): from frame - 1's vertices to frame's, World::sweep_motion.
+    set_vertices_locked(objects, from);
+    end_vertices.resize(deforming.size());
+    motions.clear();
+    for (std::size_t k = 0; k < deforming.size(); ++k) {
+      const std::uint32_t i = deforming[k];
+      const std::span<const Vec3> v = frame_vertices(objects[i], frame, end_vertices[k]);
+      motions.push_back({ids[i], v});
+    }
+    for (const ObjectPair& p :
+         world.swept_candidate_pairs(moving_ids, moving_poses, motions, delta)) {
+      result.candidates.emplace_back(p.a.slot, p.b.slot);
+    }
+    vertex_frame = SIZE_MAX;
+    for (const MotionToi& p :
+         world.set_motion_continuous(moving_ids, moving_poses, motions, request)) {
+      result.pairs.emplace_back(p.a.slot, p.b.slot);
+      result.toi.push_back(p.toi);
+      result.contact_points.push_back(p.point);
+    }
+    vertex_frame = frame;
+    for (const std::uint32_t i : deforming) current[i] = &world.model(ids[i]);
   }
 };
 
@@ -230,7 +271,12 @@ Scene::Scene(SceneDescription description,
       }
     }
     if (o.deforming()) check_deforming(o, model_of(i), description_.frames);
-    broad_->ids.push_back(broad_->world.add(models_[model_index_[i]], o.pose(0), {o.name}));
+    ObjectOptions options;
+    options.name = o.name;
+    // The World's own self pairs serve continuous frames (sweep_motion); discrete frames test
+    // them here (add_self_pairs), candidate_pairs never lists them.
+    options.self_collision = o.self_collision;
+    broad_->ids.push_back(broad_->world.add(models_[model_index_[i]], o.pose(0), options));
     broad_->current.push_back(&model_of(i));
     if (o.poses.size() > 1) {
       broad_->moving.push_back(static_cast<std::uint32_t>(i));
@@ -270,10 +316,6 @@ FrameResult Scene::run_frame(std::size_t frame, const SceneQuery& query,
   if (query.continuous && query.volume) {
     throw ArgumentError("continuous queries test surfaces: volume must be off");
   }
-  if (query.continuous && !broad_->deforming.empty()) {
-    throw ArgumentError("continuous queries take rigid objects only; object '" +
-                        description_.objects[broad_->deforming.front()].name + "' deforms");
-  }
   if (query.method != Method::Exact && query.method != Method::SphereObb) {
     DetectRequest request = query.random;
     request.delta = query.delta;
@@ -294,7 +336,8 @@ FrameResult Scene::run_frame(std::size_t frame, const SceneQuery& query,
   // mutex from their update to the end of its narrow phase. Rigid scenes release it after the
   // broad phase.
   std::unique_lock<std::mutex> frame_lock(broad_->mutex, std::defer_lock);
-  if (!broad_->deforming.empty()) frame_lock.lock();
+  // (A continuous frame holds it for its whole run itself.)
+  if (!broad_->deforming.empty() && !query.continuous) frame_lock.lock();
 
   // Exact narrow phase: collide() on each candidate pair, a boolean query. Serially into a
   // result kept by the thread (collide() spawns no tasks, so no other call can interleave on this

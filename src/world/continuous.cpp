@@ -16,23 +16,13 @@
 #include "ccd/motion.hpp"
 #include "util/check.hpp"
 #include "util/parallel.hpp"
+#include "world/continuous.hpp"
 #include "world/world_impl.hpp"
 
 namespace antcd {
 
-namespace {
+namespace detail {
 
-using SlotPair = std::pair<std::uint32_t, std::uint32_t>;
-
-// Below this many candidate pairs (or in an arena of one thread) the sweeps stay on the calling
-// thread.
-constexpr std::size_t kParallelSweeps = 8;
-
-/// Checks the arguments of a continuous motion (every one, before anything is computed) and
-/// returns, per slot, the index + 1 of the object's new pose in `poses` (0: it stays put). With
-/// `sweep_range`, each moved object's translations, new and current, must lie within the sweeps'
-/// coordinate range (tolerance::kSweepCoordinateRange); an object that stays put is checked by
-/// sweep() itself, if a moved one comes near it.
 std::vector<std::size_t> motion_index(const World::Impl& w, std::span<const ObjectId> ids,
                                       std::span<const Transform> poses, const char* function,
                                       bool sweep_range) {
@@ -63,12 +53,6 @@ std::vector<std::size_t> motion_index(const World::Impl& w, std::span<const Obje
   return index;
 }
 
-/// A box holding the object at every t of its motion from `from` to `to` (see world.hpp): the
-/// box of its boxes at both poses (each holds its end point of every model point's path), grown
-/// by the most a slerped point strays from the chord's point at the same t (r theta^2 / 8: the
-/// path minus the chord vanishes at both ends and has second derivative at most r theta^2, r the
-/// point's distance from the turning axis, ccd::Spin) and a rounding allowance for the
-/// interpolated poses.
 Aabb swept_box(const Model& model, const Transform& from, const Aabb& box_from,
                const Transform& to) {
   Scalar tolerance = 0;
@@ -83,15 +67,23 @@ Aabb swept_box(const Model& model, const Transform& from, const Aabb& box_from,
   return grown(box, tolerance::widened(r * spin.theta * spin.theta / 8) + rounding);
 }
 
-/// The admitted pairs (i < j, slots, sorted) whose swept boxes come within min_separation.
-std::vector<SlotPair> swept_pairs(const World::Impl& w, const std::vector<std::size_t>& index,
-                                  std::span<const Transform> poses, Scalar min_separation) {
-  detail::AabbTree tree;
+std::vector<Aabb> swept_boxes(const World::Impl& w, const std::vector<std::size_t>& index,
+                              std::span<const Transform> poses) {
+  std::vector<Aabb> boxes(w.objects.size());
   for (std::uint32_t s = 0; s < w.objects.size(); ++s) {
     if (!w.alive(s)) continue;
     const World::Impl::Object& o = w.objects[s];
     const Aabb& now = w.bounds[s].box;
-    tree.insert(s, index[s] == 0 ? now : swept_box(*o.model, o.pose, now, poses[index[s] - 1]));
+    boxes[s] = index[s] == 0 ? now : swept_box(*o.model, o.pose, now, poses[index[s] - 1]);
+  }
+  return boxes;
+}
+
+std::vector<SlotPair> swept_pairs(const World::Impl& w, const std::vector<Aabb>& boxes,
+                                  Scalar min_separation) {
+  detail::AabbTree tree;
+  for (std::uint32_t s = 0; s < w.objects.size(); ++s) {
+    if (w.alive(s)) tree.insert(s, boxes[s]);
   }
   tree.rebuild();
   std::vector<SlotPair> out;
@@ -112,7 +104,12 @@ void check_request(const SweepRequest& request, const char* function) {
   detail::require_at_least(function, "request.max_iterations", request.max_iterations, 1);
 }
 
-}  // namespace
+}  // namespace detail
+
+using detail::check_request;
+using detail::motion_index;
+using detail::SlotPair;
+using detail::swept_pairs;
 
 std::vector<ObjectPair> World::swept_candidate_pairs(std::span<const ObjectId> ids,
                                                      std::span<const Transform> new_poses,
@@ -122,7 +119,8 @@ std::vector<ObjectPair> World::swept_candidate_pairs(std::span<const ObjectId> i
   const Impl& w = *impl_;
   const std::vector<std::size_t> index = motion_index(w, ids, new_poses, function, false);
   std::vector<ObjectPair> out;
-  for (const auto& [i, j] : swept_pairs(w, index, new_poses, min_separation)) {
+  for (const auto& [i, j] :
+       swept_pairs(w, detail::swept_boxes(w, index, new_poses), min_separation)) {
     out.push_back({w.id_of(i), w.id_of(j)});
   }
   return out;
@@ -135,7 +133,8 @@ std::vector<PairToi> World::sweep_poses(std::span<const ObjectId> ids,
   check_request(request, function);
   const Impl& w = *impl_;
   const std::vector<std::size_t> index = motion_index(w, ids, new_poses, function, true);
-  const std::vector<SlotPair> pairs = swept_pairs(w, index, new_poses, request.min_separation);
+  const std::vector<SlotPair> pairs =
+      swept_pairs(w, detail::swept_boxes(w, index, new_poses), request.min_separation);
   const auto end_pose = [&](std::uint32_t s) -> const Transform& {
     return index[s] == 0 ? w.objects[s].pose : new_poses[index[s] - 1];
   };
@@ -148,7 +147,7 @@ std::vector<PairToi> World::sweep_poses(std::span<const ObjectId> ids,
       results[k] = sweep(*a.model, a.pose, end_pose(i), *b.model, b.pose, end_pose(j), request);
     }
   };
-  if (pairs.size() < kParallelSweeps || parallel::max_concurrency() == 1) {
+  if (pairs.size() < detail::kParallelSweeps || parallel::max_concurrency() == 1) {
     run(0, pairs.size());
   } else {
     parallel::for_ranges(0, pairs.size(), 1, run);

@@ -25,11 +25,6 @@ std::string describe(ObjectId id) {
   return "(slot " + std::to_string(id.slot) + ", generation " + std::to_string(id.generation) + ")";
 }
 
-std::string object_label(const World::Impl::Object& o, ObjectId id) {
-  return (o.options.name.empty() ? std::string("object") : "object '" + o.options.name + "'") +
-         " " + describe(id);
-}
-
 void require_rigid(const Transform& pose, const std::string& function, const std::string& what) {
   if (const PoseCheck c = check_pose(pose); !c.rigid()) {
     throw ArgumentError(function + ": " + what + " " + c.problem());
@@ -37,6 +32,11 @@ void require_rigid(const Transform& pose, const std::string& function, const std
 }
 
 }  // namespace
+
+std::string object_label(const World::Impl::Object& o, ObjectId id) {
+  return (o.options.name.empty() ? std::string("object") : "object '" + o.options.name + "'") +
+         " " + describe(id);
+}
 
 Aabb posed_box(const Model& model, const Transform& pose, Scalar& tolerance,
                World::Impl::Root& posed) {

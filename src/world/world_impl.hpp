@@ -118,6 +118,9 @@ inline Aabb posed_box(const Model& model, const Transform& pose, Scalar& toleran
 /// the world; the world's own poses are checked, rigidity included, when they are set).
 void require_finite_pose(const Transform& pose, const char* function);
 
+/// "object 'name' (slot s, generation g)" (or "object (slot ...)" when unnamed), for errors.
+std::string object_label(const World::Impl::Object& o, ObjectId id);
+
 /// `box` grown by `by` on every side.
 inline Aabb grown(Aabb box, Scalar by) {
   box.min.array() -= by;

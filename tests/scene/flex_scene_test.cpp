@@ -223,18 +223,6 @@ TEST(FlexScene, OtherMethodsRunOnTheRefittedModels) {
   }
 }
 
-TEST(FlexScene, ContinuousRefusesDeformingObjects) {
-  const Scene scene = shared::make_scene(small_flexible(3));
-  SceneQuery q;
-  q.continuous = true;
-  try {
-    (void)scene.run_frame(1, q);
-    FAIL();
-  } catch (const ArgumentError& e) {
-    EXPECT_NE(std::string(e.what()).find("deforms"), std::string::npos) << e.what();
-  }
-}
-
 #ifdef ANTCD_CLI
 TEST(FlexScene, CliGeneratesRunsAndRefusesBadSideFiles) {
   const auto dir = test::fresh_temp_dir("flex_scene_cli");
