@@ -64,9 +64,12 @@
 //   that toi + time_tolerance], grown by the primitives' tolerance reach (3W + rounding, ccd.hpp),
 //   are apart, which proves its own toi later. So the answer is the earliest (toi, then pair kind
 //   and indices) over every pair the bounds and the normal cones keep over [0, 1], the same at any
-//   thread count and equal to all_pairs' first entry. One exception: a primitive query that
-//   exhausts its box budget (DeformPair::budget_exhausted, very degenerate input) stops at a time
-//   its geometry does not bound, so whether such a pair was pruned may then depend on the timing.
+//   thread count and equal to all_pairs' first entry. A primitive query that exhausts its box
+//   budget (DeformPair::budget_exhausted: near-parallel edges, flat on-grid input) stops at a
+//   time its geometry does not bound; such a pair's toi is lifted to the largest time (to within
+//   time_tolerance / 2) until which the two triangles' padded boxes are apart (no contact is
+//   possible before it), and dropped when they are apart over [0, 1], so pruning it never
+//   changes the answer either.
 // - Memory: O(n) per call, none growing with the square of the mesh: the bounds (160 bytes per
 //   hierarchy node, about n / 2 nodes for leaf size 4), a copy of the leaf order (4 bytes per
 //   triangle), an ownership byte per triangle and a vertex->triangle index used while it is made

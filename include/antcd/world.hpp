@@ -235,9 +235,8 @@ struct PairToi {
 // reported, with toi <= the true first such time (a miss is a proof); tolerance_decided as
 // sweep.hpp / deform_ccd.hpp say. Rigid-rigid pairs are exactly sweep_poses' answers.
 // Threads: const and thread-safe like sweep_poses; pairs are spread over oneTBB workers, and the
-// answer is the same at any thread count, with deform_sweep's one exception (deform_ccd.hpp,
-// "Determinism": a pair whose primitive.budget_exhausted is set may differ; in the tests' corpus
-// 7 of 26 deform pairs against a turning rigid object were, none against a deforming one). Memory:
+// answer is the same at any thread count (deform_ccd.hpp, "Determinism"; also for pairs whose
+// primitive.budget_exhausted is set, common against a turning rigid object). Memory:
 // two world-frame copies of each deforming object's vertices for the call, plus deform_sweep's O(n)
 // per pair being tested.
 

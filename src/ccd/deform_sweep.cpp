@@ -208,10 +208,12 @@ class Traversal {
     const detail::OwnerMask mb = c_.b.bounds->owner[fb];
     for (int k = 0; k < 3; ++k) {
       if ((ma >> k) & 1u) {
-        if (!(c_.self && has_vertex(b, a[k]))) vertex_face(c_.a, a[k], c_.b, fb, true);
+        if (!(c_.self && has_vertex(b, a[k]))) vertex_face(c_.a, a[k], c_.b, fb, true, fa, fb);
       }
       if ((mb >> k) & 1u) {
-        if (!(c_.self && has_vertex(a, b[k]))) vertex_face(c_.b, b[k], c_.a, fa, c_.self);
+        if (!(c_.self && has_vertex(a, b[k]))) {
+          vertex_face(c_.b, b[k], c_.a, fa, c_.self, fa, fb);
+        }
       }
     }
     for (int k = 0; k < 3; ++k) {
@@ -221,13 +223,13 @@ class Traversal {
         if (!((mb >> (3 + m)) & 1u)) continue;
         const std::uint32_t b0 = b[m], b1 = b[(m + 1) % 3];
         if (c_.self && (a0 == b0 || a0 == b1 || a1 == b0 || a1 == b1)) continue;
-        edge_edge(a0, a1, b0, b1);
+        edge_edge(a0, a1, b0, b1, fa, fb);
       }
     }
   }
 
   void vertex_face(const Side& vs, std::uint32_t v, const Side& fs, std::uint32_t f,
-                   bool vertex_in_first) {
+                   bool vertex_in_first, std::uint32_t fa, std::uint32_t fb) {
     const TriangleIndices& t = fs.mesh->triangles[f];
     const std::array<Vec3, 4> p0 = {vs.v0[v], fs.v0[t[0]], fs.v0[t[1]], fs.v0[t[2]]};
     const std::array<Vec3, 4> p1 = {vs.v1[v], fs.v1[t[0]], fs.v1[t[1]], fs.v1[t[2]]};
@@ -238,10 +240,11 @@ class Traversal {
     p.kind = DeformPairKind::VertexFace;
     p.vertex_in_first = vertex_in_first;
     p.indices = {v, f, 0, 0};
-    record(p, r);
+    record(p, r, fa, fb);
   }
 
-  void edge_edge(std::uint32_t a0, std::uint32_t a1, std::uint32_t b0, std::uint32_t b1) {
+  void edge_edge(std::uint32_t a0, std::uint32_t a1, std::uint32_t b0, std::uint32_t b1,
+                 std::uint32_t fa, std::uint32_t fb) {
     if (a0 > a1) std::swap(a0, a1);
     if (b0 > b1) std::swap(b0, b1);
     if (c_.self && std::make_pair(b0, b1) < std::make_pair(a0, a1)) {
@@ -258,13 +261,44 @@ class Traversal {
     DeformPair p;
     p.kind = DeformPairKind::EdgeEdge;
     p.indices = {a0, a1, b0, b1};
-    record(p, r);
+    record(p, r, fa, fb);
   }
 
-  void record(DeformPair& p, const ccd::PrimitiveResult& r) {
+  /// Whether triangles fa (side a) and fb (side b) are apart over [0, s]: the padded boxes that
+  /// leaf_pairs tests (a node's box holds them up to the last bits of rounding).
+  [[nodiscard]] bool triangles_apart(std::uint32_t fa, std::uint32_t fb, Scalar s) const {
+    Vec3 lo_a, hi_a, lo_b, hi_b;
+    triangle_box(c_.a, fa, s, c_.pad, lo_a, hi_a);
+    triangle_box(c_.b, fb, s, c_.pad, lo_b, hi_b);
+    return !boxes_overlap(lo_a, hi_a, lo_b, hi_b, c_.sep);
+  }
+
+  /// A primitive that ran out of its box budget answers the start of its earliest unresolved box,
+  /// which its geometry does not bound: it can lie before the time the two triangles' padded boxes
+  /// prove them apart until, and whether the pair is examined at all depends on the horizon, so on
+  /// the task order. Its toi is lifted to the largest s (bisected to time_tolerance / 2) such
+  /// that the boxes are apart over [0, s]: still never after the true first contact (apart boxes
+  /// are apart surfaces), and a pair that a traversal pruned at horizon h >= best + tol now gets a
+  /// toi >= h - tol / 2 > best, so it never changes the answer. Apart over [0, 1]: no contact.
+  [[nodiscard]] bool lift_exhausted(DeformPair& p, std::uint32_t fa, std::uint32_t fb) const {
+    if (!triangles_apart(fa, fb, p.toi)) return true;
+    if (triangles_apart(fa, fb, 1)) return false;
+    Scalar lo = p.toi;
+    Scalar hi = 1;
+    for (int k = 0; k < 64 && hi - lo > c_.tol / 2; ++k) {
+      const Scalar mid = lo + (hi - lo) / 2;
+      if (mid <= lo || mid >= hi) break;
+      (triangles_apart(fa, fb, mid) ? lo : hi) = mid;
+    }
+    p.toi = lo;
+    return true;
+  }
+
+  void record(DeformPair& p, const ccd::PrimitiveResult& r, std::uint32_t fa, std::uint32_t fb) {
     p.toi = r.toi;
     p.tolerance_decided = r.tolerance_decided;
     p.budget_exhausted = r.budget_exhausted;
+    if (p.budget_exhausted && !lift_exhausted(p, fa, fb)) return;
     if (c_.all_pairs) {
       out_.pairs.push_back(p);
       if (!out_.hit || earlier(p, out_.best)) out_.best = p;

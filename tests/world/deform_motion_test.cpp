@@ -308,17 +308,14 @@ TEST(DeformMotion, SameAnswerAtOneAndThreeThreads) {
     ASSERT_EQ(one.size(), three.size());
     ASSERT_FALSE(one.empty());
     for (std::size_t k = 0; k < one.size(); ++k) {
-      // deform_sweep's one exception (deform_ccd.hpp, "Determinism"): a primitive query that ran
-      // out of its box budget may or may not have been pruned, depending on the timing.
-      if (one[k].primitive.budget_exhausted || three[k].primitive.budget_exhausted) {
-        ++exhausted;
-        continue;
-      }
+      // Pairs whose primitive ran out of its box budget included (deform_ccd.hpp, "Determinism").
+      if (one[k].primitive.budget_exhausted) ++exhausted;
       EXPECT_TRUE(same(one[k], three[k])) << k << ": " << one[k].a.slot << "/" << one[k].b.slot;
       ++compared;
     }
   }
-  EXPECT_GT(compared, 2 * exhausted);  // 19 and 7 when written
+  // The corpus must hold such pairs, or the test would not check the exception is gone.
+  EXPECT_GT(exhausted, 0) << compared << " pairs compared";
 }
 
 TEST(DeformMotion, RigidPairsAreSweepPosesAnswers) {
