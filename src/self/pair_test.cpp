@@ -54,7 +54,9 @@ std::uint8_t normal_signs(const Vec3& a, const Vec3& b, const Vec3& c) {
   std::uint8_t bits = 0;
   for (int k = 0; k < 3; ++k) {
     // Dropping axis k leaves the cyclic pair (k+1, k+2): the 2-D orientation is n_k.
-    const int s = sign_of(orient2d(a, b, c, Projection(k)));
+    const Projection pr(k);
+    int s = orient2d_sign_if_certain(a, b, c, pr);  // inline, the common case
+    if (s == 0) s = sign_of(orient2d(a, b, c, pr));
     if (s > 0) bits = static_cast<std::uint8_t>(bits | (1u << (2 * k)));
     if (s < 0) bits = static_cast<std::uint8_t>(bits | (1u << (2 * k + 1)));
   }
