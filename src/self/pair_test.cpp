@@ -51,14 +51,18 @@ using geometry::detail::Projection;
 using geometry::detail::sign_of;
 
 std::uint8_t normal_signs(const Vec3& a, const Vec3& b, const Vec3& c) {
+  // Dropping axis k leaves the cyclic pair (k+1, k+2): the 2-D orientation is n_k. Signs the
+  // floating-point filter proves first; the exact ones only when it proves none (a flat sheet's
+  // tiny tangential components would otherwise run the expansions for every triangle).
+  int s[3];
+  for (int k = 0; k < 3; ++k) s[k] = orient2d_sign_if_certain(a, b, c, Projection(k));
+  if (s[0] == 0 && s[1] == 0 && s[2] == 0) {
+    for (int k = 0; k < 3; ++k) s[k] = sign_of(orient2d(a, b, c, Projection(k)));
+  }
   std::uint8_t bits = 0;
   for (int k = 0; k < 3; ++k) {
-    // Dropping axis k leaves the cyclic pair (k+1, k+2): the 2-D orientation is n_k.
-    const Projection pr(k);
-    int s = orient2d_sign_if_certain(a, b, c, pr);  // inline, the common case
-    if (s == 0) s = sign_of(orient2d(a, b, c, pr));
-    if (s > 0) bits = static_cast<std::uint8_t>(bits | (1u << (2 * k)));
-    if (s < 0) bits = static_cast<std::uint8_t>(bits | (1u << (2 * k + 1)));
+    if (s[k] > 0) bits = static_cast<std::uint8_t>(bits | (1u << (2 * k)));
+    if (s[k] < 0) bits = static_cast<std::uint8_t>(bits | (1u << (2 * k + 1)));
   }
   return bits;
 }
