@@ -5,6 +5,10 @@
 // 1. Classify B's vertices against A's plane; all strictly on one side -> disjoint (the cheap
 //    common path: one cross product, three dot products, no exact arithmetic unless a vertex is
 //    within rounding distance of the plane). Same for A's vertices against B's plane.
+//    When a vertex is within rounding distance of the other plane (near-coplanar pairs, where
+//    the exact arithmetic would run), a floating-point certificate comes first: the projections
+//    along the dominant axis of A's normal lie strictly apart across the line of an edge
+//    (orient2d signs proved by their error bounds). Disjoint projections mean disjoint triangles.
 // 2. Both triangles in one plane -> 2-D test after dropping the dominant axis of the normal:
 //    they meet iff a vertex of one lies in the other or two edges meet.
 // 3. Otherwise A∩B lies on the line where the planes meet, and it is empty or a segment whose
@@ -167,6 +171,40 @@ bool edge_meets_triangle(const Vec3& p, const Vec3& q, int sp, int sq, const Sid
   return hit;
 }
 
+// Every value's sign proved by its error bound.
+bool all_certain(const SideValue (&sv)[3]) {
+  for (const SideValue& s : sv) {
+    const double bound = kOrient3dBound * s.perm;
+    if (!(s.value > bound || -s.value > bound)) return false;
+  }
+  return true;
+}
+
+// The projections of the triangles of `pa` and `pb` along the dominant axis of pa's normal are
+// proved disjoint: for an edge of one whose third corner has a proved nonzero orientation, the
+// other's three corners are proved strictly on the other side of the edge's line (floating-point
+// signs only; false: not proved). Triangles with disjoint projections are disjoint.
+bool apart_in_projection(const Plane& pa, const Plane& pb) {
+  const Projection pr(dominant_axis(pa.n));
+  const Vec3* const* tri[2] = {pa.t, pb.t};
+  for (int s = 0; s < 2; ++s) {
+    const Vec3* const* t = tri[s];
+    const Vec3* const* o = tri[1 - s];
+    const int own = orient2d_sign_if_certain(*t[0], *t[1], *t[2], pr);
+    if (own == 0) continue;
+    for (int i = 0; i < 3; ++i) {
+      const Vec3& p = *t[i];
+      const Vec3& q = *t[(i + 1) % 3];
+      if (orient2d_sign_if_certain(p, q, *o[0], pr) == -own &&
+          orient2d_sign_if_certain(p, q, *o[1], pr) == -own &&
+          orient2d_sign_if_certain(p, q, *o[2], pr) == -own) {
+        return true;
+      }
+    }
+  }
+  return false;
+}
+
 }  // namespace
 
 // Everything after the cheap plane rejection: `va`/`vb` are the plane values of A's vertices
@@ -244,6 +282,7 @@ bool triangles_intersect(const Vec3& a0, const Vec3& a1, const Vec3& a2, const V
   const Plane pb = make_plane(b0, b1, b2);
   SideValue va[3] = {side_value(pb, a0), side_value(pb, a1), side_value(pb, a2)};
   if (certainly_one_side(va)) return false;
+  if (!(all_certain(va) && all_certain(vb)) && apart_in_projection(pa, pb)) return false;
   return intersect_core(pa, pb, va, vb, point);
 }
 

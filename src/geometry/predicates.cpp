@@ -144,15 +144,13 @@ double orient3d_exact(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d
 // Exact-sign orient2d of the projections of p, q, r: (q-p) x (r-p). The floating-point value is
 // returned when it is larger than `margin` times its error bound, else the exact value's estimate.
 double orient2d(const Vec3& p, const Vec3& q, const Vec3& r, const Projection& pr, double margin) {
+  const Filtered f = orient2d_float(p, q, r, pr);
+  const double bound = margin * kOrient2dBound * f.perm;
+  if (f.value > bound || -f.value > bound) return f.value;
+  if (f.perm == 0) return 0;  // both products exactly zero
   const double px = p[pr.u], py = p[pr.v];
   const double qx = q[pr.u], qy = q[pr.v];
   const double rx = r[pr.u], ry = r[pr.v];
-  const double left = (qx - px) * (ry - py);
-  const double right = (qy - py) * (rx - px);
-  const double det = left - right;
-  const double bound = margin * kOrient2dBound * (std::abs(left) + std::abs(right));
-  if (det > bound || -det > bound) return det;
-  if (left == 0 && right == 0) return 0;  // both products exactly zero
   // (qx-px)(ry-py) - (qy-py)(rx-px) expanded (the px*py terms cancel).
   Expansion e;
   e.add_product(qx, ry);

@@ -24,23 +24,41 @@ inline int sign_of(double x) { return (x > 0) - (x < 0); }
 // det[a-d; b-d; c-d] evaluated exactly (returned as a sign-exact approximation).
 double orient3d_exact(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d);
 
+// The floating-point value of det[ad; bd; cd] and the permanent bounding its rounding error: the
+// error is at most kOrient3dBound * perm (barring underflow), so |det| above that proves its sign.
+struct Filtered {
+  double value;
+  double perm;
+};
+
+inline Filtered orient3d_float(const Vec3& ad, const Vec3& bd, const Vec3& cd) {
+  const double bdxcdy = bd.x() * cd.y(), cdxbdy = cd.x() * bd.y();
+  const double cdxady = cd.x() * ad.y(), adxcdy = ad.x() * cd.y();
+  const double adxbdy = ad.x() * bd.y(), bdxady = bd.x() * ad.y();
+  return {ad.z() * (bdxcdy - cdxbdy) + bd.z() * (cdxady - adxcdy) + cd.z() * (adxbdy - bdxady),
+          (std::abs(bdxcdy) + std::abs(cdxbdy)) * std::abs(ad.z()) +
+              (std::abs(cdxady) + std::abs(adxcdy)) * std::abs(bd.z()) +
+              (std::abs(adxbdy) + std::abs(bdxady)) * std::abs(cd.z())};
+}
+
+// The sign of orient3d(a, b, c, d) when the floating-point error bound proves it, else 0: a
+// filter only (0 says nothing; the exact sign may be anything). No exact arithmetic.
+inline int orient3d_sign_if_certain(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
+  const Filtered f = orient3d_float(a - d, b - d, c - d);
+  const double bound = kOrient3dBound * f.perm;
+  return (f.value > bound) - (-f.value > bound);
+}
+
 // orient3d(a, b, c, d) (antcd/geometry.hpp), exact-sign, given the differences ad = a - d,
 // bd = b - d, cd = c - d rounded as orient3d rounds them: callers that share a base point d
 // compute them once. The floating-point value when its error bound proves the sign, else the exact
 // value's estimate.
 inline double orient3d_with_differences(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d,
                                         const Vec3& ad, const Vec3& bd, const Vec3& cd) {
-  const double bdxcdy = bd.x() * cd.y(), cdxbdy = cd.x() * bd.y();
-  const double cdxady = cd.x() * ad.y(), adxcdy = ad.x() * cd.y();
-  const double adxbdy = ad.x() * bd.y(), bdxady = bd.x() * ad.y();
-  const double det =
-      ad.z() * (bdxcdy - cdxbdy) + bd.z() * (cdxady - adxcdy) + cd.z() * (adxbdy - bdxady);
-  const double perm = (std::abs(bdxcdy) + std::abs(cdxbdy)) * std::abs(ad.z()) +
-                      (std::abs(cdxady) + std::abs(adxcdy)) * std::abs(bd.z()) +
-                      (std::abs(adxbdy) + std::abs(bdxady)) * std::abs(cd.z());
-  const double bound = kOrient3dBound * perm;
-  if (det > bound || -det > bound) return det;
-  if (perm == 0) return 0;  // every product is exactly zero, so is the determinant
+  const Filtered f = orient3d_float(ad, bd, cd);
+  const double bound = kOrient3dBound * f.perm;
+  if (f.value > bound || -f.value > bound) return f.value;
+  if (f.perm == 0) return 0;  // every product is exactly zero, so is the determinant
   return orient3d_exact(a, b, c, d);
 }
 
@@ -52,6 +70,23 @@ struct Projection {
   int v;
   explicit Projection(int drop) : u((drop + 1) % 3), v((drop + 2) % 3) {}
 };
+
+// The floating-point value of orient2d(p, q, r) in `pr`, (q-p) x (r-p), and the sum of the two
+// products' magnitudes: the error is at most kOrient2dBound * perm (barring underflow).
+inline Filtered orient2d_float(const Vec3& p, const Vec3& q, const Vec3& r, const Projection& pr) {
+  const double left = (q[pr.u] - p[pr.u]) * (r[pr.v] - p[pr.v]);
+  const double right = (q[pr.v] - p[pr.v]) * (r[pr.u] - p[pr.u]);
+  return {left - right, std::abs(left) + std::abs(right)};
+}
+
+// The sign of orient2d(p, q, r) in `pr` when the floating-point error bound proves it, else 0: a
+// filter only (0 says nothing). No exact arithmetic.
+inline int orient2d_sign_if_certain(const Vec3& p, const Vec3& q, const Vec3& r,
+                                    const Projection& pr) {
+  const Filtered f = orient2d_float(p, q, r, pr);
+  const double bound = kOrient2dBound * f.perm;
+  return (f.value > bound) - (-f.value > bound);
+}
 
 // Exact-sign orient2d of the projections of p, q, r: (q-p) x (r-p). The floating-point value is
 // returned when it is larger than `margin` times its error bound, else the exact value's estimate.

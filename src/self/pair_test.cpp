@@ -12,6 +12,27 @@
 //   uv in the plane. The side test is a 2-D orientation in a coordinate plane where A's
 //   projection has non-zero area (one exists, decided exactly), which keeps every side.
 // - Three shared vertices: the same point set twice.
+//
+// Floating-point certificates in front (no exact arithmetic; each applies only when the error
+// bounds of its orientations prove their signs, and then its verdict is the exact one). Let P
+// drop one coordinate axis, so that P is linear and P(A), P(B) are the projected triangles.
+// - Shared edge uv, free corners p of A and q of B: if orient2d(u, v, p) and orient2d(u, v, q)
+//   in P are both nonzero with opposite signs, then P is one-to-one on A and on B, and P(A),
+//   P(B) lie on opposite closed sides of the line through P(u), P(v), meeting in P(uv) only. A
+//   point x of both has P(x) on P(uv), so x (in A, P one-to-one on A) is on uv: A ∩ B = uv. Else
+//   if orient3d(u, v, p, q) is proved nonzero the pair is not coplanar: A ∩ B = uv.
+// - Shared vertex w, A = (w, a1, a2), B = (w, b1, b2): A ∩ B holds a point x other than w iff
+//   the wedges W_A = {s(a1 - w) + t(a2 - w) : s, t >= 0} and W_B meet beyond 0 (x - w is in
+//   both; conversely e d is in A - w and B - w for a common d and small e > 0). If in P both
+//   triangles have nonzero orientation and the line through P(w) along one of the four edges at
+//   w has the other edge at w of its own triangle on one side and both free corners of the other
+//   triangle strictly on the other side, P(W_A) and P(W_B) meet in 0 only; a common d then has
+//   P(d) = 0, which for d != 0 in W_A would make P(a1 - w), P(a2 - w) dependent, that is
+//   orient2d(w, a1, a2) = 0: so A ∩ B = {w}. With the four signs c_kl of orient2d(w, a_k, b_l)
+//   and s_A, s_B the triangles' own: the ray w-a1 separates when c_11 = c_12 = -s_A, w-a2 when
+//   c_21 = c_22 = s_A, w-b1 when c_11 = c_21 = s_B, w-b2 when c_12 = c_22 = -s_B.
+// Both use the projection along the dominant axis of A's floating-point normal (any axis would be
+// correct; that one keeps near-flat neighbourhoods far from the bounds).
 #include "self/pair_test.hpp"
 
 #include <antcd/geometry.hpp>
@@ -25,21 +46,61 @@
 namespace antcd::self_detail {
 
 using geometry::detail::orient2d;
+using geometry::detail::orient2d_sign_if_certain;
 using geometry::detail::Projection;
 using geometry::detail::sign_of;
 
 std::uint8_t normal_signs(const Vec3& a, const Vec3& b, const Vec3& c) {
+  // Dropping axis k leaves the cyclic pair (k+1, k+2): the 2-D orientation is n_k. Signs the
+  // floating-point filter proves first; the exact ones only when it proves none (a flat sheet's
+  // tiny tangential components would otherwise run the expansions for every triangle).
+  int s[3];
+  for (int k = 0; k < 3; ++k) s[k] = orient2d_sign_if_certain(a, b, c, Projection(k));
+  if (s[0] == 0 && s[1] == 0 && s[2] == 0) {
+    for (int k = 0; k < 3; ++k) s[k] = sign_of(orient2d(a, b, c, Projection(k)));
+  }
   std::uint8_t bits = 0;
   for (int k = 0; k < 3; ++k) {
-    // Dropping axis k leaves the cyclic pair (k+1, k+2): the 2-D orientation is n_k.
-    const int s = sign_of(orient2d(a, b, c, Projection(k)));
-    if (s > 0) bits = static_cast<std::uint8_t>(bits | (1u << (2 * k)));
-    if (s < 0) bits = static_cast<std::uint8_t>(bits | (1u << (2 * k + 1)));
+    if (s[k] > 0) bits = static_cast<std::uint8_t>(bits | (1u << (2 * k)));
+    if (s[k] < 0) bits = static_cast<std::uint8_t>(bits | (1u << (2 * k + 1)));
   }
   return bits;
 }
 
 namespace {
+
+/// The projection along the dominant axis of the floating-point normal of (a, b, c).
+Projection flattest(const Vec3& a, const Vec3& b, const Vec3& c) {
+  return Projection(geometry::detail::dominant_axis((b - a).cross(c - a)));
+}
+
+/// Triangles (u, v, p) and (u, v, q) sharing the edge uv: proved to meet in uv only by the
+/// floating-point certificates of the header (false: not proved).
+bool edge_pair_apart_certified(const Vec3& u, const Vec3& v, const Vec3& p, const Vec3& q) {
+  const Projection pr = flattest(u, v, p);
+  if (orient2d_sign_if_certain(u, v, p, pr) * orient2d_sign_if_certain(u, v, q, pr) < 0) {
+    return true;
+  }
+  return geometry::detail::orient3d_sign_if_certain(u, v, p, q) != 0;
+}
+
+/// Triangles (w, a1, a2) and (w, b1, b2) sharing the vertex w: proved to meet in w only by the
+/// wedge certificate of the header (false: not proved).
+bool vertex_pair_apart_certified(const Vec3& w, const Vec3& a1, const Vec3& a2, const Vec3& b1,
+                                 const Vec3& b2) {
+  const Projection pr = flattest(w, a1, a2);
+  const int sa = orient2d_sign_if_certain(w, a1, a2, pr);
+  if (sa == 0) return false;
+  const int sb = orient2d_sign_if_certain(w, b1, b2, pr);
+  if (sb == 0) return false;
+  const int c11 = orient2d_sign_if_certain(w, a1, b1, pr);
+  const int c12 = orient2d_sign_if_certain(w, a1, b2, pr);
+  if (c11 == -sa && c12 == -sa) return true;
+  const int c21 = orient2d_sign_if_certain(w, a2, b1, pr);
+  if (c11 == sb && c21 == sb) return true;
+  const int c22 = orient2d_sign_if_certain(w, a2, b2, pr);
+  return (c21 == sa && c22 == sa) || (c12 == -sb && c22 == -sb);
+}
 
 /// Triangles (u, v, p) and (u, v, q) sharing the edge uv: folded flat onto each other.
 bool folded_flat(const Vec3& u, const Vec3& v, const Vec3& p, const Vec3& q) {
@@ -96,6 +157,9 @@ bool pair_intersects(const Mesh& mesh, std::uint32_t i, std::uint32_t j, int& sh
       return geometry::triangles_intersect(pi(0), pi(1), pi(2), pj(0), pj(1), pj(2));
     case 1: {
       const int a = ai[0], b = bj[0];
+      if (vertex_pair_apart_certified(pi(a), pi(a + 1), pi(a + 2), pj(b + 1), pj(b + 2))) {
+        return false;
+      }
       const auto edge_meets = [](const Vec3& p, const Vec3& q, const Vec3& t0, const Vec3& t1,
                                  const Vec3& t2) {
         return !boxes_apart({&p, &q}, {&t0, &t1, &t2}) &&
@@ -108,6 +172,7 @@ bool pair_intersects(const Mesh& mesh, std::uint32_t i, std::uint32_t j, int& sh
       // The unshared corners: the one index of each triangle not matched.
       const int a_free = 3 - ai[0] - ai[1];
       const int b_free = 3 - bj[0] - bj[1];
+      if (edge_pair_apart_certified(pi(ai[0]), pi(ai[1]), pi(a_free), pj(b_free))) return false;
       return folded_flat(pi(ai[0]), pi(ai[1]), pi(a_free), pj(b_free));
     }
     default:

@@ -8,8 +8,10 @@
 
 namespace antcd::self_detail {
 
-/// Exact facts about one triangle's normal n = (b - a) x (c - a): bit 2k is set when n_k > 0 and
-/// bit 2k + 1 when n_k < 0 (k = 0, 1, 2; exact signs). Zero exactly for a degenerate triangle.
+/// Exact facts about one triangle's normal n = (b - a) x (c - a): bit 2k is set only when n_k > 0
+/// and bit 2k + 1 only when n_k < 0 (k = 0, 1, 2; exact signs). A nonzero n_k may leave its bits
+/// clear when another component's sign is proved in floating point (the cone cull then has fewer
+/// axes, never a wrong one). Zero exactly for a degenerate triangle.
 std::uint8_t normal_signs(const Vec3& a, const Vec3& b, const Vec3& c);
 
 /// Whether triangles i and j (distinct, both of non-zero area) of `mesh` intersect beyond what

@@ -27,6 +27,7 @@
 
 #include <algorithm>
 #include <iterator>
+#include <random>
 #include <vector>
 
 #include "self/self_meshes.hpp"
@@ -196,6 +197,73 @@ TEST(SelfAgainstCgal, GeneratedMeshesThatIntersectThemselves) {
     std::printf("%s: %zu triangles, %zu pairs, %zu degenerate\n", c.name, c.mesh.triangles.size(),
                 got.pairs, got.degenerate);
   }
+}
+
+/// Two triangles as one mesh: pair (0, 1) reported or not.
+bool reported(const std::vector<Vec3>& v, TriangleIndices a, TriangleIndices b) {
+  Mesh m;
+  m.vertices = v;
+  m.triangles = {a, b};
+  return !self_intersections(Model(m)).pairs.empty();
+}
+
+/// The sharing rule decided by CGAL's exact predicates, pair by pair: edge-sharing (u, v, p),
+/// (v, u, q) intersect iff coplanar with p, q on one side of uv; vertex-sharing (w, a1, a2),
+/// (w, b1, b2) iff an edge opposite w meets the other triangle; otherwise do_intersect.
+TEST(SelfAgainstCgal, AdjacentAndNearCoplanarPairsOneByOne) {
+  using P = K::Point_3;
+  const auto pt = [](const Vec3& x) { return P(x.x(), x.y(), x.z()); };
+  std::mt19937_64 rng(36);
+  std::uniform_int_distribution<int> grid(-4, 4);
+  std::size_t seen[3][2] = {};  // [shared edge, shared vertex, none][verdict]
+  for (int round = 0; round < 3000; ++round) {
+    // Six points on a small integer grid of the plane z = 0 (exactly coplanar), or that plane
+    // turned and moved (coplanar up to rounding: near the floating-point certificates' bounds),
+    // or with one point lifted a little off it.
+    const int kind = round % 3;
+    const Transform pose = test::random_pose(rng, 3);
+    std::vector<Vec3> g(6), v(6);
+    for (std::size_t k = 0; k < 6; ++k) {
+      g[k] = Vec3(grid(rng), grid(rng), 0);
+      v[k] = kind == 0 ? g[k] : pose.apply(g[k]);
+    }
+    if (kind == 2) v[static_cast<std::size_t>(round % 6)] += Vec3(0, 0, 1e-9);
+    // Triangles of area at least 1/2 on the grid (so far from degenerate after the turn).
+    const auto area = [&](int a, int b, int c) {
+      return CGAL::collinear(pt(g[static_cast<std::size_t>(a)]), pt(g[static_cast<std::size_t>(b)]),
+                             pt(g[static_cast<std::size_t>(c)]));
+    };
+    // Edge 0-1 shared by (0, 1, 2) and (1, 0, 3).
+    if (!area(0, 1, 2) && !area(1, 0, 3)) {
+      const bool cgal =
+          CGAL::coplanar(pt(v[0]), pt(v[1]), pt(v[2]), pt(v[3])) &&
+          CGAL::coplanar_orientation(pt(v[0]), pt(v[1]), pt(v[2]), pt(v[3])) == CGAL::POSITIVE;
+      EXPECT_EQ(reported(v, {0, 1, 2}, {1, 0, 3}), cgal) << "edge pair, round " << round;
+      ++seen[0][cgal];
+    }
+    // Vertex 0 shared by (0, 1, 2) and (0, 3, 4).
+    if (!area(0, 1, 2) && !area(0, 3, 4)) {
+      const K::Triangle_3 ta(pt(v[0]), pt(v[1]), pt(v[2])), tb(pt(v[0]), pt(v[3]), pt(v[4]));
+      const bool cgal = CGAL::do_intersect(K::Segment_3(pt(v[1]), pt(v[2])), tb) ||
+                        CGAL::do_intersect(K::Segment_3(pt(v[3]), pt(v[4])), ta);
+      EXPECT_EQ(reported(v, {0, 1, 2}, {0, 3, 4}), cgal) << "vertex pair, round " << round;
+      ++seen[1][cgal];
+    }
+    // No shared index: (0, 1, 2) and (3, 4, 5).
+    if (!area(0, 1, 2) && !area(3, 4, 5)) {
+      const bool cgal = CGAL::do_intersect(K::Triangle_3(pt(v[0]), pt(v[1]), pt(v[2])),
+                                           K::Triangle_3(pt(v[3]), pt(v[4]), pt(v[5])));
+      EXPECT_EQ(reported(v, {0, 1, 2}, {3, 4, 5}), cgal) << "separate pair, round " << round;
+      ++seen[2][cgal];
+    }
+  }
+  // Both verdicts met in every case, often.
+  for (const auto& s : seen) {
+    EXPECT_GT(s[0], 100u);
+    EXPECT_GT(s[1], 100u);
+  }
+  std::printf("edge pairs %zu/%zu, vertex pairs %zu/%zu, separate pairs %zu/%zu (apart/meeting)\n",
+              seen[0][0], seen[0][1], seen[1][0], seen[1][1], seen[2][0], seen[2][1]);
 }
 
 }  // namespace
