@@ -5,6 +5,7 @@
 #include <antcd/self.hpp>
 #include <antcd/tolerances.hpp>
 
+#include "util/check.hpp"
 #include "util/parallel.hpp"
 
 #include <algorithm>
@@ -49,8 +50,8 @@ constexpr std::size_t kChunk = 512;
 
 SelfProximityResult self_proximity(const Model& model, Scalar delta) {
   if (!std::isfinite(delta) || delta < 0) {
-    throw ArgumentError("self_proximity: delta must be finite and >= 0, got " +
-                        std::to_string(delta) + " (" + model.source() + ")");
+    detail::argument_error("self_proximity (" + model.source() + ")", "delta", "finite and >= 0",
+                           number_text(delta));
   }
   SelfProximityResult result;
   const Mesh& mesh = model.mesh();

@@ -95,8 +95,8 @@ ObjectId World::add(std::shared_ptr<const Model> model, const Transform& pose,
       options.name.empty() ? std::string("the new object") : "object '" + options.name + "'";
   if (!model) throw ArgumentError("World::add: model is null (" + label + ")");
   if (!(options.rebuild_above >= 0)) {
-    throw ArgumentError("World::add: options.rebuild_above of " + label + " must be >= 0, got " +
-                        std::to_string(options.rebuild_above));
+    detail::argument_error("World::add", "options.rebuild_above of " + label, ">= 0 (or +inf)",
+                           number_text(options.rebuild_above));
   }
   require_rigid(pose, "World::add", "pose of " + label);
   const Transform new_pose = pose;  // `pose` may live in this World (add(m, world.pose(other)))

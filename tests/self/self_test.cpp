@@ -287,6 +287,14 @@ TEST(SelfProximity, RejectsABadDelta) {
   const Model model(test::flat_sheet(3, 3));
   EXPECT_THROW(self_proximity(model, -1), ArgumentError);
   EXPECT_THROW(self_proximity(model, std::nan("")), ArgumentError);
+  try {
+    (void)self_proximity(model, -2);
+    FAIL() << "a negative delta must throw";
+  } catch (const ArgumentError& e) {
+    EXPECT_NE(std::string(e.what()).find("delta must be finite and >= 0, got -2"),
+              std::string::npos)
+        << e.what();
+  }
 }
 
 }  // namespace

@@ -343,6 +343,17 @@ TEST(WorldDeforming, BadInputThrowsAndChangesNothing) {
   world.add(sphere, at(Vec3(0.2, 0.1, 0)));
   const ObjectId gone = world.add(sphere, at(Vec3(5, 0, 0)));
   world.remove(gone);
+  ObjectOptions bad_rule = named;
+  bad_rule.rebuild_above = -0.5;
+  try {
+    (void)world.add(model, Transform{}, bad_rule);
+    FAIL() << "a negative rebuild_above must throw";
+  } catch (const ArgumentError& e) {
+    EXPECT_NE(std::string(e.what()).find("World::add: options.rebuild_above of object 'veneer' "
+                                         "must be >= 0 (or +inf), got -0.5"),
+              std::string::npos)
+        << e.what();
+  }
 
   const auto snapshot = [&] {
     CollisionRequest all;
