@@ -1,6 +1,9 @@
 // CCD of deforming meshes (antcd/deform_ccd.hpp): swept bounds over the model's hierarchy
 // (ccd/deform_bounds.hpp), a self- or dual traversal cut into a fixed list of tasks, and the
 // primitive queries ccd::vertex_face / ccd::edge_edge on the triangle pairs the bounds keep.
+// One piece past 600 lines: the traversal, its horizon pruning and the budget lift that keeps
+// pruning from deciding an answer share one Context and one determinism argument; the entry
+// points below it are the argument checks and the three pairings (self, two meshes, rigid).
 #include <antcd/ccd.hpp>
 #include <antcd/deform_ccd.hpp>
 #include <antcd/error.hpp>
