@@ -41,6 +41,12 @@
 // bound) keeps one strict sign are skipped, and the earliest remaining windows are checked at a
 // parameter guess (accepted only within 2W per axis) before the search above runs on them alone.
 // It removes no window that can hold a contact (docs/ccd.md, "Primitives").
+// With min_separation > 0 the search runs over time windows instead, earliest first: a window is
+// excluded when one direction certifies the primitives farther apart than min_separation over all
+// of it (a support-function bound, concave in t, checked at both ends with its rounding), ends the
+// search at its start when a contact is proven there, or, once at most time_tolerance long, when
+// the primitives are within min_separation + 2W (Euclidean) there; otherwise it is halved, and a
+// window of the tolerance that is none of these gets the inclusion search above.
 //
 // Thread safety: every function here is a pure const computation; call it from any thread.
 // Errors: non-finite coordinates, min_separation < 0 or not finite, time_tolerance <= 0 or not

@@ -116,6 +116,10 @@ struct DeformSweepRequest {
   /// cones prove they cannot touch (see "Normal cones" above). Off: every pair the bounds keep is
   /// queried (same contacts; fewer tolerance-decided false positives may be culled when on).
   bool normal_cones = true;
+  /// Box budget of each primitive query (>= 1; ccd::kMaxBoxes, 2^20, by default): a query that
+  /// needs more stops with a conservative hit (DeformPair::budget_exhausted, see "Determinism").
+  /// Lower it to bound the worst case of one query; the answer stays conservative.
+  std::uint32_t primitive_max_boxes = 1u << 20;
 };
 
 enum class DeformPairKind : std::uint8_t { VertexFace = 0, EdgeEdge = 1 };

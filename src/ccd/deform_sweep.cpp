@@ -42,11 +42,14 @@ struct Side {
   const DeformBounds* bounds = nullptr;
 };
 
+static_assert(DeformSweepRequest{}.primitive_max_boxes == ccd::kMaxBoxes);
+
 struct Context {
   Side a, b;
   bool self = true;
   Scalar sep = 0;
   Scalar tol = 1e-6;
+  std::uint32_t max_boxes = ccd::kMaxBoxes;  ///< each primitive query's box budget
   Scalar pad = 0;
   bool all_pairs = false;
   /// Self, min_separation 0: the continuous normal-cone cull of self items (null: none).
@@ -237,7 +240,8 @@ class Traversal {
     const std::array<Vec3, 4> p0 = {vs.v0[v], fs.v0[t[0]], fs.v0[t[1]], fs.v0[t[2]]};
     const std::array<Vec3, 4> p1 = {vs.v1[v], fs.v1[t[0]], fs.v1[t[1]], fs.v1[t[2]]};
     ++out_.primitive_queries;
-    const ccd::PrimitiveResult r = ccd::unchecked::vertex_face(p0, p1, c_.sep, c_.tol);
+    const ccd::PrimitiveResult r =
+        ccd::unchecked::vertex_face(p0, p1, c_.sep, c_.tol, c_.max_boxes);
     if (!r.hit) return;
     DeformPair p;
     p.kind = DeformPairKind::VertexFace;
@@ -259,7 +263,7 @@ class Traversal {
     const std::array<Vec3, 4> p0 = {sa.v0[a0], sa.v0[a1], sb.v0[b0], sb.v0[b1]};
     const std::array<Vec3, 4> p1 = {sa.v1[a0], sa.v1[a1], sb.v1[b0], sb.v1[b1]};
     ++out_.primitive_queries;
-    const ccd::PrimitiveResult r = ccd::unchecked::edge_edge(p0, p1, c_.sep, c_.tol);
+    const ccd::PrimitiveResult r = ccd::unchecked::edge_edge(p0, p1, c_.sep, c_.tol, c_.max_boxes);
     if (!r.hit) return;
     DeformPair p;
     p.kind = DeformPairKind::EdgeEdge;
@@ -448,6 +452,9 @@ void check_request(const char* function, const DeformSweepRequest& r) {
   detail::require_non_negative(function, "min_separation", r.min_separation);
   detail::require_positive(function, "time_tolerance", r.time_tolerance);
   detail::require_non_negative(function, "pose_path_tolerance", r.pose_path_tolerance);
+  if (r.primitive_max_boxes == 0) {
+    throw ArgumentError(std::string(function) + ": primitive_max_boxes must be at least 1, got 0");
+  }
 }
 
 /// The bounds' padding: their rounding (8 u (M + D + sep)), and the reach of a tolerance-decided
@@ -473,6 +480,7 @@ DeformSweepResult two_meshes(const Model& a, std::span<const Vec3> A0, std::span
   c.self = false;
   c.sep = sep;
   c.tol = request.time_tolerance;
+  c.max_boxes = request.primitive_max_boxes;
   c.pad = pad_for(ba, bb, sep, request.time_tolerance);
   c.all_pairs = request.all_pairs;
   return run_sweep(c, {ba.root, bb.root, false}, ba.scratch_bytes + bb.scratch_bytes);
@@ -505,6 +513,7 @@ DeformSweepResult deform_sweep(const Model& model, std::span<const Vec3> V0,
   c.self = true;
   c.sep = request.min_separation;
   c.tol = request.time_tolerance;
+  c.max_boxes = request.primitive_max_boxes;
   c.pad = pad_for(bounds, bounds, c.sep, c.tol);
   c.all_pairs = request.all_pairs;
   if (cones.topology) {

@@ -16,15 +16,21 @@
 // because F is multilinear (affine in each parameter separately), so its extremes over the box
 // are at corners.
 //
-// Order of work (min_separation == 0; with a separation only the inclusion search runs):
+// Order of work:
 // 1. The inclusion of the whole domain [0, 1]^3: far-apart queries end here.
+// min_separation == 0:
 // 2. The coplanarity cubic (ccd/primitive_cubic.hpp, certified Bernstein signs): the times where
 //    it is certifiably nonzero hold no contact; it is split down to windows of min_t_width.
 // 3. Per window, earliest first: accept_at checks F at the guessed nearest parameters at the
 //    window's start (a contact within the window leaves the primitives within W there); if that
 //    does not decide, the inclusion search runs on the window alone.
-// Conservative throughout: every time before the answer is excluded by a certified sign or an
-// excluded box, and an accepted time has the primitives within 2W (+ rounding) per axis.
+// min_separation > 0 (search_separated): time windows, earliest first, are certified apart by a
+// separating direction over the whole window, or accepted at their start (Euclidean distance
+// within min_separation + 2W there), or halved; a window of min_t_width that is neither gets the
+// inclusion search.
+// Conservative throughout: every time before the answer is excluded by a certified sign, an
+// excluded box or a certified separating direction, and an accepted time has the primitives within
+// 2W (+ rounding) per axis.
 #include <antcd/ccd.hpp>
 #include <antcd/error.hpp>
 
@@ -102,6 +108,7 @@ struct Setup {
   Scalar accept_width = 0;  ///< W: the tolerance's motion, never below the rounding
   Scalar min_t_width = 0;
   Scalar tol_u = 0, tol_v = 0;
+  std::uint32_t max_boxes = kMaxBoxes;  ///< the box budget (>= 1)
 };
 
 /// The earliest accepted time so far (infinity: none) and whether it is proven.
@@ -112,8 +119,9 @@ struct Best {
 
 template <Kind kKind>
 Setup make_setup(const std::array<Vec3, 4>& at_t0, const std::array<Vec3, 4>& at_t1,
-                 Scalar min_separation, Scalar time_tolerance) {
+                 Scalar min_separation, Scalar time_tolerance, std::uint32_t max_boxes) {
   Setup s;
+  s.max_boxes = max_boxes;
   Scalar max_coord = 0;
   Scalar max_move = 0;
   for (std::size_t k = 0; k < 4; ++k) {
@@ -270,7 +278,7 @@ void search(const Setup& s, const Box& initial, PrimitiveResult& result, Best& b
     // Only times before the best hit so far matter: clip the window (children still cover it,
     // whatever the rounding of their midpoints, and F is evaluated at the very doubles used).
     box.t1 = std::min(box.t1, best.t);
-    if (result.boxes >= kMaxBoxes) {
+    if (result.boxes >= s.max_boxes) {
       Scalar earliest = box.t0;
       for (std::size_t i = 0; i < top; ++i) earliest = std::min(earliest, stack[i].t0);
       best = {std::min(best.t, earliest), false};
@@ -339,6 +347,106 @@ void search(const Setup& s, const Box& initial, PrimitiveResult& result, Best& b
   }
 }
 
+/// min_separation > 0: whether the primitives are certainly farther apart than min_separation over
+/// the whole window [t0, t1], using the direction f (F at guessed nearest parameters). For any
+/// direction n, dist(A, B) >= (min over A's corners of n.a - max over B's corners of n.b) / |n|
+/// (support functions of the two convex primitives; vertex-face: A is the vertex). The corners
+/// move linearly, so that bound (a minimum of affine functions of t) is concave in t and its least
+/// value over [t0, t1] is at t0 or t1: two evaluations certify the window. Rounding: n is any
+/// vector (scaled so its largest component is about 1: no overflow or underflow in its norm); a
+/// corner position is within 5.1uM of its true value (the header's bound), so each n.x is within
+/// |n|_1 (5.1uM + 3.01u 1.01M) <= 8.2uM |n|_1 and their difference within 16.4uM |n|_1 + u|g|,
+/// covered by |n|_1 eps (eps >= 96uM) and 4u|g|; the norm and the product with min_separation
+/// are rounded up by 16u. Non-finite values (overflow) never separate.
+template <Kind kKind>
+bool separated_over(const Setup& s, Scalar t0, Scalar t1, const Vec3& f) {
+  const Scalar m = f.cwiseAbs().maxCoeff();
+  if (!(m > 0) || !std::isfinite(m)) return false;
+  int e = 0;
+  static_cast<void>(std::frexp(m, &e));
+  const Vec3 n(std::ldexp(f.x(), -e), std::ldexp(f.y(), -e), std::ldexp(f.z(), -e));
+  const Scalar l1 = n.cwiseAbs().sum();
+  const Scalar need = s.min_separation * n.norm() * (1 + 16 * kUnitRoundoff);
+  for (const Scalar t : {t0, t1}) {
+    const std::array<Vec3, 4> p = positions(s.m, t);
+    Scalar low_a = n.dot(p[0]);
+    Scalar high_b = n.dot(p[2]);
+    if constexpr (kKind == Kind::VertexFace) {
+      high_b = std::max({n.dot(p[1]), high_b, n.dot(p[3])});
+    } else {
+      low_a = std::min(low_a, n.dot(p[1]));
+      high_b = std::max(high_b, n.dot(p[3]));
+    }
+    const Scalar g = low_a - high_b;
+    if (!std::isfinite(g)) return false;
+    if (!(g - 4 * kUnitRoundoff * std::abs(g) - l1 * s.eps > need)) return false;
+  }
+  return true;
+}
+
+/// min_separation > 0: the inclusion search alone would have to bisect the shell between the
+/// separation's sphere and its cube (F's inclusion is per axis, the separation Euclidean) down to
+/// the tolerance, which a grazing approach turns into the whole box budget. Instead, time windows
+/// (earliest first) are either certified apart by a separating direction (separated_over), or
+/// end the search at their start (every earlier time is excluded, so toi <= t*) when a contact is
+/// proven there, or, for a window of at most min_t_width, when the primitives are within
+/// min_separation + 2W there (Euclidean, after rounding; tolerance-decided), or are halved; a
+/// window of min_t_width that is none of these goes to the inclusion search.
+template <Kind kKind>
+void search_separated(const Setup& s, PrimitiveResult& result, Best& best) {
+  struct Window {
+    Scalar t0, t1;
+    bool start_checked;  ///< its start was already checked (a left half shares its parent's)
+  };
+  std::array<Window, 64> stack;  // windows halve down to min_t_width >= 2^-50
+  std::size_t top = 0;
+  stack[top++] = {0, 1, false};
+  while (top > 0) {
+    const Window w = stack[--top];
+    if (result.boxes >= s.max_boxes) {  // the earliest unresolved window is the one popped
+      best = {w.t0, false};
+      result.budget_exhausted = true;
+      return;
+    }
+    ++result.boxes;
+    // Every earlier time is excluded: a contact proven at the window's start is the first.
+    if (!w.start_checked) {
+      const std::array<Vec3, 4> p = positions(s.m, w.t0);
+      const std::array<Scalar, 2> uv =
+          kKind == Kind::VertexFace ? guess_vertex_face(p) : guess_edge_edge(p);
+      if (proves_contact(s, evaluate<kKind>(p, uv[0], uv[1]))) {
+        best = {w.t0, true};
+        return;
+      }
+    }
+    const Scalar tm = w.t0 + (w.t1 - w.t0) / 2;
+    {
+      const std::array<Vec3, 4> p = positions(s.m, tm);
+      const std::array<Scalar, 2> uv =
+          kKind == Kind::VertexFace ? guess_vertex_face(p) : guess_edge_edge(p);
+      if (separated_over<kKind>(s, w.t0, w.t1, evaluate<kKind>(p, uv[0], uv[1]))) continue;
+    }
+    if (w.t1 - w.t0 <= s.min_t_width) {
+      // Not separated in a window of the time tolerance: a hit at its start when the primitives
+      // are within min_separation + 2W there (Euclidean, after rounding), else the inclusion
+      // search decides the window.
+      const std::array<Vec3, 4> p = positions(s.m, w.t0);
+      const std::array<Scalar, 2> uv =
+          kKind == Kind::VertexFace ? guess_vertex_face(p) : guess_edge_edge(p);
+      const Vec3 f = evaluate<kKind>(p, uv[0], uv[1]);
+      if (f.norm() * (1 + 8 * kUnitRoundoff) + 2 * s.eps <= s.min_separation + 2 * s.accept_width) {
+        best = {w.t0, false};
+        return;
+      }
+      search<kKind>(s, {w.t0, w.t1, 0, 1, 0, 1}, result, best);
+      if (best.t <= 1) return;  // every later window starts later
+      continue;
+    }
+    stack[top++] = {tm, w.t1, false};
+    stack[top++] = {w.t0, tm, true};
+  }
+}
+
 /// At most this many coplanarity windows get a search of their own; then one search covers the
 /// rest of [0, 1] (motions coplanar, or nearly, over a long time).
 constexpr int kMaxWindows = 8;
@@ -378,8 +486,9 @@ void search_coplanarity_windows(const Setup& s, const coplanar::CubicPiece& whol
 
 template <Kind kKind>
 PrimitiveResult solve(const std::array<Vec3, 4>& at_t0, const std::array<Vec3, 4>& at_t1,
-                      Scalar min_separation, Scalar time_tolerance) {
-  const Setup s = make_setup<kKind>(at_t0, at_t1, min_separation, time_tolerance);
+                      Scalar min_separation, Scalar time_tolerance,
+                      std::uint32_t max_boxes = kMaxBoxes) {
+  const Setup s = make_setup<kKind>(at_t0, at_t1, min_separation, time_tolerance, max_boxes);
   PrimitiveResult result;
   Best best;
   coplanar::CubicPiece cubic;
@@ -400,6 +509,8 @@ PrimitiveResult solve(const std::array<Vec3, 4>& at_t0, const std::array<Vec3, 4
   if (min_separation == 0 && coplanar::coplanarity_cubic(at_t0, at_t1, kHi, kLo, cubic)) {
     result.boxes = 1;
     search_coplanarity_windows<kKind>(s, cubic, result, best);
+  } else if (min_separation > 0) {
+    search_separated<kKind>(s, result, best);
   } else {
     search<kKind>(s, {0, 1, 0, 1, 0, 1}, result, best);
   }
@@ -427,14 +538,14 @@ PrimitiveResult edge_edge(const std::array<Vec3, 4>& at_t0, const std::array<Vec
 
 PrimitiveResult unchecked::vertex_face(const std::array<Vec3, 4>& at_t0,
                                        const std::array<Vec3, 4>& at_t1, Scalar min_separation,
-                                       Scalar time_tolerance) {
-  return solve<Kind::VertexFace>(at_t0, at_t1, min_separation, time_tolerance);
+                                       Scalar time_tolerance, std::uint32_t max_boxes) {
+  return solve<Kind::VertexFace>(at_t0, at_t1, min_separation, time_tolerance, max_boxes);
 }
 
 PrimitiveResult unchecked::edge_edge(const std::array<Vec3, 4>& at_t0,
                                      const std::array<Vec3, 4>& at_t1, Scalar min_separation,
-                                     Scalar time_tolerance) {
-  return solve<Kind::EdgeEdge>(at_t0, at_t1, min_separation, time_tolerance);
+                                     Scalar time_tolerance, std::uint32_t max_boxes) {
+  return solve<Kind::EdgeEdge>(at_t0, at_t1, min_separation, time_tolerance, max_boxes);
 }
 
 Transform interpolate_pose(const Transform& p0, const Transform& p1, Scalar t) {

@@ -473,6 +473,10 @@ TEST(DeformCcd, BadInputNamesTheArgument) {
   req.time_tolerance = 0;
   EXPECT_NE(message([&] { deform_sweep(model, c.v0, c.v1, req); }).find("time_tolerance"),
             std::string::npos);
+  req = {};
+  req.primitive_max_boxes = 0;
+  EXPECT_EQ(message([&] { deform_sweep(model, c.v0, c.v1, req); }),
+            "deform_sweep: primitive_max_boxes must be at least 1, got 0");
   Transform bad;
   bad.translation.x() = std::numeric_limits<Scalar>::infinity();
   EXPECT_NE(
