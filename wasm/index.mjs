@@ -206,7 +206,8 @@ export default async function createAntcd(options = {}) {
      * triangles are fixed): refits the hierarchy in O(n), every query then answers as on a model
      * built from the moved mesh. Throws an Error naming the problem, the model unchanged: a wrong
      * type or length, a non-finite number, a triangle of zero area at build time that has an area
-     * now, a model held by a World (remove it from the World first), or no WebAssembly memory.
+     * now, a model held by a World (deform the World's object with World.setVertices, or remove
+     * it from the World first), or no WebAssembly memory.
      */
     setVertices(positions) {
       const fn = 'Model.setVertices';

@@ -63,7 +63,8 @@ std::string js_terms(std::string_view what, std::string_view cpp_function) {
       {"id (slot", "handle (slot"},
       {"options.rebuild_above", "rebuildAbove"},
   };
-  if (what.size() > cpp_function.size() + 2 && what.substr(0, cpp_function.size()) == cpp_function &&
+  if (what.size() > cpp_function.size() + 2 &&
+      what.substr(0, cpp_function.size()) == cpp_function &&
       what.substr(cpp_function.size(), 2) == ": ") {
     what.remove_prefix(cpp_function.size() + 2);
   }
