@@ -34,7 +34,7 @@ export function worldApi(ctx) {
   // sweepMotion and setMotionContinuous (method: the core's): the arguments checked, copied into
   // one checked float64 block (n handles, n poses, m handles, m coordinate counts, coordinates).
   function motion(w, fn, method, handles, poses, vertexMotions, opts) {
-    if (!(Array.isArray(handles) || ArrayBuffer.isView(handles))) {
+    if (!(Array.isArray(handles) || (ArrayBuffer.isView(handles) && !(handles instanceof DataView)))) {
       throw new Error(`${fn}: handles must be an array of object handles, got ${describe(handles)}`);
     }
     if (!Array.isArray(poses)) throw new Error(`${fn}: poses must be an array of poses (16 numbers each), got ${describe(poses)}`);

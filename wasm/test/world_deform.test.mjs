@@ -80,6 +80,13 @@ test('World.setVertices with selfCollision: self pairs as selfIntersections, con
   assert.equal(world.collideAll({ allContacts: true }).pairs.length, 0);
   world.setVertices(h, Array.from(folded.positions));
   assert.deepEqual(byPair(world.collideAll({ allContacts: true })), all);
+  // A rigid object of the folded Model: its self pair with selfCollision, none without.
+  const hRigid = world.add(fresh, pose([0, -40, 0]).matrix, { name: 'rigid fold', selfCollision: true });
+  world.add(fresh, pose([0, -80, 0]).matrix, { name: 'unchecked fold' });
+  const withRigid = byPair(world.collideAll({ allContacts: true }));
+  assert.deepEqual([...withRigid.keys()], [...all.keys(), `${hRigid},${hRigid}`]);
+  assert.deepEqual(withRigid.get(`${hRigid},${hRigid}`), { contacts: [], self: expected });
+  world.remove(hRigid);
   // The strip's Model is still held by 'plain': Model.setVertices refuses it; once 'plain' is
   // removed it is the JS side's alone again ('cloth' has its own copy), and the World is unmoved.
   assert.throws(() => model.setVertices(folded.positions), /^Error: Model\.setVertices: model 'strip' is held by a World/);
