@@ -3,7 +3,7 @@
 // from positions0 to positions1 over t in [0, 1]. Split from index.mjs, which hands in its
 // helpers: the checked allocation, the output block, the argument checks.
 
-/** The two functions, closed over index.mjs's helpers (ctx). */
+/** The two functions and the pair record's reader, closed over index.mjs's helpers (ctx). */
 export function deformApi(ctx) {
   const { core, alloc, check, out, outCopy, number, modelOf, optionsOf, writePose, isPose, describe, Model } = ctx;
   // Float64Array positions copied into checked WebAssembly allocations: [[address, length], ...]
@@ -128,5 +128,5 @@ export function deformApi(ctx) {
     return out(1)[0];
   }
 
-  return { deformSweep, collisionFreeStep };
+  return { deformSweep, collisionFreeStep, deformPair };
 }

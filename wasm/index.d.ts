@@ -1,5 +1,6 @@
 // Types of the npm package `antcd` (index.mjs). Frames, units and guarantees are those of the C++
-// library (include/antcd/collide.hpp, distance.hpp, sweep.hpp, penetration.hpp, world.hpp):
+// library (include/antcd/collide.hpp, distance.hpp, sweep.hpp, penetration.hpp, deform_ccd.hpp,
+// world.hpp):
 // contact points, normals and closest points are in the WORLD frame; distances in mesh units.
 
 /** A column-major 4x4 rigid matrix (three.js Matrix4.elements): rotation (orthonormal within
@@ -163,6 +164,68 @@ export interface DeformSweepResult {
   scratchBytes: number;
 }
 
+export interface WorldAddOptions {
+  /** Named in error messages. */
+  name?: string;
+  group?: number;
+  mask?: number;
+  /** collideAll and the continuous motion also test the object against itself (self pairs,
+   * a === b; groups, masks and delta do not apply to them). */
+  selfCollision?: boolean;
+  /** setVertices rebuilds the object's hierarchy when its refit grew looser than this (>= 0;
+   * 0: never, refit only). */
+  rebuildAbove?: number;
+}
+
+export interface CollideAllResult {
+  /** (a, b) handles per colliding pair, sorted; a === b: a self pair. */
+  pairs: Float64Array;
+  /** Contact records per pair (0 for a self pair), in contacts in pair order. */
+  contactCounts: Uint32Array;
+  contacts: Float64Array;
+  /** Intersecting triangle pairs per pair (0 for two objects), in selfPairs in pair order. */
+  selfPairCounts: Uint32Array;
+  /** (i, j) triangle indices per self triangle pair, i < j, sorted per pair (selfIntersections'). */
+  selfPairs: Uint32Array;
+}
+
+/** New model-frame positions of a deforming object at t = 1 (x y z per vertex, its count). */
+export interface VertexMotion {
+  handle: number;
+  positions: Float32Array | Float64Array | number[];
+}
+
+export interface MotionOptions {
+  /** Contact distance (>= 0, default 0). */
+  minSeparation?: number;
+  /** Time tolerance (> 0, default 1e-6). */
+  timeTolerance?: number;
+  /** Iteration budget of a rigid pair's sweep (>= 1, default 100000). */
+  maxIterations?: number;
+}
+
+/** A pair of a continuous motion that comes within minSeparation (include/antcd/world.hpp,
+ * MotionToi). */
+export interface MotionToi {
+  /** Handles, a <= b; a === b: a self pair. */
+  a: number;
+  b: number;
+  /** rigidSweep: two rigid objects (sweep); startContact: a pair with a deforming object, or a
+   * self pair, already in contact at t = 0 (toi 0); deform: deformSweep found it (primitive). */
+  kind: 'rigidSweep' | 'startContact' | 'deform';
+  /** Never later than the first contact. */
+  toi: number;
+  toleranceDecided: boolean;
+  /** World point at toi (for display; the certified numbers are toi and the pair). */
+  point: Float64Array;
+  /** startContact: [triangle of a, triangle of b] (a self pair: i < j); else null. */
+  triangles: [number, number] | null;
+  /** deform: the primitive pair, a's mesh first; else null. */
+  primitive: DeformPair | null;
+  /** rigidSweep: sweep()'s answer for the pair; else null. */
+  sweep: SweepResult | null;
+}
+
 export interface RayHit {
   object: number;
   triangle: number;
@@ -187,7 +250,7 @@ export declare class Model {
    * New vertex positions (3 numbers per vertex, the same count; triangles fixed): refits the
    * hierarchy in O(n). Throws an Error naming the problem, the model unchanged (wrong type or
    * length, non-finite number, a zero-area-at-build triangle gaining an area, a model held by a
-   * World, no WebAssembly memory).
+   * World: deform the World's object with World.setVertices instead, no WebAssembly memory).
    */
   setVertices(positions: Float32Array | Float64Array | number[]): void;
   /** Frees the model (Worlds holding it keep their own reference). */
@@ -201,12 +264,31 @@ export declare class Model {
 export declare class World {
   constructor();
   /** Returns the object's handle (a number). */
-  add(model: Model, pose: Pose, options?: { name?: string; group?: number; mask?: number }): number;
+  add(model: Model, pose: Pose, options?: WorldAddOptions): number;
   remove(handle: number): void;
   setPose(handle: number, pose: Pose): void;
+  /**
+   * New model-frame positions of an object's vertices (its vertex count; triangles fixed): a
+   * deforming object. The first call copies the object's Model (the one given to add() is never
+   * changed), later ones refit the copy in O(n). Throws an Error naming the problem, the object
+   * unchanged (wrong type or count, non-finite number, a zero-area-at-build triangle gaining an
+   * area, a removed handle, no WebAssembly memory).
+   */
+  setVertices(handle: number, positions: Float32Array | Float64Array | number[]): void;
   readonly size: number;
-  /** Colliding pairs sorted by handle; contacts[...] holds contactCounts[k] records per pair. */
-  collideAll(options?: CollideOptions): { pairs: Float64Array; contactCounts: Uint32Array; contacts: Float64Array };
+  /** Colliding pairs and self pairs sorted by handle. */
+  collideAll(options?: CollideOptions): CollideAllResult;
+  /**
+   * Continuous motion over t in [0, 1]: handles[k] moves to poses[k] (rigid), vertexMotions[k]'s
+   * object deforms (its world vertices move linearly to poses'/its pose applied to the new
+   * positions); the others stay. Every pair and self pair that comes within minSeparation,
+   * sorted by (a, b). The World is not changed.
+   */
+  sweepMotion(handles: ArrayLike<number>, poses: Pose[], vertexMotions?: VertexMotion[],
+              options?: MotionOptions): MotionToi[];
+  /** sweepMotion, then the new poses and positions applied (every argument is checked first). */
+  setMotionContinuous(handles: ArrayLike<number>, poses: Pose[], vertexMotions?: VertexMotion[],
+                      options?: MotionOptions): MotionToi[];
   /** Pairs whose meshes are within d: (a, b) handles, sorted. */
   pairsWithin(d: number): Float64Array;
   raycast(origin: Vec3Like, direction: Vec3Like, maxDistance?: number): RayHit | null;

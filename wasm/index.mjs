@@ -15,6 +15,7 @@
 // throws an Error saying "out of WebAssembly memory" and the module keeps answering (delete()
 // models and Worlds to make room).
 import { deformApi } from './deform.mjs';
+import { worldApi } from './world.mjs';
 import factory from './dist/antcd_core.cjs';
 
 const isNode = typeof process !== 'undefined' && process.versions != null && process.versions.node != null;
@@ -33,6 +34,7 @@ async function wasmBytes(options) {
 
 /** Contact records: triangleA, triangleB, point x y z, distance, normal x y z, depth. */
 export const CONTACT_STRIDE = 10;
+const SWEEP_STRIDE = 5 + CONTACT_STRIDE;
 const EMPTY = new Float64Array(0);
 const NO_OPTIONS = Object.freeze({});
 
@@ -122,6 +124,16 @@ export default async function createAntcd(options = {}) {
   function collisionFlags(o) {
     return (o.allContacts ? 1 : 0) | (o.contactNormals ? 2 : 0) | (o.volume ? 4 : 0);
   }
+  // Whether positions (x y z per vertex: Float32Array, Float64Array or numbers) are float32; an
+  // Error naming `name` for another type or a length not a multiple of 3.
+  function positionsType(fn, name, positions) {
+    const f32 = positions instanceof Float32Array;
+    if (!(f32 || positions instanceof Float64Array || Array.isArray(positions))) {
+      throw new Error(`${fn}: ${name} must be a Float32Array, Float64Array or array of numbers, got ${describe(positions)}`);
+    }
+    if (positions.length % 3 !== 0) throw new Error(`${fn}: ${name} has ${positions.length} numbers, not a multiple of 3`);
+    return f32;
+  }
   function info(model) {
     check('Model', core.modelInfo(modelOf('Model', 'this', model)));
     return out(5);
@@ -194,15 +206,13 @@ export default async function createAntcd(options = {}) {
      * triangles are fixed): refits the hierarchy in O(n), every query then answers as on a model
      * built from the moved mesh. Throws an Error naming the problem, the model unchanged: a wrong
      * type or length, a non-finite number, a triangle of zero area at build time that has an area
-     * now, a model held by a World (remove it from the World first), or no WebAssembly memory.
+     * now, a model held by a World (deform the World's object with World.setVertices, or remove
+     * it from the World first), or no WebAssembly memory.
      */
     setVertices(positions) {
       const fn = 'Model.setVertices';
       const id = modelOf(fn, 'this', this);
-      const f32 = positions instanceof Float32Array;
-      if (!(f32 || positions instanceof Float64Array || Array.isArray(positions))) {
-        throw new Error(`${fn}: positions must be a Float32Array, Float64Array or array of numbers, got ${describe(positions)}`);
-      }
+      const f32 = positionsType(fn, 'positions', positions);
       const nv = info(this)[1];
       if (positions.length !== 3 * nv) {
         throw new Error(`${fn}: positions has ${positions.length} numbers, the model has ${nv} vertices (${3 * nv})`);
@@ -302,10 +312,15 @@ export default async function createAntcd(options = {}) {
     writePose(3, poseB1, 'sweep', 'poseB1');
     check('sweep', core.sweep(ca, cb, number('sweep', 'minSeparation', opts.minSeparation, 0),
       number('sweep', 'timeTolerance', opts.timeTolerance, 1e-6), number('sweep', 'maxIterations', opts.maxIterations, 100000)));
-    const o = out(5 + CONTACT_STRIDE);
+    return sweepRecord(out(SWEEP_STRIDE), 0);
+  }
+  // The sweep record at o[at] (bindings.cpp, write_sweep) as sweep()'s answer.
+  function sweepRecord(o, at) {
+    const flags = o[at + 4];
     return {
-      hit: (o[4] & 1) !== 0, toi: o[0], distance: o[1], motionBound: o[2], iterations: o[3],
-      toleranceDecided: (o[4] & 2) !== 0, budgetExhausted: (o[4] & 4) !== 0, contact: o.slice(5),
+      hit: (flags & 1) !== 0, toi: o[at], distance: o[at + 1], motionBound: o[at + 2], iterations: o[at + 3],
+      toleranceDecided: (flags & 2) !== 0, budgetExhausted: (flags & 4) !== 0,
+      contact: o.slice(at + 5, at + SWEEP_STRIDE),
     };
   }
 
@@ -389,94 +404,14 @@ export default async function createAntcd(options = {}) {
     };
   }
 
-  const { deformSweep, collisionFreeStep } = deformApi({
+  const { deformSweep, collisionFreeStep, deformPair } = deformApi({
     core, alloc, check, out, outCopy, number, modelOf, optionsOf, writePose, isPose, describe, Model,
   });
 
-  /** A live set of posed objects; handles are numbers. */
-  class World {
-    constructor() {
-      try {
-        this.core = new core.World();
-      } catch (e) {
-        rethrow('World', e);
-      }
-    }
-    #live(fn) {
-      if (this.core === null) throw new Error(`${fn}: the World was deleted`);
-      return this.core;
-    }
-    /** Adds a model at a pose; options: name, group, mask. Returns the object's handle. */
-    add(model, pose, options = {}) {
-      const w = this.#live('World.add');
-      const m = modelOf('World.add', 'model', model);
-      const group = number('World.add', 'group', options.group, 1);
-      const mask = number('World.add', 'mask', options.mask, 4294967295);
-      const [pName, nameLength] = allocString('World.add', 'name', String(options.name ?? ''));
-      try {
-        writePose(0, pose, 'World.add', 'pose');
-        const h = w.add(m, pName, nameLength, group, mask);
-        if (h < 0) fail('World.add');
-        return h;
-      } finally {
-        core.freeBytes(pName);
-      }
-    }
-    remove(handle) {
-      check('World.remove', this.#live('World.remove').remove(number('World.remove', 'handle', handle)));
-    }
-    setPose(handle, pose) {
-      const w = this.#live('World.setPose');
-      writePose(0, pose, 'World.setPose', 'pose');
-      check('World.setPose', w.setPose(number('World.setPose', 'handle', handle)));
-    }
-    get size() { return this.#live('World.size').size(); }
-    /** Every colliding pair: { pairs: Float64Array (a, b handles), contactCounts, contacts }. */
-    collideAll(opts) {
-      const w = this.#live('World.collideAll');
-      const o = optionsOf('World.collideAll', opts);
-      const n = check('World.collideAll', w.collideAll(Boolean(o.allContacts), number('World.collideAll', 'delta', o.delta, 0),
-        Boolean(o.contactNormals), number('World.collideAll', 'maxContacts', o.maxContacts, 0)));
-      const head = out(3 * n);
-      const pairs = new Float64Array(2 * n);
-      const contactCounts = new Uint32Array(n);
-      let total = 0;
-      for (let k = 0; k < n; ++k) {
-        pairs[2 * k] = head[3 * k];
-        pairs[2 * k + 1] = head[3 * k + 1];
-        contactCounts[k] = head[3 * k + 2];
-        total += contactCounts[k];
-      }
-      const all = out(3 * n + CONTACT_STRIDE * total);
-      return { pairs, contactCounts, contacts: total === 0 ? EMPTY : all.slice(3 * n) };
-    }
-    /** Pairs whose meshes are within `d` of each other: Float64Array of (a, b) handles. */
-    pairsWithin(d) {
-      const w = this.#live('World.pairsWithin');
-      const n = check('World.pairsWithin', w.pairsWithin(number('World.pairsWithin', 'distance', d)));
-      return outCopy(2 * n);
-    }
-    /** Nearest hit of the ray origin + s * direction, 0 <= s <= maxDistance, or null. */
-    raycast(origin, direction, maxDistance = Infinity) {
-      const w = this.#live('World.raycast');
-      for (const [name, v] of [['origin', origin], ['direction', direction]]) {
-        if (!((Array.isArray(v) || ArrayBuffer.isView(v)) && v.length === 3)) {
-          throw new Error(`World.raycast: ${name} must be 3 numbers, got ${describe(v)}`);
-        }
-      }
-      const hit = check('World.raycast', w.raycast(origin[0], origin[1], origin[2], direction[0], direction[1],
-        direction[2], number('World.raycast', 'maxDistance', maxDistance)));
-      if (hit === 0) return null;
-      const o = out(9);
-      return { object: o[0], triangle: o[1], distance: o[2], point: o.slice(3, 6), normal: o.slice(6, 9) };
-    }
-    delete() {
-      if (this.core !== null) {
-        this.core.delete();
-        this.core = null;
-      }
-    }
-  }
+  const World = worldApi({
+    core, alloc, allocString, check, fail, rethrow, out, outCopy, number, modelOf, optionsOf, writePose, isPose, describe,
+    positionsType, sweepRecord, deformPair, EMPTY,
+  });
 
   return {
     Model, World, collide, collides, distance, sweep, penetration, selfIntersections, selfProximity,

@@ -1,5 +1,6 @@
 // Embind exports of the deforming sweeps (antcd/deform_ccd.hpp) for the npm package: deformSweep
-// and collisionFreeStep (wasm/index.mjs wraps them). The calling convention, the output block and
+// and collisionFreeStep (wasm/deform.mjs wraps them), and the pair record World.sweepMotion
+// shares. The calling convention, the output block and
 // the error handling are bindings.cpp's (abi.hpp).
 #include <antcd/deform_ccd.hpp>
 #include <antcd/error.hpp>
@@ -12,6 +13,18 @@
 #include <vector>
 
 #include "abi.hpp"
+
+namespace antcd::wasm {
+
+void write_pair(double* out, const DeformPair& p) {
+  out[0] = p.kind == DeformPairKind::VertexFace ? 0 : 1;
+  out[1] = p.vertex_in_first ? 1 : 0;
+  for (int k = 0; k < 4; ++k) out[2 + k] = p.indices[static_cast<std::size_t>(k)];
+  out[6] = p.toi;
+  out[7] = (p.tolerance_decided ? 1 : 0) + (p.budget_exhausted ? 2 : 0);
+}
+
+}  // namespace antcd::wasm
 
 namespace {
 
@@ -55,17 +68,6 @@ DeformSweepRequest request_of(double min_separation, double time_tolerance, bool
 }
 
 constexpr std::size_t kHead = 7;
-constexpr std::size_t kPairStride = 8;
-
-// A pair record: kind (0 vertex-face, 1 edge-edge), vertex_in_first (0/1), indices (4), toi,
-// flags (1 tolerance_decided, 2 budget_exhausted).
-void write_pair(double* out, const DeformPair& p) {
-  out[0] = p.kind == DeformPairKind::VertexFace ? 0 : 1;
-  out[1] = p.vertex_in_first ? 1 : 0;
-  for (int k = 0; k < 4; ++k) out[2 + k] = p.indices[static_cast<std::size_t>(k)];
-  out[6] = p.toi;
-  out[7] = (p.tolerance_decided ? 1 : 0) + (p.budget_exhausted ? 2 : 0);
-}
 
 // Out: flags (1 hit, 2 tolerance_decided), toi, node_pairs, primitive_queries, tasks,
 // scratch_bytes, k (the all_pairs count), then the earliest pair's record (zeros without a hit)

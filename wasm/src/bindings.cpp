@@ -1,16 +1,16 @@
 // Embind bindings of the core for the npm package `antcd` (wasm/index.mjs wraps them in the
-// documented JS API; index.d.ts states it). The package's C ABI (about 680 lines): its pose block,
-// output block, error buffer and checked allocation stay in this file; the few functions other
-// export files use (the deforming sweeps, bind_deform.cpp) are declared in abi.hpp, the globals
-// themselves never leave it. Each export is a thin call of the library. The two hot queries,
-// antcd_collide and antcd_distance, are raw exports (Module._antcd_collide: no Embind call
-// wrapper; a rejected query from node fell from about 1.2 to 0.55 us); models are passed by id
-// (the table g_models), World objects by handle. One piece on purpose: the ABI's shared blocks
-// and the exports that use them would otherwise need those globals exported between files.
+// documented JS API; index.d.ts states it). The package's C ABI: its pose block, output block,
+// error buffer and checked allocation stay in this file; the functions other export files use (the
+// deforming sweeps, bind_deform.cpp; the World, bind_world.cpp) are declared in abi.hpp, the
+// globals themselves never leave it. Each export is a thin call of the library. The two hot
+// queries, antcd_collide and antcd_distance, are raw exports (Module._antcd_collide: no Embind
+// call wrapper; a rejected query from node fell from about 1.2 to 0.55 us); models are passed by
+// id (the table g_models), World objects by handle.
 //
 // Calling convention (one thread, as in every Emscripten build without pthreads):
 // - Poses: JS writes up to kPoseSlots column-major 4x4 matrices (16 doubles each, three.js
 //   Matrix4.elements order) into the input block at poseBlock(); functions read pose k from slot k.
+//   Calls taking any number of poses (World.sweepMotion) get them in a block JS allocated.
 // - Results: a function fills the output block (at antcd_out_block(), a reused vector: no
 //   allocation once it has grown) and returns a count, or -1 after an error whose one-line
 //   message lastError() gives.
@@ -31,7 +31,6 @@
 #include <antcd/self.hpp>
 #include <antcd/sweep.hpp>
 #include <antcd/version.hpp>
-#include <antcd/world.hpp>
 
 #include <emscripten/bind.h>
 #include <emscripten/emscripten.h>
@@ -56,9 +55,6 @@ using namespace antcd;
 using namespace antcd::wasm;
 
 constexpr int kPoseSlots = 4;
-constexpr int kContactStride = 10;
-constexpr double kGenerationScale = 4294967296.0;   // 2^32
-constexpr std::uint32_t kMaxGeneration = 1U << 20;  // handles stay below 2^52
 
 double g_poses[kPoseSlots * 16];
 // Per slot, the last pose that passed pose_at's check, so that a pose repeated from call to call
@@ -100,28 +96,51 @@ int fail_with(const char* function, const std::exception& e) {
   return fail(function, ": ", what);
 }
 
-// Pose k of the input block as a rigid Transform; throws ArgumentError naming `what`.
-Transform pose_at(int k, const char* function, const char* what) {
-  const double* m = g_poses + 16 * k;
+namespace {
+
+Transform transform_of(const double* m) {
   Transform t;
   for (int c = 0; c < 3; ++c) {
     for (int r = 0; r < 3; ++r) t.rotation(r, c) = m[4 * c + r];
   }
   t.translation = Vec3(m[12], m[13], m[14]);
+  return t;
+}
+
+}  // namespace
+
+Transform rigid_pose(const double* m, const char* function, const std::string& what) {
+  const Transform t = transform_of(m);
+  const PoseCheck c = check_pose(t, m[3], m[7], m[11], m[15]);
+  if (!c.rigid()) throw ArgumentError(std::string(function) + ": " + what + " " + c.problem());
+  return t;
+}
+
+// Pose k of the input block as a rigid Transform; throws ArgumentError naming `what`.
+Transform pose_at(int k, const char* function, const char* what) {
+  const double* m = g_poses + 16 * k;
   double* checked = g_checked + 16 * k;
   if (g_checked_valid[k]) {
     bool same = true;
     for (int i = 0; i < 16; ++i) same &= m[i] == checked[i];  // a NaN is never equal
-    if (same) return t;
+    if (same) return transform_of(m);
   }
-  const PoseCheck c = check_pose(t, m[3], m[7], m[11], m[15]);
-  if (!c.rigid()) {
-    g_checked_valid[k] = false;
-    throw ArgumentError(std::string(function) + ": " + what + " " + c.problem());
-  }
+  g_checked_valid[k] = false;
+  const Transform t = rigid_pose(m, function, what);
   std::copy(m, m + 16, checked);
   g_checked_valid[k] = true;
   return t;
+}
+
+void read_vec3s(std::uintptr_t at, bool f32, std::vector<Vec3>& out) {
+  const std::size_t n = out.size();
+  if (f32) {
+    const auto* p = reinterpret_cast<const float*>(at);
+    for (std::size_t i = 0; i < n; ++i) out[i] = Vec3(p[3 * i], p[3 * i + 1], p[3 * i + 2]);
+  } else {
+    const auto* p = reinterpret_cast<const double*>(at);
+    for (std::size_t i = 0; i < n; ++i) out[i] = Vec3(p[3 * i], p[3 * i + 1], p[3 * i + 2]);
+  }
 }
 
 double* out_resize(std::size_t n) {
@@ -129,17 +148,12 @@ double* out_resize(std::size_t n) {
   return g_out.data();
 }
 
-}  // namespace antcd::wasm
-
-namespace {
-
 void write_vec(double* out, const Vec3& v) {
   out[0] = v.x();
   out[1] = v.y();
   out[2] = v.z();
 }
 
-// A contact record: triangle_a, triangle_b, point (3), distance, normal (3), depth.
 void write_contact(double* out, const Contact& c) {
   out[0] = c.triangle_a;
   out[1] = c.triangle_b;
@@ -149,7 +163,6 @@ void write_contact(double* out, const Contact& c) {
   out[9] = c.depth;
 }
 
-// An integer in [1, 2^32) given as a JS number; throws ArgumentError naming it.
 std::uint32_t positive_count(double v, const char* name) {
   if (!(v >= 1 && v <= 4294967295.0) || v != std::floor(v)) {
     throw ArgumentError(std::string(name) + " " + number_text(v) +
@@ -172,7 +185,16 @@ CollisionRequest collision_request(bool all_contacts, double delta, bool normals
   return r;
 }
 
-}  // namespace
+void write_sweep(double* out, const SweepResult& s) {
+  out[0] = s.toi;
+  out[1] = s.distance;
+  out[2] = s.motion_bound;
+  out[3] = s.iterations;
+  out[4] = (s.hit ? 1 : 0) + (s.tolerance_decided ? 2 : 0) + (s.budget_exhausted ? 4 : 0);
+  write_contact(out + 5, s.contact);
+}
+
+}  // namespace antcd::wasm
 
 namespace {
 
@@ -221,15 +243,7 @@ int model_create(std::uintptr_t positions, double n_coords, bool f32, std::uintp
     const auto nv = static_cast<std::size_t>(n_coords) / 3;
     const auto nt = static_cast<std::size_t>(n_indices) / 3;
     mesh.vertices.resize(nv);
-    if (f32) {
-      const auto* p = reinterpret_cast<const float*>(positions);
-      for (std::size_t i = 0; i < nv; ++i)
-        mesh.vertices[i] = Vec3(p[3 * i], p[3 * i + 1], p[3 * i + 2]);
-    } else {
-      const auto* p = reinterpret_cast<const double*>(positions);
-      for (std::size_t i = 0; i < nv; ++i)
-        mesh.vertices[i] = Vec3(p[3 * i], p[3 * i + 1], p[3 * i + 2]);
-    }
+    read_vec3s(positions, f32, mesh.vertices);
     const auto* ix = reinterpret_cast<const std::uint32_t*>(indices);
     mesh.triangles.resize(nt);
     for (std::size_t i = 0; i < nt; ++i)
@@ -316,18 +330,17 @@ int model_set_vertices(int id, std::uintptr_t positions, double n_coords, bool f
     if (m.use_count() > 1) {
       throw ArgumentError("model '" + m->source() +
                           "' is held by a World, whose broad phase keeps the bounds of its current "
-                          "positions; remove it from the World first");
+                          "positions; give the World's object new positions with "
+                          "World.setVertices, or remove it from the World first");
     }
     std::vector<Vec3> v(nv);
+    read_vec3s(positions, f32, v);
     for (std::size_t i = 0; i < nv; ++i) {
       for (int c = 0; c < 3; ++c) {
-        const double x = f32 ? reinterpret_cast<const float*>(positions)[3 * i + c]
-                             : reinterpret_cast<const double*>(positions)[3 * i + c];
-        if (!std::isfinite(x)) {
-          throw ArgumentError("positions[" + std::to_string(3 * i + c) + "] = " + number_text(x) +
-                              " is not finite");
+        if (!std::isfinite(v[i][c])) {
+          throw ArgumentError("positions[" + std::to_string(3 * i + c) +
+                              "] = " + number_text(v[i][c]) + " is not finite");
         }
-        v[i][c] = x;
       }
     }
     m->refit(v);
@@ -479,8 +492,7 @@ extern "C" EMSCRIPTEN_KEEPALIVE std::uintptr_t antcd_out_block() {
 
 namespace {
 
-// Poses 0, 1 (A at t = 0, 1) and 2, 3 (B). Out: toi, distance, motion_bound, iterations, flags
-// (1 hit, 2 tolerance_decided, 4 budget_exhausted), then the contact record.
+// Poses 0, 1 (A at t = 0, 1) and 2, 3 (B). Out: the sweep record (write_sweep).
 int wasm_sweep(int a, int b, double min_separation, double time_tolerance, double max_iterations) {
   return guarded("sweep", [&] {
     SweepRequest r;
@@ -490,13 +502,7 @@ int wasm_sweep(int a, int b, double min_separation, double time_tolerance, doubl
     const SweepResult s = antcd::sweep(
         *model_ref(a, "a"), pose_at(0, "sweep", "poseA0"), pose_at(1, "sweep", "poseA1"),
         *model_ref(b, "b"), pose_at(2, "sweep", "poseB0"), pose_at(3, "sweep", "poseB1"), r);
-    double* out = out_resize(5 + kContactStride);
-    out[0] = s.toi;
-    out[1] = s.distance;
-    out[2] = s.motion_bound;
-    out[3] = s.iterations;
-    out[4] = (s.hit ? 1 : 0) + (s.tolerance_decided ? 2 : 0) + (s.budget_exhausted ? 4 : 0);
-    write_contact(out + 5, s.contact);
+    write_sweep(out_resize(kSweepStride), s);
     return 1;
   });
 }
@@ -528,122 +534,6 @@ int wasm_penetration(int a, int b, int shape, double abs_tolerance, double rel_t
   });
 }
 
-double handle_of(ObjectId id) { return id.slot + id.generation * kGenerationScale; }
-
-}  // namespace
-
-class WasmWorld {
- public:
-  /// Pose 0; name: n_name UTF-8 bytes at `name_bytes`. Returns the handle, or -1.
-  double add(int model, std::uintptr_t name_bytes, double n_name, double group, double mask) {
-    double handle = -1;
-    guarded("World.add", [&] {
-      ObjectOptions o;
-      o.name.assign(reinterpret_cast<const char*>(name_bytes), static_cast<std::size_t>(n_name));
-      o.group = filter_bits(group, "group");
-      o.mask = filter_bits(mask, "mask");
-      const ObjectId id = world_.add(model_ref(model, "model"), pose_at(0, "World.add", "pose"), o);
-      if (id.generation >= kMaxGeneration) {
-        world_.remove(id);
-        throw ArgumentError("too many objects have used this slot");
-      }
-      handle = handle_of(id);
-      return 0;
-    });
-    return handle;
-  }
-  int remove(double handle) {
-    return guarded("World.remove", [&] {
-      world_.remove(id_of(handle, "World.remove"));
-      return 0;
-    });
-  }
-  /// Pose 0.
-  int set_pose(double handle) {
-    return guarded("World.setPose", [&] {
-      world_.set_pose(id_of(handle, "World.setPose"), pose_at(0, "World.setPose", "pose"));
-      return 0;
-    });
-  }
-  [[nodiscard]] double size() const { return static_cast<double>(world_.size()); }
-  /// Out: per colliding pair (handle a, handle b, contact count); then every contact record in
-  /// pair order. Returns the number of pairs.
-  int collide_all(bool all_contacts, double delta, bool normals, double max_contacts) {
-    return guarded("World.collideAll", [&] {
-      const auto pairs =
-          world_.collide_all(collision_request(all_contacts, delta, normals, max_contacts));
-      std::size_t contacts = 0;
-      for (const PairContacts& p : pairs) contacts += p.contacts.size();
-      double* out = out_resize(3 * pairs.size() + kContactStride * contacts);
-      double* rec = out + 3 * pairs.size();
-      for (const PairContacts& p : pairs) {
-        out[0] = handle_of(p.a);
-        out[1] = handle_of(p.b);
-        out[2] = static_cast<double>(p.contacts.size());
-        out += 3;
-        for (const Contact& c : p.contacts) {
-          write_contact(rec, c);
-          rec += kContactStride;
-        }
-      }
-      return static_cast<int>(pairs.size());
-    });
-  }
-  /// Out: (handle a, handle b) per pair. Returns the number of pairs.
-  int pairs_within(double d) {
-    return guarded("World.pairsWithin", [&] {
-      const auto pairs = world_.pairs_within(d);
-      double* out = out_resize(2 * pairs.size());
-      for (const ObjectPair& p : pairs) {
-        *out++ = handle_of(p.a);
-        *out++ = handle_of(p.b);
-      }
-      return static_cast<int>(pairs.size());
-    });
-  }
-  /// Out: handle, triangle, distance, point (3), normal (3). Returns 1 for a hit, 0 for none.
-  int raycast(double ox, double oy, double oz, double dx, double dy, double dz, double max_d) {
-    return guarded("World.raycast", [&] {
-      Ray ray;
-      ray.origin = Vec3(ox, oy, oz);
-      ray.direction = Vec3(dx, dy, dz);
-      ray.max_distance = max_d;
-      const auto hit = world_.raycast(ray);
-      if (!hit) return 0;
-      double* out = out_resize(9);
-      out[0] = handle_of(hit->object);
-      out[1] = hit->triangle;
-      out[2] = hit->distance;
-      write_vec(out + 3, hit->point);
-      write_vec(out + 6, hit->normal);
-      return 1;
-    });
-  }
-
- private:
-  static std::uint32_t filter_bits(double v, const char* what) {
-    if (!(v >= 0 && v <= 4294967295.0) || v != std::floor(v)) {
-      throw ArgumentError(std::string(what) + " " + number_text(v) +
-                          " is not an integer in [0, 2^32)");
-    }
-    return static_cast<std::uint32_t>(v);
-  }
-  static ObjectId id_of(double handle, const char* function) {
-    if (!(handle >= 0 && handle < kMaxGeneration * kGenerationScale) ||
-        handle != std::floor(handle)) {
-      throw ArgumentError(std::string(function) + ": " + number_text(handle) +
-                          " is not an object handle");
-    }
-    const double gen = std::floor(handle / kGenerationScale);
-    return ObjectId{static_cast<std::uint32_t>(handle - gen * kGenerationScale),
-                    static_cast<std::uint32_t>(gen)};
-  }
-
-  World world_;
-};
-
-namespace {
-
 std::uintptr_t alloc_bytes(double n) {
   return reinterpret_cast<std::uintptr_t>(std::malloc(static_cast<std::size_t>(n)));
 }
@@ -656,15 +546,6 @@ std::string version() { return kVersion; }
 
 EMSCRIPTEN_BINDINGS(antcd_core) {
   using namespace emscripten;
-  class_<WasmWorld>("World")
-      .constructor<>()
-      .function("add", &WasmWorld::add)
-      .function("remove", &WasmWorld::remove)
-      .function("setPose", &WasmWorld::set_pose)
-      .function("size", &WasmWorld::size)
-      .function("collideAll", &WasmWorld::collide_all)
-      .function("pairsWithin", &WasmWorld::pairs_within)
-      .function("raycast", &WasmWorld::raycast);
   function("modelCreate", &model_create);
   function("modelShape", &model_shape);
   function("modelMesh", &model_mesh);

@@ -85,3 +85,38 @@ export function rng(seed) {
     return ((t ^ (t >>> 14)) >>> 0) / 4294967296;
   };
 }
+
+/** A grid sheet of nx x ny vertices at place(u, v) (u, v in [0, 1]), two triangles per cell. */
+export function sheet(nx, ny, place) {
+  const positions = new Float64Array(3 * nx * ny);
+  const indices = [];
+  for (let i = 0; i < nx; ++i) {
+    for (let j = 0; j < ny; ++j) positions.set(place(i / (nx - 1), j / (ny - 1)), 3 * (i * ny + j));
+  }
+  for (let i = 0; i + 1 < nx; ++i) {
+    for (let j = 0; j + 1 < ny; ++j) {
+      const a = i * ny + j;
+      const b = (i + 1) * ny + j;
+      indices.push(a, b, b + 1, a, b + 1, a + 1);
+    }
+  }
+  return { positions, indices: new Uint32Array(indices) };
+}
+
+/** A rigid pose matrix (column-major): a turn by `angle` about z, then translation t. */
+export function turnZ(angle, t = [0, 0, 0]) {
+  const c = Math.cos(angle);
+  const s = Math.sin(angle);
+  return [c, s, 0, 0, -s, c, 0, 0, 0, 0, 1, 0, t[0], t[1], t[2], 1];
+}
+
+/** positions (x y z per vertex) mapped by a column-major rigid matrix. */
+export function posed(matrix, positions) {
+  const out = new Float64Array(positions.length);
+  for (let k = 0; k < positions.length; k += 3) {
+    for (let r = 0; r < 3; ++r) {
+      out[k + r] = matrix[r] * positions[k] + matrix[4 + r] * positions[k + 1] + matrix[8 + r] * positions[k + 2] + matrix[12 + r];
+    }
+  }
+  return out;
+}

@@ -2,6 +2,7 @@
 // more threw nothing and wrote its positions over address 0 (the allocator returned 0), then a
 // later call trapped or hung. Now the call throws an Error saying so, and the module keeps
 // answering: the queries before and after agree, and once models are deleted it builds again.
+// Also World.setVertices and the continuous motion of a deforming object (issues 36, 37).
 import assert from 'node:assert/strict';
 import { test } from 'node:test';
 
@@ -24,13 +25,23 @@ test('out of WebAssembly memory: an Error, then the module answers again', { tim
   for (let k = 0; k < positions.length; ++k) positions[k] = k % 7;
   const kept = [];
   let error = null;
+  // A World holding the second big model (added while memory is not yet full) as a deforming
+  // object: its setVertices and continuous motion need copies of its vertices.
+  const held = new antcd.World();
+  let big = -1;
   for (let k = 0; k < 64 && error === null; ++k) {
     try {
       kept.push(new antcd.Model(positions, [0, 1, 2], { name: `big ${k}` }));
+      if (k === 1) {
+        held.add(ball, at(0, 0, 0.1));
+        big = held.add(kept[1], at(0.5), { name: 'big', selfCollision: true });
+      }
     } catch (e) {
       error = e;
     }
   }
+  const worldQuery = () => JSON.stringify([held.collideAll({ allContacts: true }), held.sweepMotion([big], [at(0.6)], [])]);
+  const worldBefore = worldQuery();
   assert.ok(error instanceof Error, `no Error after ${kept.length} models: ${error}`);
   // Either the C++ side (the mesh's copy) or the JS side (the positions' buffer) ran out.
   assert.match(error.message, /^Model( big \d+)?: out of WebAssembly memory/);
@@ -67,6 +78,17 @@ test('out of WebAssembly memory: an Error, then the module answers again', { tim
     (e) => e instanceof Error && /^deformSweep: out of WebAssembly memory/.test(e.message), 'deformSweep');
   assert.deepEqual(query(), before);
   assert.equal(kept[0].vertexCount, 4 * 1024 * 1024);
+  // World.setVertices of the big object needs the positions' buffer, their C++ copy and the
+  // World's own copy of the Model; a continuous motion deforming it, its buffer and copies: less
+  // than two of them are left. An Error each, and the World answers as before.
+  const motion = [[], [], [{ handle: big, positions }]];
+  for (const [fn, call] of [['setVertices', () => held.setVertices(big, positions)],
+    ['sweepMotion', () => held.sweepMotion(...motion)], ['setMotionContinuous', () => held.setMotionContinuous(...motion)]]) {
+    assert.throws(call, (e) => e instanceof Error && new RegExp(`^World\\.${fn}: out of WebAssembly memory`).test(e.message), fn);
+    assert.equal(worldQuery(), worldBefore, `World.${fn}: the World answers as before`);
+  }
+  held.delete();
+  assert.deepEqual(query(), before);
   // A World can be made (or is refused with an Error), and used.
   let world = null;
   try {
