@@ -40,15 +40,14 @@ root="$(pwd)"
 #   build check, ~3 min of compiling; the serial paths it checks are the oneTBB paths' code).
 #   PenetrationLarge.BoxesOfHundredThousandTriangles: the penetration depth of two 101 568-triangle
 #   boxes (1.5 s in Release); the same code runs under ASan on the smaller penetration tests.
-#   DeformCcd.SameAnswerAtAnyThreadCount, .StackedSheetsAreConservative, DeformCcdSubstep.FoldingStrip
-#   and .ClothFallingOntoSphere: 5.6-29 s in Release, 26-37 times that under ASan (measured on the
-#   deform tests that did run: 119 and 131 s), past ctest's 600 s; the same sweeps run under ASan
-#   in the other DeformCcd and DeformCcdExact tests (rational truth, bad input, one vertex poking).
-#   DeformMotion.NeverMissesAPairAgainstSubstepping and .SameAnswerAtOneAndThreeThreads: 6.5 and
-#   6.8 s in Release, 459 and 566 s under ASan on a loaded machine (too near ctest's 600 s);
-#   the same World::sweep_motion paths run under ASan in the other DeformMotion tests and in
-#   FlexContinuous.*.
-asan_exclude='^(DeformMotion\.NeverMissesAPairAgainstSubstepping|DeformMotion\.SameAnswerAtOneAndThreeThreads|ExactCollide\.GeneratedShapesMatchBruteForceOnRandomPoses|LoadMeshLarge\.FiveMillionTriangleBinaryStl|consumer_core_serial|PenetrationLarge\.BoxesOfHundredThousandTriangles|DeformCcd\.SameAnswerAtAnyThreadCount|DeformCcd\.StackedSheetsAreConservative|DeformCcdSubstep\.FoldingStrip|DeformCcdSubstep\.ClothFallingOntoSphere)$'
+#   DeformCcd.SameAnswerAtAnyThreadCount: 11.6 s in Release (a crumpling cloth at four thread
+#   counts), 26-37 times that under ASan (measured on the deform tests that did run), past ctest's
+#   600 s; the same sweeps run under ASan in the other DeformCcd and DeformCcdExact tests.
+#   (DeformMotion.NeverMisses.../SameAnswer..., DeformCcd.StackedSheetsAreConservative and
+#   DeformCcdSubstep.FoldingStrip/ClothFallingOntoSphere, once left out too, take 0.02-3 s in
+#   Release since the
+#   primitives with a separation search by time windows: they run here again.)
+asan_exclude='^(ExactCollide\.GeneratedShapesMatchBruteForceOnRandomPoses|LoadMeshLarge\.FiveMillionTriangleBinaryStl|consumer_core_serial|PenetrationLarge\.BoxesOfHundredThousandTriangles|DeformCcd\.SameAnswerAtAnyThreadCount)$'
 
 run_asan() {
   local dir="${ANTCD_ASAN_BUILD_DIR:-build-asan}"
