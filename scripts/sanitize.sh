@@ -45,8 +45,7 @@ root="$(pwd)"
 #   600 s; the same sweeps run under ASan in the other DeformCcd and DeformCcdExact tests.
 #   (DeformMotion.NeverMisses.../SameAnswer..., DeformCcd.StackedSheetsAreConservative and
 #   DeformCcdSubstep.FoldingStrip/ClothFallingOntoSphere, once left out too, take 0.02-3 s in
-#   Release since the
-#   primitives with a separation search by time windows: they run here again.)
+#   Release since the primitives with a separation search by time windows: they run here again.)
 asan_exclude='^(ExactCollide\.GeneratedShapesMatchBruteForceOnRandomPoses|LoadMeshLarge\.FiveMillionTriangleBinaryStl|consumer_core_serial|PenetrationLarge\.BoxesOfHundredThousandTriangles|DeformCcd\.SameAnswerAtAnyThreadCount)$'
 
 run_asan() {
