@@ -39,13 +39,14 @@
 // With min_separation == 0 a filter runs first: a contact needs the four points coplanar, so time
 // pieces where the coplanarity cubic (Bernstein form, each coefficient with a certified rounding
 // bound) keeps one strict sign are skipped, and the earliest remaining windows are checked at a
-// parameter guess (accepted only within 2W per axis) before the search above runs on them alone.
+// parameter guess (accepted only within 2W per axis) before the window search below runs on them
+// alone (and on the rest of [0, 1] where the cubic may vanish all along: motion in one plane).
 // It removes no window that can hold a contact (docs/ccd.md, "Primitives").
-// With min_separation > 0 the search runs over time windows instead, earliest first: a window is
-// excluded when one direction certifies the primitives farther apart than min_separation over all
-// of it (a support-function bound, concave in t, checked at both ends with its rounding), ends the
-// search at its start when a contact is proven there, or, once at most time_tolerance long, when
-// the primitives are within min_separation + 2W (Euclidean) there; otherwise it is halved, and a
+// The window search (alone when min_separation > 0), earliest first: a window is excluded when
+// one direction certifies the primitives farther apart than min_separation over all of it (a
+// support-function bound, concave in t, checked at both ends with its rounding), ends the search
+// at its start when a contact is proven there, or, once at most time_tolerance long, when the
+// primitives are within min_separation + 2W (Euclidean) there; otherwise it is halved, and a
 // window of the tolerance that is none of these gets the inclusion search above.
 //
 // Thread safety: every function here is a pure const computation; call it from any thread.

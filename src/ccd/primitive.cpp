@@ -23,11 +23,13 @@
 //    it is certifiably nonzero hold no contact; it is split down to windows of min_t_width.
 // 3. Per window, earliest first: accept_at checks F at the guessed nearest parameters at the
 //    window's start (a contact within the window leaves the primitives within W there); if that
-//    does not decide, the inclusion search runs on the window alone.
-// min_separation > 0 (search_separated): time windows, earliest first, are certified apart by a
-// separating direction over the whole window, or accepted at their start (Euclidean distance
-// within min_separation + 2W there), or halved; a window of min_t_width that is neither gets the
-// inclusion search.
+//    does not decide, the window search below runs on the window alone (and on the rest of
+//    [0, 1] where the cubic may vanish all along: motion in one plane, or after 8 windows).
+// The window search (search_separated; alone when min_separation > 0): time windows, earliest
+// first, are certified apart by a separating direction over the whole window, or accepted at
+// their start (a contact proven there; or, once the time tolerance wide, Euclidean distance
+// within min_separation + 2W there), or halved; a window of min_t_width that is none of these
+// gets the inclusion search.
 // Conservative throughout: every time before the answer is excluded by a certified sign, an
 // excluded box or a certified separating direction, and an accepted time has the primitives within
 // 2W (+ rounding) per axis.
@@ -347,7 +349,7 @@ void search(const Setup& s, const Box& initial, PrimitiveResult& result, Best& b
   }
 }
 
-/// min_separation > 0: whether the primitives are certainly farther apart than min_separation over
+/// Whether the primitives are certainly farther apart than min_separation (>= 0) over
 /// the whole window [t0, t1], using the direction f (F at guessed nearest parameters). For any
 /// direction n, dist(A, B) >= (min over A's corners of n.a - max over B's corners of n.b) / |n|
 /// (support functions of the two convex primitives; vertex-face: A is the vertex). The corners
@@ -384,23 +386,26 @@ bool separated_over(const Setup& s, Scalar t0, Scalar t1, const Vec3& f) {
   return true;
 }
 
-/// min_separation > 0: the inclusion search alone would have to bisect the shell between the
-/// separation's sphere and its cube (F's inclusion is per axis, the separation Euclidean) down to
-/// the tolerance, which a grazing approach turns into the whole box budget. Instead, time windows
+/// The time-window search over [t_begin, t_end]. With min_separation > 0 the inclusion search
+/// alone would have to bisect the shell between the separation's sphere and its cube (F's
+/// inclusion is per axis, the separation Euclidean) down to the tolerance, which a grazing
+/// approach turns into the whole box budget; with 0, edges moving in one plane 1e-5 apart (the
+/// coplanarity cubic vanishes all along) did the same. Instead, time windows
 /// (earliest first) are either certified apart by a separating direction (separated_over), or
 /// end the search at their start (every earlier time is excluded, so toi <= t*) when a contact is
 /// proven there, or, for a window of at most min_t_width, when the primitives are within
 /// min_separation + 2W there (Euclidean, after rounding; tolerance-decided), or are halved; a
 /// window of min_t_width that is none of these goes to the inclusion search.
 template <Kind kKind>
-void search_separated(const Setup& s, PrimitiveResult& result, Best& best) {
+void search_separated(const Setup& s, Scalar t_begin, Scalar t_end, PrimitiveResult& result,
+                      Best& best) {
   struct Window {
     Scalar t0, t1;
     bool start_checked;  ///< its start was already checked (a left half shares its parent's)
   };
   std::array<Window, 64> stack;  // windows halve down to min_t_width >= 2^-50
   std::size_t top = 0;
-  stack[top++] = {0, 1, false};
+  stack[top++] = {t_begin, t_end, false};
   while (top > 0) {
     const Window w = stack[--top];
     if (result.boxes >= s.max_boxes) {  // the earliest unresolved window is the one popped
@@ -470,12 +475,12 @@ void search_coplanarity_windows(const Setup& s, const coplanar::CubicPiece& whol
     const bool window = piece.t1 - piece.t0 <= s.min_t_width;
     if (sign == coplanar::CubicSign::Flat || (window && ++windows > kMaxWindows)) {
       if (accept_at<kKind>(s, piece.t0, best)) return;
-      search<kKind>(s, {piece.t0, 1, 0, 1, 0, 1}, result, best);
+      search_separated<kKind>(s, piece.t0, 1, result, best);
       return;
     }
     if (window) {
       if (accept_at<kKind>(s, piece.t0, best)) return;
-      search<kKind>(s, {piece.t0, piece.t1, 0, 1, 0, 1}, result, best);
+      search_separated<kKind>(s, piece.t0, piece.t1, result, best);
       if (best.t <= 1) return;  // every later window starts later
       continue;
     }
@@ -510,7 +515,7 @@ PrimitiveResult solve(const std::array<Vec3, 4>& at_t0, const std::array<Vec3, 4
     result.boxes = 1;
     search_coplanarity_windows<kKind>(s, cubic, result, best);
   } else if (min_separation > 0) {
-    search_separated<kKind>(s, result, best);
+    search_separated<kKind>(s, 0, 1, result, best);
   } else {
     search<kKind>(s, {0, 1, 0, 1, 0, 1}, result, best);
   }
