@@ -51,7 +51,8 @@ export class Stage {
     });
     this.objects = model.objects.map((o) => {
       const base = meshColour(model.meshes[o.mesh].colour, model.colours);
-      const material = new THREE.MeshStandardMaterial({ color: base, roughness: 0.7, metalness: 0.05, flatShading: true });
+      // Deforming objects are sheets, seen from both sides.
+      const material = new THREE.MeshStandardMaterial({ color: base, roughness: 0.7, metalness: 0.05, flatShading: true, side: o.deforming ? THREE.DoubleSide : THREE.FrontSide });
       // A deforming object draws its own copy of the mesh, its positions replaced every frame.
       let geometry = geometries[o.mesh];
       if (o.deforming) {
