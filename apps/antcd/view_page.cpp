@@ -85,10 +85,9 @@ bool recorded_scene_matches(const std::string& recorded, const std::filesystem::
   return !any_exists;
 }
 
-json pack_result(const shared::RunResult& r, const std::filesystem::path& path,
-                 const Scene& engine, const std::filesystem::path& scene_path,
-                 const std::unordered_map<std::string, std::uint32_t>& index_of,
-                 BlobWriter& blob) {
+json pack_result(const shared::RunResult& r, const std::filesystem::path& path, const Scene& engine,
+                 const std::filesystem::path& scene_path,
+                 const std::unordered_map<std::string, std::uint32_t>& index_of, BlobWriter& blob) {
   const SceneDescription& scene = engine.description();
   const std::string src = path.string();
   if (!recorded_scene_matches(r.scene, scene_path, path)) {
@@ -328,7 +327,8 @@ ViewPayload build_view_payload(const ViewInputs& inputs) {
         std::vector<double> exact;
         exact.reserve(values);
         for (std::size_t f = 0; f < scene.frames; ++f) {
-          for (const Vec3& v : scaled_frame(o, f)) exact.insert(exact.end(), v.data(), v.data() + 3);
+          for (const Vec3& v : scaled_frame(o, f))
+            exact.insert(exact.end(), v.data(), v.data() + 3);
         }
         objects.back()["vertex_frames64"] = blob.doubles(exact);
       } else {
