@@ -15,6 +15,7 @@
 #include <map>
 #include <memory>
 #include <set>
+#include <span>
 #include <type_traits>
 #include <unordered_map>
 
@@ -84,9 +85,10 @@ bool recorded_scene_matches(const std::string& recorded, const std::filesystem::
   return !any_exists;
 }
 
-json pack_result(const shared::RunResult& r, const std::filesystem::path& path,
-                 const SceneDescription& scene, const std::filesystem::path& scene_path,
-                 const std::unordered_map<std::string, std::uint32_t>& index_of) {
+json pack_result(const shared::RunResult& r, const std::filesystem::path& path, const Scene& engine,
+                 const std::filesystem::path& scene_path,
+                 const std::unordered_map<std::string, std::uint32_t>& index_of, BlobWriter& blob) {
+  const SceneDescription& scene = engine.description();
   const std::string src = path.string();
   if (!recorded_scene_matches(r.scene, scene_path, path)) {
     throw UsageError(src + ": a result for another scene ('" + r.scene + "', not '" +
@@ -101,6 +103,8 @@ json pack_result(const shared::RunResult& r, const std::filesystem::path& path,
   json candidates = json::array();
   json tois = json::array();     // continuous results: per frame, each pair's first time of impact
   json touches = json::array();  // and contact point there, in the order of the input pairs
+  json self = json::array();     // per frame: [object, triangle pairs (uint32 a, b per pair)]
+  bool any_self = false;
   std::set<std::size_t> seen;
   for (const shared::FrameRecord& f : r.frames) {
     if (f.frame >= scene.frames) {
@@ -119,14 +123,31 @@ json pack_result(const shared::RunResult& r, const std::filesystem::path& path,
                          "): no object '" + (ia == index_of.end() ? a : b) + "' in " +
                          scene_path.string());
       }
-      if (ia->second == ib->second) {
-        throw UsageError(src + ": frame " + std::to_string(f.frame) + ": pair (" + a + ", " + b +
-                         ") is a self pair (an object touching itself): the viewer does not show "
-                         "deforming objects yet");
-      }
       fp.push_back(
           json::array({std::min(ia->second, ib->second), std::max(ia->second, ib->second)}));
     }
+    json fs = json::array();
+    for (const auto& [name, triangles] : f.self_pairs) {
+      const auto it = index_of.find(name);
+      if (it == index_of.end()) {
+        throw UsageError(src + ": frame " + std::to_string(f.frame) + ": self pair of '" + name +
+                         "': no such object in " + scene_path.string());
+      }
+      const std::size_t count = engine.model_of(it->second).mesh().triangles.size();
+      std::vector<std::uint32_t> flat;
+      flat.reserve(triangles.size() * 2);
+      for (const auto& t : triangles) {
+        if (t[0] >= count || t[1] >= count) {
+          throw UsageError(src + ": frame " + std::to_string(f.frame) + ": self pair of '" + name +
+                           "': triangle " + std::to_string(std::max(t[0], t[1])) +
+                           " out of range (its mesh has " + std::to_string(count) + ")");
+        }
+        flat.insert(flat.end(), t.begin(), t.end());
+      }
+      fs.push_back(json::array({it->second, blob.uints(flat)}));
+      any_self = true;
+    }
+    self.push_back(std::move(fs));
     frames.push_back(f.frame);
     pairs.push_back(std::move(fp));
     times.push_back(f.time_ms);
@@ -148,6 +169,7 @@ json pack_result(const shared::RunResult& r, const std::filesystem::path& path,
            {"candidates", candidates},
            {"delta", r.delta},
            {"seed", r.seed}};
+  if (any_self) out["self_triangles"] = std::move(self);
   if (r.continuous) {
     out["toi"] = std::move(tois);
     out["touch_points"] = std::move(touches);
@@ -155,17 +177,31 @@ json pack_result(const shared::RunResult& r, const std::filesystem::path& path,
   return out;
 }
 
-// Exact contact points (world frame) of every pair some result reports, on every frame a result
-// covers: where the surfaces of the pair really touch (none for a false alarm). At most
-// `per_pair` per pair; δ as in the reference result.
+// The scaled vertices of deforming object `o` at `frame` (model frame), as the Scene refits them.
+std::vector<Vec3> scaled_frame(const SceneObject& o, std::size_t frame) {
+  const std::span<const Vec3> v = o.vertex_frames->frame(frame);
+  std::vector<Vec3> out(v.begin(), v.end());
+  if (o.scale != 1) {
+    for (Vec3& p : out) p *= o.scale;
+  }
+  return out;
+}
+
+// Exact contact points (world frame) of every pair of distinct objects some result reports, on
+// every frame a result covers: where the surfaces of the pair really touch (none for a false
+// alarm). At most `per_pair` per pair; δ as in the reference result. A deforming object is
+// tested with its vertices of that frame (a copy of its Model refitted, as Scene::run_frame
+// does); self pairs get no points here (their triangle pairs are in the result's
+// "self_triangles").
 json pack_contacts(const Scene& scene, const json& results, double delta, std::size_t per_pair,
                    BlobWriter& blob) {
   std::map<std::size_t, std::set<std::pair<std::uint32_t, std::uint32_t>>> pairs_at;
   for (const json& r : results) {
     for (std::size_t k = 0; k < r["frames"].size(); ++k) {
       auto& set = pairs_at[r["frames"][k].get<std::size_t>()];
-      for (const json& p : r["pairs"][k])
-        set.emplace(p[0].get<std::uint32_t>(), p[1].get<std::uint32_t>());
+      for (const json& p : r["pairs"][k]) {
+        if (p[0] != p[1]) set.emplace(p[0].get<std::uint32_t>(), p[1].get<std::uint32_t>());
+      }
     }
   }
   const auto& objects = scene.description().objects;
@@ -177,10 +213,19 @@ json pack_contacts(const Scene& scene, const json& results, double delta, std::s
   json frames = json::array();
   json points = json::array();
   for (const auto& [frame, pairs] : pairs_at) {
+    std::map<std::uint32_t, std::unique_ptr<Model>> refitted;  // deforming objects of this frame
+    const auto model = [&](std::uint32_t i) -> const Model& {
+      if (!objects[i].deforming()) return scene.model_of(i);
+      auto& m = refitted[i];
+      if (!m) {
+        m = std::make_unique<Model>(scene.model_of(i));
+        m->refit(scaled_frame(objects[i], frame));
+      }
+      return *m;
+    };
     std::vector<float> xyz;
     for (const auto& [i, j] : pairs) {
-      collide(scene.model_of(i), objects[i].pose(frame), scene.model_of(j), objects[j].pose(frame),
-              request, hit);
+      collide(model(i), objects[i].pose(frame), model(j), objects[j].pose(frame), request, hit);
       for (const Contact& c : hit.contacts) {
         for (int k = 0; k < 3; ++k) xyz.push_back(static_cast<float>(c.point[k]));
       }
@@ -227,6 +272,7 @@ ViewPayload build_view_payload(const ViewInputs& inputs) {
   std::map<const Model*, std::size_t> mesh_index;
   std::map<std::string, std::size_t> colour_index;
   std::unordered_map<std::string, std::uint32_t> index_of;
+  std::size_t vertex_bytes = 0;
   for (std::size_t i = 0; i < scene.objects.size(); ++i) {
     const SceneObject& o = scene.objects[i];
     index_of.emplace(o.name, static_cast<std::uint32_t>(i));
@@ -264,6 +310,38 @@ ViewPayload build_view_payload(const ViewInputs& inputs) {
     poses.reserve(o.poses.size() * 12);
     for (const Transform& t : o.poses) append_pose(poses, t);
     objects.push_back(json{{"name", o.name}, {"mesh", it->second}, {"poses", blob.floats(poses)}});
+    if (o.self_collision) objects.back()["self_collision"] = true;
+    if (o.deforming()) {
+      // Every frame's vertices (scaled, model frame), as the Scene refits the object with them.
+      const std::size_t values = scene.frames * model.mesh().vertices.size() * 3;
+      vertex_bytes += values * (inputs.live ? 8 : 4);
+      if (vertex_bytes > kMaxVertexFrameBytes) {
+        throw UsageError(inputs.scene.string() + ": object '" + o.name +
+                         "': the deforming objects' vertex frames would take " +
+                         std::to_string(vertex_bytes >> 20) + " MiB of the page, more than " +
+                         std::to_string(kMaxVertexFrameBytes >> 20) +
+                         " MiB (antcd view's limit): view a scene with fewer frames or sheets");
+      }
+      if (inputs.live) {
+        // float64 only (the page's WebAssembly models need them; it rounds its own float32).
+        std::vector<double> exact;
+        exact.reserve(values);
+        for (std::size_t f = 0; f < scene.frames; ++f) {
+          for (const Vec3& v : scaled_frame(o, f))
+            exact.insert(exact.end(), v.data(), v.data() + 3);
+        }
+        objects.back()["vertex_frames64"] = blob.doubles(exact);
+      } else {
+        std::vector<float> rounded;
+        rounded.reserve(values);
+        for (std::size_t f = 0; f < scene.frames; ++f) {
+          for (const Vec3& v : scaled_frame(o, f)) {
+            for (int k = 0; k < 3; ++k) rounded.push_back(static_cast<float>(v[k]));
+          }
+        }
+        objects.back()["vertex_frames"] = blob.floats(rounded);
+      }
+    }
     if (inputs.live) {
       // The same layout as "poses" (rotation row by row, then translation), unrounded.
       std::vector<double> exact;
@@ -280,7 +358,7 @@ ViewPayload build_view_payload(const ViewInputs& inputs) {
 
   json results = json::array();
   for (const ViewResult& r : inputs.results) {
-    results.push_back(pack_result(r.run, r.source, scene, inputs.scene, index_of));
+    results.push_back(pack_result(r.run, r.source, *engine, inputs.scene, index_of, blob));
   }
 
   json root{{"format", "antcd-view/1"}, {"scene", out.title},

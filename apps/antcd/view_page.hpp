@@ -6,6 +6,15 @@
 // the rotation matrix row by row, then the translation). The JSON refers to the blob by
 // [byte offset, element count]; every array starts on a 4-byte boundary. The blob goes into the
 // HTML as base64 (self-contained file) or is served as-is (--serve).
+//
+// Deforming objects (the scene's "vertex_frames"): the object's "vertex_frames" holds every
+// frame's vertex positions, float32, scale applied, model frame (frame 0's vertices, then frame
+// 1's...: frames x vertices x 3; live pages: "vertex_frames64", float64, instead), so such an
+// object costs 12 n F bytes (live: 24 n F), half (live: all) of its side file's size. Their total
+// is capped at kMaxVertexFrameBytes. Objects with "self_collision" say so ("self_collision":
+// true). A result's self pairs (i, i) are in its "pairs" like the others; its "self_triangles"
+// (present when some frame has one) holds per frame the list [object, [offset, count]] of each
+// self pair's intersecting triangle pairs (uint32 a, b per pair: the result's "self_pairs").
 #pragma once
 
 #include <cstddef>
@@ -16,6 +25,10 @@
 #include "shared/run_result.hpp"
 
 namespace antcd::cli {
+
+/// The most bytes the deforming objects' vertex frames may take in a page's blob (base64 makes
+/// the page a third larger): antcd view refuses a scene beyond it, naming the object.
+inline constexpr std::size_t kMaxVertexFrameBytes = std::size_t{256} << 20;
 
 struct ViewResult {
   std::filesystem::path source;  ///< the result file (its name labels the result in the page)
@@ -47,7 +60,9 @@ struct ViewPayload {
 /// Loads and checks everything. Throws antcd::Error or UsageError naming the file (and the
 /// object, frame or pair) for: an unreadable or malformed scene or result, a missing or
 /// unreadable mesh, a result recorded for another scene file, a result frame out of the scene's
-/// range or listed twice, a pair naming an object the scene does not have, more than two results.
+/// range or listed twice, a pair naming an object the scene does not have, a self pair's triangle
+/// out of its mesh's range, more than two results, deforming objects' vertex frames beyond
+/// kMaxVertexFrameBytes.
 ViewPayload build_view_payload(const ViewInputs& inputs);
 
 /// The viewer's bundled JavaScript: $ANTCD_VIEWER_JS when set (an error if it does not exist),

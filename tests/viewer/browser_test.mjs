@@ -182,6 +182,53 @@ try {
   assert.deepEqual(JSON.parse(d3.firstTouch), wantTouches, `data-first-touch, frame ${touched.frame}`);
   assert.match(await page3.locator('#antcd-viewer').innerText(), /first touch: \S+ – \S+ (at t = [0-9.]+ of the step from frame \d+|at frame 0)/,
                'the panel lists the first touches');
+
+  // A flexible scene (antcd scene generate --flexible): a veneer sheet deforming per frame, with
+  // self_collision, one of whose frames folds it onto itself. The page draws the sheet with the
+  // scene's vertices of each frame, lists its self pair [sheet, sheet] and draws its triangles.
+  antcd('scene', 'generate', '--out', 'flex', '--objects', '12', '--frames', '24', '--seed', '7', '--flexible');
+  antcd('run', 'flex/scene.json', '--method', 'exact', '--out', 'flex-exact.json');
+  antcd('view', 'flex/scene.json', '--result', 'flex-exact.json', '--out', 'flex.html');
+  const flex = JSON.parse(readFileSync(join(work, 'flex', 'scene.json'), 'utf8'));
+  const flexExact = JSON.parse(readFileSync(join(work, 'flex-exact.json'), 'utf8'));
+  const flexOrder = new Map(flex.objects.map((o, i) => [o.name, i]));
+  const flexSort = (pairs) =>
+    pairs.map(([a, b]) => (flexOrder.get(a) < flexOrder.get(b) ? [a, b] : [b, a]))
+      .sort((p, q) => flexOrder.get(p[0]) - flexOrder.get(q[0]) || flexOrder.get(p[1]) - flexOrder.get(q[1]));
+  const sheet = flex.objects.find((o) => o.vertex_frames);
+  assert.ok(sheet && sheet.self_collision, 'the flexible scene has a deforming sheet with self_collision');
+  // The sheet's side file (include/antcd/scene.hpp): 24-byte header, then float64 x, y, z.
+  const avf = readFileSync(join(work, 'flex', sheet.vertex_frames));
+  const n = avf.readUInt32LE(12);
+  const sceneVertices = (f) => Array.from({ length: 3 * n }, (_, k) => Math.fround(avf.readDoubleLE(24 + 8 * (3 * n * f + k)) * (sheet.scale ?? 1)));
+  const folded = flexExact.frames.find((f) => f.pairs.some(([a, b]) => a === b));
+  assert.ok(folded, 'the exact run reports a self pair');
+  const flat = flexExact.frames.find((f) => !f.pairs.some(([a, b]) => a === b) && f.pairs.length > 0);
+  const page4 = await watchedPage(browser, problems);
+  await page4.goto(`${pathToFileURL(join(work, 'flex.html')).href}#frame=${folded.frame}`);
+  await page4.waitForSelector('#antcd-viewer[data-ready="true"], #antcd-viewer[data-error]', { timeout: 30000 });
+  for (const f of [folded, flat]) {
+    if (f !== folded) {
+      await page4.evaluate((hash) => { window.location.hash = hash; }, `#frame=${f.frame}`);
+      await page4.waitForFunction((k) => document.getElementById('antcd-viewer').dataset.frame === String(k), f.frame);
+    }
+    const d4 = await page4.locator('#antcd-viewer').evaluate((e) => ({ ...e.dataset }));
+    assert.equal(d4.error, undefined, `flexible page error: ${d4.error}`);
+    assert.deepEqual(JSON.parse(d4.colliding), flexSort(f.pairs), `flexible scene: data-colliding, frame ${f.frame}`);
+    const selfWant = (f.self_pairs ?? []).map((sp) => [sp.object, sp.triangles.length]);
+    assert.deepEqual(JSON.parse(d4.self), selfWant, `flexible scene: data-self, frame ${f.frame}`);
+    const drawn = await page4.evaluate((name) => window.antcdView.drawnVertices(name), sheet.name);
+    assert.deepEqual(drawn, sceneVertices(f.frame), `${sheet.name}: drawn vertices of frame ${f.frame} are the scene's`);
+    const others = f.pairs.filter(([a, b]) => a !== b).length;
+    assert.ok(Number(d4.contacts) >= others, `flexible scene: ${d4.contacts} contacts for ${others} pairs, frame ${f.frame}`);
+  }
+  assert.notDeepEqual(sceneVertices(folded.frame), sceneVertices(flat.frame), 'the sheet deforms between the two frames');
+  await page4.evaluate((hash) => { window.location.hash = hash; }, `#frame=${folded.frame}`);
+  await page4.waitForFunction((k) => document.getElementById('antcd-viewer').dataset.frame === String(k), folded.frame);
+  assert.match(await page4.locator('#antcd-viewer .counts').innerText(), new RegExp(`self pair: ${sheet.name} touches itself \\(\\d+ triangle pairs?\\)`),
+               'the panel lists the self pair');
+  console.log(`flexible scene: ${sheet.name} drawn with its vertices of frames ${folded.frame} and ${flat.frame}; ` +
+              `self pair with ${folded.self_pairs[0].triangles.length} triangle pairs at frame ${folded.frame}`);
 } finally {
   await browser.close();
 }

@@ -156,6 +156,72 @@ try {
   assert.deepEqual(sortPairs(released.pairs), heldExpected, 'highlighted pairs after the release');
   console.log(`live page: WebXR squeeze grabbed ${grab.name}, moved it onto ${grab.target} (rigid within ${error.toExponential(1)}), ` +
               `${heldExpected.length} colliding pairs as native`);
+
+  // A flexible scene: the sheet (its own Model, outside the World) shows the scene's vertices of
+  // the frame; its self pair is [sheet, sheet]; a mouse drag bends it (viewer/src/sheets.js,
+  // recomputed here) and the pairs at the bent vertices equal the native answer (a one-frame
+  // scene whose side file holds the page's vertices).
+  antcd('scene', 'generate', '--out', 'flex', '--objects', '12', '--frames', '24', '--seed', '7', '--flexible');
+  antcd('view', 'flex/scene.json', '--live', '--out', 'flex-live.html');
+  antcd('run', 'flex/scene.json', '--method', 'exact', '--out', 'flex-exact.json');
+  const flex = JSON.parse(readFileSync(join(work, 'flex', 'scene.json'), 'utf8'));
+  const flexOrder = new Map(flex.objects.map((o, i) => [o.name, i]));
+  const flexSort = (pairs) => pairs.map(([a, b]) => (flexOrder.get(a) <= flexOrder.get(b) ? [a, b] : [b, a]))
+    .sort((p, q) => flexOrder.get(p[0]) - flexOrder.get(q[0]) || flexOrder.get(p[1]) - flexOrder.get(q[1]));
+  const sheet = flex.objects.find((o) => o.vertex_frames);
+  assert.equal(sheet.scale ?? 1, 1, 'the generated sheet is not scaled');
+  const avf = readFileSync(join(work, 'flex', sheet.vertex_frames));
+  const nv = avf.readUInt32LE(12);
+  const sceneVertices = (f) => Array.from({ length: 3 * nv }, (_, k) => avf.readDoubleLE(24 + 8 * (3 * nv * f + k)));
+  const folded = JSON.parse(readFileSync(join(work, 'flex-exact.json'), 'utf8')).frames.find((f) => f.pairs.some(([a, b]) => a === b));
+  assert.ok(folded, 'the flexible scene folds its sheet onto itself in some frame');
+  const nativeFlex = (frame, vertices) => {
+    const bytes = Buffer.alloc(24 + 8 * vertices.length);
+    avf.copy(bytes, 0, 0, 16);
+    bytes.writeBigUInt64LE(1n, 16);
+    vertices.forEach((v, k) => bytes.writeDoubleLE(v, 24 + 8 * k));
+    writeFileSync(join(work, 'flex', 'frames', 'page.avf'), bytes);
+    const objects = flex.objects.map((o) => ({ ...o, poses: [o.poses.length === 1 ? o.poses[0] : o.poses[frame]],
+                                               ...(o === sheet ? { vertex_frames: 'frames/page.avf' } : {}) }));
+    writeFileSync(join(work, 'flex', 'page.json'), JSON.stringify({ ...flex, frames: 1, objects }));
+    antcd('run', 'flex/page.json', '--method', 'exact', '--out', 'flex-native.json');
+    const f = JSON.parse(readFileSync(join(work, 'flex-native.json'), 'utf8')).frames[0];
+    return { pairs: flexSort(f.pairs), self: (f.self_pairs ?? []).map((sp) => [sp.object, sp.triangles.flat()]) };
+  };
+  const fpage = await watchedPage(browser, problems);
+  await fpage.goto(pathToFileURL(join(work, 'flex-live.html')).href);
+  await fpage.waitForSelector('#antcd-viewer[data-ready="true"], #antcd-viewer[data-error]', { timeout: 60000 });
+  const fl = (f, ...a) => fpage.evaluate(([g, x]) => window.antcdLive[g](...x), [f, a]);
+  const fframes = (n) => fpage.evaluate(async (k) => { for (let i = 0; i < k; ++i) await new Promise((done) => requestAnimationFrame(done)); }, n);
+  await fl('showFrame', folded.frame);
+  await fframes(3);
+  const rest = await fl('state');
+  assert.deepEqual(await fl('verticesOf', sheet.name), sceneVertices(folded.frame), 'the sheet has the scene\'s vertices of the frame');
+  const restNative = nativeFlex(folded.frame, sceneVertices(folded.frame));
+  assert.deepEqual(flexSort(rest.pairs), restNative.pairs, `flexible frame ${folded.frame}: pairs as native`);
+  assert.ok(rest.pairs.some(([a, b]) => a === sheet.name && b === sheet.name), 'the self pair is in data-colliding');
+  assert.deepEqual(rest.selfTriangles, restNative.self, 'self triangle pairs as native');
+  const from = await fl('pickPoint', sheet.name);
+  assert.ok(from, 'a point of the sheet is on screen');
+  await fpage.mouse.move(from.x, from.y);
+  await fpage.mouse.down();
+  for (let s = 1; s <= 8; ++s) await fpage.mouse.move(from.x + 5 * s, from.y - 12 * s);
+  await fpage.mouse.up();
+  await fframes(3);
+  const bentState = await fl('state');
+  const bent = await fl('verticesOf', sheet.name);
+  const bends = await fl('bendsOf', sheet.name);
+  assert.equal((await fpage.locator('#antcd-viewer').evaluate((e) => e.dataset.dragged)), sheet.name, 'the sheet is the dragged object');
+  assert.equal(bends.length, 1, 'one bend');
+  assert.ok(Math.hypot(...bends[0].offset) > 0, 'the drag pulled the sheet');
+  const { applyBend } = await import(pathToFileURL(resolve(import.meta.dirname, '..', '..', 'viewer', 'src', 'sheets.js')).href);
+  assert.deepEqual(bent, Array.from(applyBend(Float64Array.from(sceneVertices(folded.frame)), bends[0])), 'the bent vertices are the bend of the scene\'s');
+  assert.notDeepEqual(bent, sceneVertices(folded.frame), 'dragging changed the vertices');
+  const bentNative = nativeFlex(folded.frame, bent);
+  assert.deepEqual(flexSort(bentState.pairs), bentNative.pairs, 'pairs of the bent sheet as native');
+  assert.deepEqual(bentState.selfTriangles, bentNative.self, 'self triangle pairs of the bent sheet as native');
+  console.log(`live page, flexible: ${sheet.name} bent by ${Math.hypot(...bends[0].offset).toFixed(3)}; ` +
+              `${rest.pairs.length} pairs before, ${bentState.pairs.length} after, as native`);
   assert.deepEqual(problems, []);
 } finally {
   await browser.close();

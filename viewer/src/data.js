@@ -32,8 +32,14 @@ export async function loadView(doc) {
   // float64 arrays (live pages) may start on a 4-byte boundary only: copied out.
   const f64 = (ref) => (ref ? new Float64Array(buffer.slice(ref[0], ref[0] + 8 * ref[1])) : null);
   const meshes = data.meshes.map((m) => ({ ...m, positions: f32(m.positions), indices: u32(m.indices), positions64: f64(m.positions64) }));
-  const objects = data.objects.map((o, index) => ({ ...o, index, poses: f32(o.poses), poses64: f64(o.poses64) }));
-  const results = data.results.map((r) => new Result(r));
+  // Deforming objects: every frame's vertices (frames x vertices x 3, scale applied, model frame);
+  // live pages carry them as float64 only and the drawn float32 copy is rounded here.
+  const objects = data.objects.map((o, index) => {
+    const vertexFrames64 = f64(o.vertex_frames64);
+    const vertexFrames = o.vertex_frames ? f32(o.vertex_frames) : vertexFrames64 && Float32Array.from(vertexFrames64);
+    return { ...o, index, poses: f32(o.poses), poses64: f64(o.poses64), vertexFrames, vertexFrames64, deforming: vertexFrames !== null };
+  });
+  const results = data.results.map((r) => new Result(r, u32));
   const contacts = new Map((data.contacts?.frames ?? []).map((frame, k) => [frame, f32(data.contacts.points[k])]));
   return new ViewModel(data, meshes, objects, results, contacts);
 }
@@ -41,11 +47,14 @@ export async function loadView(doc) {
 const pairKey = (i, j) => i * 0x100000 + j;
 
 class Result {
-  constructor(r) {
+  constructor(r, u32) {
     Object.assign(this, r);
     this.row = new Map(r.frames.map((frame, k) => [frame, k]));
     this.keys = r.pairs.map((pairs) => new Set(pairs.map(([i, j]) => pairKey(i, j))));
+    // Per frame: object index -> its self pair's intersecting triangle pairs (a, b, a, b, ...).
+    this.self = (r.self_triangles ?? []).map((list) => new Map(list.map(([object, ref]) => [object, u32(ref)])));
   }
+  selfTrianglesAt(frame) { const k = this.row.get(frame); return (k === undefined ? null : this.self[k]) ?? new Map(); }
   covers(frame) { return this.row.has(frame); }
   pairsAt(frame) { const k = this.row.get(frame); return k === undefined ? null : this.pairs[k]; }
   timeAt(frame) { const k = this.row.get(frame); return k === undefined ? null : this.time_ms[k]; }
@@ -79,6 +88,29 @@ export class ViewModel {
     const n = object.poses.length / 12;
     const k = n === 1 ? 0 : frame;
     return object.poses.subarray(k * 12, k * 12 + 12);
+  }
+
+  // A deforming object's vertices of `frame` (scaled, model frame), or null for a rigid one.
+  vertices(object, frame) {
+    if (!object.deforming) return null;
+    const n = this.meshes[object.mesh].vertices * 3;
+    return object.vertexFrames.subarray(frame * n, frame * n + n);
+  }
+
+  vertices64(object, frame) {
+    if (!object.vertexFrames64) return null;
+    const n = this.meshes[object.mesh].vertices * 3;
+    return object.vertexFrames64.subarray(frame * n, frame * n + n);
+  }
+
+  // Self pairs' triangle pairs of the frame: object index -> Uint32Array (a, b per pair), from
+  // the first result that has the object's self pair there.
+  selfTriangles(frame) {
+    const out = new Map();
+    for (const r of this.results) {
+      for (const [object, pairs] of r.selfTrianglesAt(frame)) if (!out.has(object)) out.set(object, pairs);
+    }
+    return out;
   }
 
   contactsAt(frame) {

@@ -15,12 +15,24 @@
 //   'squeezestart' | 'squeezeend'), aimAt(name) (a controller matrix pointing at the object).
 // Poses and meshes are the scene's float64 values (poses64, positions64 of the payload), so the
 // answers are those of the native library at the same poses.
+// Deforming objects (flexible sheets, the payload's vertex_frames64): each is its own Model outside
+// the World (sheets.js), given the frame's vertices every frame; a mouse drag on one bends it
+// (sheets.js: the grabbed point pulled, the sheet deformed smoothly around it; a controller's
+// squeeze still moves it rigidly). It is tested against every other object with collides /
+// collide, and a self_collision object against itself with selfIntersections (rigid ones once:
+// their self-intersections do not depend on the pose). A self pair is [name, name] in
+// data-colliding (sorted with the others), its intersecting triangles drawn over the object;
+// data-self JSON [[name, trianglePairs], ...] counts them. window.antcdLive also has
+// verticesOf(name) (a deforming object's current vertices, model frame, x y z per vertex, or
+// null), bendsOf(name) (its bends: { anchor, offset, radius }, model frame) and state() adds
+// selfTriangles [[name, [a, b, ...]], ...].
 import * as THREE from 'three';
 
 import createAntcd from '../../wasm/index.mjs';
 import wasmBinary from '../../wasm/dist/antcd_core.wasm';
 import { loadView } from './data.js';
 import { ControllerGrabs } from './grab.js';
+import { Sheet } from './sheets.js';
 import { Stage } from './stage.js';
 
 const FPS = 12;
@@ -72,9 +84,18 @@ async function main() {
   const models = model.meshes.map((m, k) => new antcd.Model(m.positions64, m.indices, { name: m.file ?? `mesh ${k}` }));
   const world = new antcd.World();
   const scratch = new Float64Array(16);
-  const handles = model.objects.map((o) => world.add(models[o.mesh], columnMajor(posesAt(o, 0), scratch), { name: o.name }));
-  const indexOf = new Map(handles.map((h, i) => [h, i]));
+  // Deforming objects stay out of the World: index -> Sheet (null for a rigid object).
+  const sheetOf = model.objects.map((o) => (o.deforming ? new Sheet(antcd, model, o) : null));
+  const sheets = sheetOf.filter((s) => s);
+  const handles = model.objects.map((o, i) => (sheetOf[i] ? null : world.add(models[o.mesh], columnMajor(posesAt(o, 0), scratch), { name: o.name })));
+  const indexOf = new Map(handles.map((h, i) => [h, i]).filter(([h]) => h !== null));
   const moving = model.objects.map((o) => o.poses64.length > 12);
+  // Rigid self_collision objects: their self-intersections, once per mesh (pose-independent).
+  const rigidSelf = new Map();
+  for (const o of model.objects) {
+    if (!o.self_collision || o.deforming || rigidSelf.has(o.mesh)) continue;
+    rigidSelf.set(o.mesh, antcd.selfIntersections(models[o.mesh]).pairs);
+  }
 
   const stage = new Stage(root, model);
   stage.renderer.domElement.style.cssText = 'display:block;width:100%;height:100%';
@@ -89,6 +110,7 @@ async function main() {
   const times = [];
   const timeLog = []; // { ms, stepped } per animation frame, for queryTimes()
   let pairs = [];
+  let selfTriangles = new Map(); // object index -> its self pair's triangle pairs (a, b, ...)
 
   const resize = () => stage.resize(root.clientWidth, root.clientHeight);
   window.addEventListener('resize', resize);
@@ -102,12 +124,14 @@ async function main() {
     const stepped = posedFrame !== frame;
     const t0 = performance.now();
     for (let i = 0; i < handles.length; ++i) {
+      if (handles[i] === null) continue;
       const own = moved.get(i);
       if (own) world.setPose(handles[i], own);
       else if (moving[i] && posedFrame !== frame) world.setPose(handles[i], columnMajor(posesAt(model.objects[i], frame), scratch));
     }
     posedFrame = frame;
     const r = world.collideAll({ allContacts: true, maxContacts: CONTACTS_PER_PAIR });
+    const found = sheets.length ? sheetPairs() : { pairs: [], points: [] };
     const ms = performance.now() - t0;
     times.push(ms);
     if (times.length > 60) times.shift();
@@ -119,34 +143,79 @@ async function main() {
       const j = indexOf.get(r.pairs[k + 1]);
       pairs.push(i < j ? { i, j, kind: 'collide' } : { i: j, j: i, kind: 'collide' });
     }
+    pairs.push(...found.pairs);
+    selfTriangles = new Map();
+    for (const o of model.objects) {
+      const own = o.self_collision ? (sheetOf[o.index]?.selfPairs ?? rigidSelf.get(o.mesh)) : null;
+      if (!own?.length) continue;
+      pairs.push({ i: o.index, j: o.index, kind: 'collide' });
+      selfTriangles.set(o.index, own);
+    }
     pairs.sort((a, b) => a.i - b.i || a.j - b.j);
-    const points = new Float32Array((r.contacts.length / antcd.CONTACT_STRIDE) * 3);
+    const points = new Float32Array((r.contacts.length / antcd.CONTACT_STRIDE) * 3 + found.points.length);
     for (let k = 0, n = 0; k < r.contacts.length; k += antcd.CONTACT_STRIDE, n += 3) {
       points[n] = r.contacts[k + 2];
       points[n + 1] = r.contacts[k + 3];
       points[n + 2] = r.contacts[k + 4];
     }
+    points.set(found.points, points.length - found.points.length);
     const mean = times.reduce((s, t) => s + t, 0) / times.length;
     root.dataset.frame = String(frame);
     root.dataset.colliding = JSON.stringify(pairs.map((p) => [model.objects[p.i].name, model.objects[p.j].name]));
+    root.dataset.self = JSON.stringify([...selfTriangles].map(([i, t]) => [model.objects[i].name, t.length / 2]));
     root.dataset.queryMs = ms.toFixed(3);
     root.dataset.queryMeanMs = mean.toFixed(3);
     panel.textContent = `frame ${frame + 1}/${model.frames}${playing ? '' : ' (paused: space plays)'}\n`
       + `${model.objects.length} objects, ${pairs.length} colliding pair${pairs.length === 1 ? '' : 's'}\n`
       + `antcd (WebAssembly) query: ${ms.toFixed(2)} ms this frame, ${mean.toFixed(2)} ms mean\n`
-      + 'drag an object to move it (VR: squeeze)';
+      + `drag an object to move it${sheets.length ? ', a sheet to bend it' : ''} (VR: squeeze)`;
     for (const [i, m] of moved) stage.overrides.set(i, new THREE.Matrix4().fromArray(m));
-    stage.show(frame, pairs, points);
+    for (const sheet of sheets) stage.vertexOverrides.set(sheet.index, sheet.vertices);
+    stage.show(frame, pairs, points, [], selfTriangles);
   };
 
+  // The deforming objects to the frame's vertices and bends, then each against every other object
+  // (each pair once) at the current poses: the pairs ({i, j, kind}) and contact points (flat xyz).
+  function sheetPairs() {
+    for (const sheet of sheets) sheet.update(frame);
+    const poses = model.objects.map((o, i) => poseOf(i));
+    const out = { pairs: [], points: [] };
+    const options = { allContacts: true, maxContacts: CONTACTS_PER_PAIR };
+    for (const sheet of sheets) {
+      const a = sheet.index;
+      for (let b = 0; b < model.objects.length; ++b) {
+        if (b === a || (sheetOf[b] && b < a)) continue;
+        const other = sheetOf[b]?.model ?? models[model.objects[b].mesh];
+        if (!antcd.collides(sheet.model, poses[a], other, poses[b])) continue;
+        const c = antcd.collide(sheet.model, poses[a], other, poses[b], options);
+        out.pairs.push({ i: Math.min(a, b), j: Math.max(a, b), kind: 'collide' });
+        for (let k = 0; k < c.contacts.length; k += antcd.CONTACT_STRIDE) out.points.push(c.contacts[k + 2], c.contacts[k + 3], c.contacts[k + 4]);
+      }
+    }
+    return out;
+  }
+
   // Picking with the World's own ray cast, in the scene's frame (stage.world is scaled in VR).
+  // Deforming objects are not in the World: three.js's ray cast on their drawn meshes (the
+  // current vertices, float32), the nearer hit wins.
   const toScene = new THREE.Matrix4();
+  const sheetRay = new THREE.Raycaster();
   const pickRay = (origin, direction) => {
     toScene.copy(stage.world.matrixWorld).invert();
     const o = origin.clone().applyMatrix4(toScene);
     const d = direction.clone().transformDirection(toScene);
-    const hit = world.raycast([o.x, o.y, o.z], [d.x, d.y, d.z]);
-    return hit ? { index: indexOf.get(hit.object), point: new THREE.Vector3(...hit.point) } : null;
+    const hit = world.size ? world.raycast([o.x, o.y, o.z], [d.x, d.y, d.z]) : null;
+    let best = hit ? { index: indexOf.get(hit.object), point: new THREE.Vector3(...hit.point), distance: hit.distance } : null;
+    if (sheets.length) {
+      sheetRay.set(origin, direction.clone().normalize());
+      const h = sheetRay.intersectObjects(sheets.map((s) => stage.objects[s.index]), false)[0];
+      if (h) {
+        const point = h.point.clone().applyMatrix4(toScene);
+        const distance = point.distanceTo(o);
+        if (!best || distance < best.distance) best = { index: h.object.userData.index, point, distance };
+      }
+    }
+    return best;
   };
   const poseOf = (i) => moved.get(i) ?? columnMajor(posesAt(model.objects[i], frame), new Float64Array(16));
 
@@ -165,18 +234,31 @@ async function main() {
     if (!hit) return;
     const normal = stage.camera.getWorldDirection(new THREE.Vector3());
     const pose = Float64Array.from(poseOf(hit.index));
-    drag = { index: hit.index, plane: new THREE.Plane().setFromNormalAndCoplanarPoint(normal, hit.point), start: hit.point, t0: [pose[12], pose[13], pose[14]], pose };
-    moved.set(hit.index, pose);
     stage.controls.enabled = false;
     stage.selected = hit.index;
     root.dataset.dragged = model.objects[hit.index].name;
     canvas.setPointerCapture(e.pointerId);
+    const sheet = sheetOf[hit.index];
+    if (sheet) {
+      // A sheet bends: a new bend anchored at the picked point (model frame), pulled by the drag.
+      const m = new THREE.Matrix4().fromArray(pose);
+      const anchor = hit.point.clone().applyMatrix4(m.clone().invert());
+      drag = { index: hit.index, plane: new THREE.Plane().setFromNormalAndCoplanarPoint(normal, hit.point), start: hit.point, sheet,
+               bend: sheet.addBend(anchor.toArray()), toModel: new THREE.Matrix3().setFromMatrix4(m).transpose() };
+      return;
+    }
+    drag = { index: hit.index, plane: new THREE.Plane().setFromNormalAndCoplanarPoint(normal, hit.point), start: hit.point, t0: [pose[12], pose[13], pose[14]], pose };
+    moved.set(hit.index, pose);
   }, { capture: true });
   canvas.addEventListener('pointermove', (e) => {
     if (!drag) return;
     stage.raycaster.setFromCamera(ndc(e), stage.camera);
     const p = stage.raycaster.ray.intersectPlane(drag.plane, new THREE.Vector3());
     if (!p) return;
+    if (drag.sheet) {
+      drag.sheet.moveBend(drag.bend, p.clone().sub(drag.start).applyMatrix3(drag.toModel).toArray());
+      return;
+    }
     drag.pose[12] = drag.t0[0] + (p.x - drag.start.x);
     drag.pose[13] = drag.t0[1] + (p.y - drag.start.y);
     drag.pose[14] = drag.t0[2] + (p.z - drag.start.z);
@@ -232,7 +314,13 @@ async function main() {
       pairs: JSON.parse(root.dataset.colliding ?? '[]'),
       moved: [...moved].map(([i, m]) => ({ name: model.objects[i].name, pose: Array.from(m), rotation_wxyz: rotations.get(i) })),
       queryMs: Number(root.dataset.queryMs),
+      selfTriangles: [...selfTriangles].map(([i, t]) => [model.objects[i].name, Array.from(t)]),
     }),
+    verticesOf: (name) => {
+      const sheet = sheetOf[model.objects.findIndex((o) => o.name === name)];
+      return sheet ? Array.from(sheet.vertices) : null;
+    },
+    bendsOf: (name) => structuredClone(sheetOf[model.objects.findIndex((o) => o.name === name)]?.bends ?? null),
     // A canvas point (client pixels) whose pick ray hits object `name` first, or null.
     pickPoint: (name) => {
       const i = model.objects.findIndex((o) => o.name === name);
@@ -242,10 +330,13 @@ async function main() {
       const m = new THREE.Matrix4().fromArray(poseOf(i));
       const v = new THREE.Vector3();
       const n = mesh.positions64.length / 3;
+      // A sheet: its current vertices (on its surface); else points between a vertex and the
+      // object's centre, spread over the mesh.
+      const at = sheetOf[i]?.vertices ?? mesh.positions64;
+      const inward = sheetOf[i] ? 1 : 0.6;
       for (let k = 0; k < 200; ++k) {
-        // Points between a vertex and the object's centre, spread over the mesh.
         const a = Math.floor((k * 7919) % n);
-        v.set(mesh.positions64[3 * a], mesh.positions64[3 * a + 1], mesh.positions64[3 * a + 2]).multiplyScalar(0.6).applyMatrix4(m);
+        v.set(at[3 * a], at[3 * a + 1], at[3 * a + 2]).multiplyScalar(inward).applyMatrix4(m);
         const p = v.clone().project(stage.camera);
         if (Math.abs(p.x) > 0.95 || Math.abs(p.y) > 0.95) continue;
         const x = rect.left + ((p.x + 1) / 2) * rect.width;

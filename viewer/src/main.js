@@ -9,6 +9,12 @@
 //   JSON list [[nameA, nameB, toi], ...] of the frame's pairs with their first time of impact over
 //   the step from the previous frame, sorted by (toi, pair); data-ready "true" once the first
 //   frame is drawn, or data-error with the message.
+//   Self pairs (an object with self_collision touching itself) are [name, name] in data-colliding
+//   (and the other lists); data-self JSON [[name, trianglePairs], ...] lists the frame's self
+//   pairs with the number of intersecting triangle pairs drawn (0 when the result has none, e.g.
+//   continuous results).
+// window.antcdView.drawnVertices(name): the positions (model frame, scale applied) the page draws
+// a deforming object with in the current frame, a flat array x, y, z per vertex (null: rigid).
 // The URL fragment #frame=K opens frame K and follows the current frame.
 import { loadView } from './data.js';
 import { Stage } from './stage.js';
@@ -42,6 +48,7 @@ async function main() {
   let lastStep = 0;
   let pairs = [];
   let touches = [];
+  let selfTris = new Map();
 
   const names = (list) => JSON.stringify(list.map((p) => [model.objects[p.i].name, model.objects[p.j].name]));
   const setFrame = (k) => {
@@ -50,9 +57,11 @@ async function main() {
     frame = next;
     pairs = model.classify(frame);
     touches = model.firstTouches(frame);
-    stage.show(frame, pairs, model.contactsAt(frame), touches);
+    selfTris = model.selfTriangles(frame);
+    stage.show(frame, pairs, model.contactsAt(frame), touches, selfTris);
     panel.showFrame(frame, pairs, playing);
     panel.showObject(stage.selected, frame, pairs);
+    root.dataset.self = JSON.stringify(pairs.filter((p) => p.i === p.j).map((p) => [model.objects[p.i].name, (selfTris.get(p.i)?.length ?? 0) / 2]));
     root.dataset.firstTouch = JSON.stringify(touches.map((t) => [model.objects[t.i].name, model.objects[t.j].name, t.toi]));
     root.dataset.frame = String(frame);
     root.dataset.colliding = names(pairs);
@@ -98,9 +107,16 @@ async function main() {
     stage.selected = stage.pick(e.clientX, e.clientY);
     if (stage.selected >= 0) root.dataset.selected = model.objects[stage.selected].name;
     else delete root.dataset.selected;
-    stage.show(frame, pairs, model.contactsAt(frame), touches);
+    stage.show(frame, pairs, model.contactsAt(frame), touches, selfTris);
     panel.showObject(stage.selected, frame, pairs);
   });
+  window.antcdView = {
+    drawnVertices: (name) => {
+      const i = model.objects.findIndex((o) => o.name === name);
+      if (i < 0 || !model.objects[i].deforming) return null;
+      return Array.from(stage.objects[i].geometry.attributes.position.array);
+    },
+  };
 
   stage.start((time) => {
     if (playing && time - lastStep >= 1000 / FPS) {

@@ -1,6 +1,6 @@
 // The page's controls and read-outs (plain DOM): player, legend and counts, per-frame time plot,
 // the clicked object's details.
-import { KIND_COLOURS, TOUCH_COLOUR } from './stage.js';
+import { KIND_COLOURS, SELF_COLOUR, TOUCH_COLOUR } from './stage.js';
 import { frameRanges } from './data.js';
 
 const CSS = `
@@ -20,6 +20,7 @@ const CSS = `
 
 const hex = (c) => `#${c.toString(16).padStart(6, '0')}`;
 const PLOT_COLOURS = ['#333a45', '#c2185b'];
+const KIND_NAMES = { collide: 'colliding', false: 'false alarm', miss: 'miss' };
 
 function el(tag, attrs = {}, ...children) {
   const e = document.createElement(tag);
@@ -68,6 +69,9 @@ export class Panel {
     return el('div', { class: 'legend' },
       ...item('collide', two ? 'colliding (both)' : 'colliding'),
       ...(two ? [...item('false', 'false alarm'), ...item('miss', 'miss')] : []),
+      ...(this.model.results.some((r) => r.self_triangles)
+        ? [el('span', { class: 'swatch', style: `background:${hex(SELF_COLOUR)}` }), 'self-intersecting triangles']
+        : []),
       ...(this.model.results.some((r) => r.toi)
         ? [el('span', { class: 'swatch', style: `background:${hex(TOUCH_COLOUR)}` }), 'first touch since the previous frame']
         : []));
@@ -90,6 +94,13 @@ export class Panel {
       lines.push(`all ${t.compared} compared frames: ${t.falseAlarms} false alarms, ${t.misses} misses`);
     } else if (m.results.length === 1) {
       lines.push(m.results[0].covers(frame) ? `this frame: ${pairs.length} colliding pairs` : 'this frame: not in the result');
+    }
+    const selfPairs = pairs.filter((p) => p.i === p.j);
+    const selfTriangles = m.selfTriangles(frame);
+    for (const p of selfPairs) {
+      const n = (selfTriangles.get(p.i)?.length ?? 0) / 2;
+      lines.push(`self pair: ${m.objects[p.i].name} touches itself${n ? ` (${n} triangle pair${n === 1 ? '' : 's'})` : ''}`
+        + (p.kind === 'collide' ? '' : ` (${KIND_NAMES[p.kind]})`));
     }
     const touches = m.firstTouches(frame);
     const shown = 8;
@@ -139,16 +150,21 @@ export class Panel {
     const mine = pairs.filter((p) => p.i === index || p.j === index);
     const rows = [
       el('h1', {}, o.name),
-      el('div', {}, `mesh ${mesh.file}${mesh.scale !== 1 ? ` ×${mesh.scale}` : ''}: ${mesh.triangles} triangles`),
+      el('div', {}, `mesh ${mesh.file}${mesh.scale !== 1 ? ` ×${mesh.scale}` : ''}: ${mesh.triangles} triangles`
+        + `${o.deforming ? ', deforming (vertices per frame)' : ''}${o.self_collision ? ', self-collision tested' : ''}`),
       el('div', {}, mine.length ? `frame ${frame} pairs:` : `frame ${frame}: no pair`),
       ...mine.map((p) => el('div', {}, el('span', { class: 'swatch', style: `background:${hex(KIND_COLOURS[p.kind])}` }),
-        `${name(p.i === index ? p.j : p.i)} (${{ collide: 'colliding', false: 'false alarm', miss: 'miss' }[p.kind]})`)),
+        `${p.i === p.j ? 'itself' : name(p.i === index ? p.j : p.i)} (${KIND_NAMES[p.kind]})`)),
     ];
     m.results.forEach((r, k) => {
       const t = r.timeAt(frame);
       rows.push(el('div', {}, `${r.method}: frame ${frame} ${t === null ? 'not run' : `${t.toFixed(3)} ms, ${r.candidatesAt(frame)} candidate pairs, ${r.pairsAt(frame).length} colliding`}`));
       const frames = m.collidingFrames(index)[k];
       rows.push(el('div', {}, `${r.method}: colliding in frames ${frames.length ? frameRanges(frames) : 'none'}`));
+      if (o.self_collision) {
+        const own = r.frames.filter((f, n) => r.pairs[n].some(([i, j]) => i === index && j === index));
+        rows.push(el('div', {}, `${r.method}: touching itself in frames ${own.length ? frameRanges(own) : 'none'}`));
+      }
     });
     this.info.replaceChildren(...rows);
   }

@@ -11,6 +11,8 @@ export const KIND_COLOURS = {
 };
 // First-touch markers of continuous results.
 export const TOUCH_COLOUR = 0xd81b9c;
+// The intersecting triangles of a self pair (an object touching itself).
+export const SELF_COLOUR = 0xffc400;
 // An object in several pairs shows the most telling class: a miss, else a true collision.
 const KIND_PRIORITY = { miss: 3, collide: 2, false: 1 };
 
@@ -49,8 +51,16 @@ export class Stage {
     });
     this.objects = model.objects.map((o) => {
       const base = meshColour(model.meshes[o.mesh].colour, model.colours);
-      const material = new THREE.MeshStandardMaterial({ color: base, roughness: 0.7, metalness: 0.05, flatShading: true });
-      const mesh = new THREE.Mesh(geometries[o.mesh], material);
+      // Deforming objects are sheets, seen from both sides.
+      const material = new THREE.MeshStandardMaterial({ color: base, roughness: 0.7, metalness: 0.05, flatShading: true, side: o.deforming ? THREE.DoubleSide : THREE.FrontSide });
+      // A deforming object draws its own copy of the mesh, its positions replaced every frame.
+      let geometry = geometries[o.mesh];
+      if (o.deforming) {
+        geometry = new THREE.BufferGeometry();
+        geometry.setAttribute('position', new THREE.BufferAttribute(new Float32Array(model.meshes[o.mesh].positions), 3));
+        geometry.setIndex(geometries[o.mesh].getIndex());
+      }
+      const mesh = new THREE.Mesh(geometry, material);
       mesh.matrixAutoUpdate = false;
       mesh.userData = { index: o.index, base };
       this.world.add(mesh);
@@ -74,12 +84,36 @@ export class Stage {
     this.touches.renderOrder = 12;
     this.world.add(this.touches);
 
+    // Self pairs: their intersecting triangles (world frame), drawn over the object.
+    this.selfOverlay = new THREE.Mesh(
+      new THREE.BufferGeometry(),
+      new THREE.MeshBasicMaterial({ color: SELF_COLOUR, side: THREE.DoubleSide, polygonOffset: true, polygonOffsetFactor: -2, polygonOffsetUnits: -4 }));
+    this.selfOverlay.renderOrder = 9;
+    this.world.add(this.selfOverlay);
+
     this.camera = new THREE.PerspectiveCamera(45, 1, 0.01, 1000);
     this.controls = new OrbitControls(this.camera, this.renderer.domElement);
     this.controls.enableDamping = true;
     this.raycaster = new THREE.Raycaster();
     this.selected = -1;
     this.overrides = new Map(); // object index -> THREE.Matrix4 replacing the scene's pose (live page)
+    // Deforming objects: object index -> positions (scaled, model frame) replacing the scene's
+    // vertices of the frame (live page: the dragged sheet).
+    this.vertexOverrides = new Map();
+    this.drawnFrame = new Map(); // deforming object index -> the positions last drawn
+  }
+
+  // Deforming object `index`'s drawn positions to `positions` (float32 or float64, model frame).
+  // `key` (the frame, or the override array) skips the update when those are drawn already.
+  setVertices(index, positions, key = positions) {
+    const g = this.objects[index].geometry;
+    if (this.drawnFrame.get(index) === key) return;
+    this.drawnFrame.set(index, key);
+    g.attributes.position.array.set(positions);
+    g.attributes.position.needsUpdate = true;
+    g.computeVertexNormals();
+    g.computeBoundingBox();
+    g.computeBoundingSphere();
   }
 
   // Frames the camera on the objects as posed in `frame`.
@@ -116,13 +150,20 @@ export class Stage {
       if (own) m.matrix.copy(own);
       else m.matrix.set(p[0], p[1], p[2], p[9], p[3], p[4], p[5], p[10], p[6], p[7], p[8], p[11], 0, 0, 0, 1);
       m.matrixWorldNeedsUpdate = true;
+      const o = this.model.objects[m.userData.index];
+      if (o.deforming) {
+        const own = this.vertexOverrides.get(o.index);
+        if (own) this.setVertices(o.index, own);
+        else this.setVertices(o.index, this.model.vertices(o, frame), frame);
+      }
     }
     this.world.updateMatrixWorld(true);
   }
 
-  // Poses the objects, highlights `pairs` ({i, j, kind}), draws `contacts` (flat xyz) and the
-  // first-touch points of `touches` ({point: [x, y, z]}).
-  show(frame, pairs, contacts, touches = []) {
+  // Poses the objects, highlights `pairs` ({i, j, kind}; i === j: a self pair), draws `contacts`
+  // (flat xyz), the first-touch points of `touches` ({point: [x, y, z]}) and the intersecting
+  // triangles of the self pairs (`selfTriangles`: object index -> triangle pairs a, b, ...).
+  show(frame, pairs, contacts, touches = [], selfTriangles = new Map()) {
     this.setPoses(frame);
     const kindOf = new Map();
     for (const p of pairs) {
@@ -149,6 +190,7 @@ export class Stage {
     const points = [];
     const colours = [];
     for (const p of pairs) {
+      if (p.i === p.j) continue; // a self pair: its triangles are drawn instead
       const c = new THREE.Color(KIND_COLOURS[p.kind]);
       for (const v of [centre(p.i), centre(p.j)]) {
         points.push(v.x, v.y, v.z);
@@ -163,6 +205,26 @@ export class Stage {
     this.contacts.geometry.computeBoundingSphere();
     this.touches.geometry.setAttribute('position', new THREE.Float32BufferAttribute(touches.flatMap((t) => t.point), 3));
     this.touches.geometry.computeBoundingSphere();
+    this.#drawSelf(selfTriangles);
+  }
+
+  // The triangles of each self pair (both of every pair, each once), in the world frame.
+  #drawSelf(selfTriangles) {
+    const xyz = [];
+    const v = new THREE.Vector3();
+    for (const [index, pairs] of selfTriangles) {
+      const m = this.objects[index];
+      const position = m.geometry.attributes.position;
+      const corners = m.geometry.getIndex().array;
+      for (const t of new Set(pairs)) {
+        for (let c = 0; c < 3; ++c) {
+          v.fromBufferAttribute(position, corners[3 * t + c]).applyMatrix4(m.matrix);
+          xyz.push(v.x, v.y, v.z);
+        }
+      }
+    }
+    this.selfOverlay.geometry.setAttribute('position', new THREE.Float32BufferAttribute(xyz, 3));
+    this.selfOverlay.geometry.computeBoundingSphere();
   }
 
   // The object under a canvas pixel, or -1.
