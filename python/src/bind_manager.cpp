@@ -102,7 +102,7 @@ ManagedWorld::Motion to_motion(const ManagedWorld& w, const std::string& functio
     const std::optional<std::size_t> count = w.vertex_count(id);
     if (!count) throw py::value_error(label + ": " + name + " not in collision manager!");
     m.vertex_ids.push_back(id);
-    m.vertices.push_back(to_positions(entry.cast<py::tuple>()[2], label, *count));
+    m.vertices.push_back(to_deform_positions(entry.cast<py::tuple>()[2], label, *count));
   }
   return m;
 }
