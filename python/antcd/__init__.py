@@ -9,7 +9,8 @@ first time two moving models touch (continuous collision, never missing a contac
 mesh meets or nears itself, ``deform_sweep`` / ``collision_free_step`` the first contact and
 the collision-free step of meshes whose vertices move one by one (cloth), ``Scene`` /
 ``run_scene`` play an antcd-scene/1 file, and ``CollisionManager`` is a drop-in for
-``trimesh.collision.CollisionManager``.
+``trimesh.collision.CollisionManager`` (with deforming objects and continuous motion:
+``MotionToi``).
 
 Poses are 4x4 homogeneous matrices or ``(rotation 3x3, translation 3)`` pairs (rigid motions
 only); contact points are in world coordinates. Queries release the GIL and Models may be shared
@@ -45,7 +46,7 @@ from ._antcd import (
     self_proximity,
     sweep,
 )
-from .collision import CollisionManager, ContactData, DistanceData
+from .collision import CollisionManager, ContactData, DistanceData, MotionToi
 
 __all__ = [
     "CollisionManager",
@@ -56,6 +57,7 @@ __all__ = [
     "DistanceData",
     "DistanceResult",
     "Model",
+    "MotionToi",
     "PenetrationResult",
     "RandomResult",
     "Scene",

@@ -8,6 +8,11 @@ changing its import: ``add_object(name, mesh, transform=None)`` (same name repla
 names (a set of names; a set of 2-tuples sorted alphabetically; a set of (this, other) tuples) and
 a list of ``ContactData``, one per colliding triangle pair.
 
+Beyond trimesh: deforming objects (``add_object(..., self_collision=True)``, ``set_vertices``;
+``in_collision_internal`` then also reports an object that intersects itself as the pair
+``(name, name)``) and continuous motion (``sweep_motion`` / ``set_motion_continuous``: the first
+time of impact of every pair while objects move and deform, as ``MotionToi`` records).
+
 ``min_distance_single`` / ``min_distance_internal`` / ``min_distance_other`` return the minimum
 distance and, on request, the name(s) of the closest object(s) (a name; a 2-tuple in alphabetical
 order; a (this, other) tuple) and a ``DistanceData`` with the closest point and face index per name.
@@ -31,14 +36,14 @@ between open meshes the surface distance (never negative); it is ``inf`` with th
 from __future__ import annotations
 
 import math
-from typing import Any, Iterable
+from typing import Any, Iterable, Mapping
 
 import numpy as np
 
 from . import _antcd
 from ._antcd import CollisionResult, DistanceResult, Model
 
-__all__ = ["CollisionManager", "ContactData", "DistanceData"]
+__all__ = ["CollisionManager", "ContactData", "DistanceData", "MotionToi"]
 
 
 def _as_model(mesh: Any) -> Model:
@@ -80,14 +85,20 @@ class ContactData:
       normal of the first object's triangle (its winding order), ``depth`` that TRIANGLE PAIR's
       penetration depth (FCL's mesh semantics; not the solids' depth), ``distance`` 0 when they
       intersect.
+
+    A self pair (an object added with ``self_collision=True`` that intersects itself) is the
+    second kind with both names the object's: ``names`` is ``{name}``, ``triangles`` the pair
+    ``(i, j)``, i < j, and ``index(name)`` is i.
     """
 
-    __slots__ = ("names", "_inds", "_point", "_normal", "_distance", "_depth")
+    __slots__ = ("names", "_inds", "_triangles", "_point", "_normal", "_distance", "_depth")
 
     def __init__(self, names: tuple[str, str], triangles: tuple[int, int], point: np.ndarray,
                  normal: np.ndarray, distance: float, depth: float = math.nan) -> None:
         self.names = set(names)
-        self._inds = {names[0]: int(triangles[0]), names[1]: int(triangles[1])}
+        self._triangles = (int(triangles[0]), int(triangles[1]))
+        # names[0] last: a self pair's index(name) is its first triangle.
+        self._inds = {names[1]: self._triangles[1], names[0]: self._triangles[0]}
         self._point = point
         self._normal = normal
         self._distance = float(distance)
@@ -112,6 +123,11 @@ class ContactData:
     def distance(self) -> float:
         """Distance between the two triangles (0 when they intersect or for a solid contact)."""
         return self._distance
+
+    @property
+    def triangles(self) -> tuple[int, int]:
+        """The face indices of the two triangles, first name's first ((-1, -1): solid)."""
+        return self._triangles
 
     def index(self, name: str) -> int:
         """Face index of the triangle in contact on the object called ``name`` (-1: solid)."""
@@ -164,11 +180,46 @@ class DistanceData:
         return f"<antcd.DistanceData {sorted(self.names)} distance={self._distance!r}>"
 
 
+class MotionToi:
+    """One pair of a continuous motion (CollisionManager.sweep_motion): two objects, or one
+    against itself, that come within min_separation while the objects move and deform.
+
+    ``names``: (a, b) in the order the objects were added (a self pair: (name, name)); ``kind``:
+    ``'rigid_sweep'`` (two rigid objects: antcd.sweep, ``sweep`` its SweepResult),
+    ``'start_contact'`` (a pair with a deforming object, or a self pair, already in contact at
+    t = 0: exact discrete test) or ``'deform'`` (found by antcd.deform_sweep: ``primitive`` its
+    DeformPair, a's mesh first); ``toi`` in [0, 1], never after the first contact;
+    ``tolerance_decided``: the hit rests on the time tolerance, not a proof (False for
+    start_contact); ``point``: world point at toi (for display); ``triangles``: (triangle of a,
+    triangle of b) for start_contact (self: (i, j), i < j) and rigid_sweep (the sweep's contact),
+    None for deform; ``primitive`` / ``sweep``: None for the other kinds.
+    """
+
+    __slots__ = ("names", "kind", "toi", "tolerance_decided", "point", "triangles", "primitive",
+                 "sweep")
+
+    def __init__(self, names: tuple[str, str], kind: str, toi: float, tolerance_decided: bool,
+                 point: np.ndarray, triangles: Any, primitive: Any, sweep: Any) -> None:
+        self.names = names
+        self.kind = kind
+        self.toi = float(toi)
+        self.tolerance_decided = bool(tolerance_decided)
+        self.point = point
+        self.triangles = triangles
+        self.primitive = primitive
+        self.sweep = sweep
+
+    def __repr__(self) -> str:
+        how = "tolerance" if self.tolerance_decided else "proven"
+        return f"<antcd.MotionToi {self.names} {self.kind} toi={self.toi!r} ({how})>"
+
+
 def _contacts(names: tuple[str, str], model: Model, pose: Any, other: Model, other_pose: Any,
-              result: CollisionResult) -> Iterable[ContactData]:
+              result: CollisionResult, self_pair: bool = False) -> Iterable[ContactData]:
     """The contacts of a colliding pair (see ContactData): one solid contact for a convex pair or
-    a nested one (no surface contact), else one per triangle pair."""
-    if len(result) == 0 or (_antcd.is_convex(model) and _antcd.is_convex(other)):
+    a nested one (no surface contact), else one per triangle pair (always for a self pair)."""
+    if not self_pair and (len(result) == 0 or (_antcd.is_convex(model) and
+                                               _antcd.is_convex(other))):
         yield _solid_contact(names, model, pose, other, other_pose)
         return
     ta, tb = result.triangles_a, result.triangles_b
@@ -214,6 +265,21 @@ def _distance_of(nearest: Any) -> float:
     return math.inf if nearest is None else float(nearest[2].distance)
 
 
+def _motion_entries(ids: dict, values: Any, argument: str, function: str) -> list:
+    """[(id, name, value)] of a {name: value} argument of sweep_motion / set_motion_continuous."""
+    if values is None:
+        return []
+    if not isinstance(values, Mapping):
+        raise TypeError(f"{function}: {argument} must be a dict {{name: value}} or None, got "
+                        f"{type(values).__name__}")
+    entries = []
+    for name, value in values.items():
+        if name not in ids:
+            raise ValueError(f"{function}: {argument}: {name} not in collision manager!")
+        entries.append((ids[name], str(name), value))
+    return entries
+
+
 def _check_manager(other_manager: Any) -> None:
     if not isinstance(other_manager, CollisionManager):
         raise TypeError("other_manager must be an antcd.CollisionManager, got "
@@ -224,8 +290,8 @@ class CollisionManager:
     """A set of named, posed meshes checked for collisions (trimesh's CollisionManager interface).
 
     Backed by an antcd World (dynamic AABB tree broad phase, exact triangle-level queries) and
-    antcd's exact mesh distance. Queries release the GIL; objects may be moved by one thread while
-    another queries.
+    antcd's exact mesh distance. Queries release the GIL; objects may be moved or deformed by one
+    thread while another queries.
     """
 
     def __init__(self) -> None:
@@ -234,25 +300,30 @@ class CollisionManager:
         # id -> name. Ids are never reused and entries are kept after removal, so a query racing a
         # removal in another thread can still name what it found.
         self._names: dict[int, str] = {}
-        # name -> (model, pose): the other side of each contact reported by in_collision_*.
-        self._posed: dict[str, tuple[Model, Any]] = {}
+        # name -> (transform as given, self_collision, rebuild_above), for pickling.
+        self._added: dict[str, tuple[Any, bool, float]] = {}
 
-    def add_object(self, name: str, mesh: Any, transform: Any = None) -> Model:
+    def add_object(self, name: str, mesh: Any, transform: Any = None, *,
+                   self_collision: bool = False, rebuild_above: float = 0.0) -> Model:
         """Adds (or, for a name already present, replaces) an object.
 
         mesh: an antcd.Model (shared, not copied), a trimesh.Trimesh or any object with
         .vertices and .faces, or a (vertices, faces) pair. transform: 4x4 homogeneous matrix,
         (rotation, translation) pair or None (identity); rigid only (ValueError otherwise).
-        Returns the object's Model.
+        self_collision: in_collision_internal (and sweep_motion) also test the object against
+        itself. rebuild_above: set_vertices rebuilds the object's hierarchy when refitting made it
+        looser than this (Model.refit_growth; 0: never). Returns the object's Model.
         """
         model = _as_model(mesh)
-        new_id = self._world.add(model, transform)
+        new_id = self._world.add(model, transform, str(name), bool(self_collision),
+                                 rebuild_above)
         old_id = self._ids.get(name)
         if old_id is not None:
             self._world.remove(old_id)
         self._ids[name] = new_id
         self._names[new_id] = name
-        self._posed[name] = (model, np.eye(4) if transform is None else transform)
+        self._added[name] = (np.eye(4) if transform is None else transform, bool(self_collision),
+                             float(rebuild_above))
         return model
 
     def remove_object(self, name: str) -> None:
@@ -260,7 +331,7 @@ class CollisionManager:
         if name not in self._ids:
             raise ValueError(f"{name} not in collision manager!")
         self._world.remove(self._ids.pop(name))
-        del self._posed[name]
+        del self._added[name]
 
     def set_transform(self, name: str, transform: Any) -> None:
         """Replaces an object's pose; ValueError if there is none by that name or the transform
@@ -268,14 +339,80 @@ class CollisionManager:
         if name not in self._ids:
             raise ValueError(f"{name} not in collision manager!")
         self._world.set_pose(self._ids[name], transform)
-        self._posed[name] = (self._posed[name][0], transform)
+        self._added[name] = (transform, *self._added[name][1:])
+
+    def set_vertices(self, name: str, vertices: Any) -> None:
+        """New model-frame positions for the vertices of the object called ``name`` (same count
+        and order; its faces are fixed): a deforming object.
+
+        The first call copies the object's Model (the one given to add_object is never changed,
+        and is again free for Model.set_vertices); later calls refit that copy in place, or copy
+        again while a Model of an earlier result is held (a held Model never changes). Queries
+        then answer on the new vertices; ``model(name)`` and the Models in results are the
+        object's current ones. ValueError (the object unchanged) for an unknown name, a wrong
+        shape, dtype or row count, a non-finite entry, or a zero-area triangle of the build that
+        has an area now. Waits for queries in flight; the GIL is released.
+        """
+        if name not in self._ids or not self._world.set_vertices(self._ids[name], vertices,
+                                                                 str(name)):
+            raise ValueError(f"set_vertices: {name} not in collision manager!")
+
+    def model(self, name: str) -> Model:
+        """The Model the object called ``name`` uses now (after set_vertices: its own copy).
+        ValueError if there is none by that name."""
+        found = self._world.model(self._ids[name]) if name in self._ids else None
+        if found is None:
+            raise ValueError(f"{name} not in collision manager!")
+        return found
+
+    def sweep_motion(self, poses: Any = None, vertices: Any = None, *,
+                     min_separation: float = 0.0, time_tolerance: float = 1e-6,
+                     max_iterations: int = 100000) -> list[MotionToi]:
+        """Continuous collision of one step: over t in [0, 1] the objects named in ``poses``
+        ({name: pose}) move from their current poses to those, the objects named in
+        ``vertices`` ({name: (n, 3) model-frame positions}) deform to those (their WORLD vertices
+        move linearly; a new pose may be given too), the others stay (antcd::World::sweep_motion,
+        include/antcd/world.hpp). Returns a MotionToi for every pair of objects, and every
+        self_collision object against itself, that comes within min_separation, sorted by the
+        objects' add order. Conservative: no such pair is missed and each toi is never after its
+        first contact. The manager is not changed. ValueError / TypeError naming the argument and
+        the object for bad input; the GIL is released while it runs (a shared lock, as queries).
+        """
+        return self._motion(self._world.sweep_motion, "sweep_motion", poses, vertices,
+                            min_separation, time_tolerance, max_iterations)
+
+    def set_motion_continuous(self, poses: Any = None, vertices: Any = None, *,
+                              min_separation: float = 0.0, time_tolerance: float = 1e-6,
+                              max_iterations: int = 100000) -> list[MotionToi]:
+        """sweep_motion, then the poses and vertices applied (set_transform / set_vertices); on
+        error nothing is changed. Returns sweep_motion's records."""
+        out = self._motion(self._world.set_motion_continuous, "set_motion_continuous", poses,
+                           vertices, min_separation, time_tolerance, max_iterations)
+        for name, pose in (poses or {}).items():
+            if name in self._added:
+                self._added[name] = (pose, *self._added[name][1:])
+        return out
+
+    def _motion(self, call: Any, function: str, poses: Any, vertices: Any, min_separation: float,
+                time_tolerance: float, max_iterations: int) -> list[MotionToi]:
+        pose_entries = _motion_entries(self._ids, poses, "poses", function)
+        vertex_entries = _motion_entries(self._ids, vertices, "vertices", function)
+        records = call(pose_entries, vertex_entries, min_separation, time_tolerance,
+                       max_iterations)
+        return [MotionToi((self._names[a], self._names[b]), *rest) for a, b, *rest in records]
 
     def __getstate__(self) -> dict:
-        """Pickling: the objects as (name, Model, transform) in the order they were added. Each
-        Model pickles as its model-file bytes (Model.to_bytes), once however many objects share
-        it (pickle's memo), and unpickles without building anything."""
+        """Pickling: the objects as (name, Model, transform, {"self_collision",
+        "rebuild_above"}) in the order they were added, each with its current Model. Each Model
+        pickles as its model-file bytes (Model.to_bytes), once however many objects share it
+        (pickle's memo), and unpickles without building anything."""
         order = sorted(self._ids.items(), key=lambda item: item[1])
-        return {"objects": [(name, *self._posed[name]) for name, _ in order]}
+        objects = []
+        for name, object_id in order:
+            transform, self_collision, rebuild_above = self._added[name]
+            objects.append((name, self._world.model(object_id), transform,
+                            {"self_collision": self_collision, "rebuild_above": rebuild_above}))
+        return {"objects": objects}
 
     def __setstate__(self, state: dict) -> None:
         objects = state.get("objects") if isinstance(state, dict) else None
@@ -284,10 +421,11 @@ class CollisionManager:
                              "'objects' list")
         self.__init__()
         for entry in objects:
-            if not (isinstance(entry, tuple) and len(entry) == 3 and isinstance(entry[1], Model)):
+            if not (isinstance(entry, tuple) and len(entry) in (3, 4) and
+                    isinstance(entry[1], Model) and (len(entry) == 3 or isinstance(entry[3], dict))):
                 raise ValueError("antcd.CollisionManager pickle state: each object must be a "
-                                 "(name, Model, transform) tuple")
-            self.add_object(*entry)
+                                 "(name, Model, transform[, options dict]) tuple")
+            self.add_object(*entry[:3], **(entry[3] if len(entry) == 4 else {}))
 
     def in_collision_single(self, mesh: Any, transform: Any = None, return_names: bool = False,
                             return_data: bool = False) -> Any:
@@ -300,7 +438,7 @@ class CollisionManager:
         hits = self._world.collide_single(model, transform, _mode(return_names, return_data))
         names: set = set()
         data: list = []
-        for object_id, _, result, object_model, object_pose in hits:
+        for object_id, _, result, object_model, object_pose, _, _ in hits:
             name = self._names[object_id]
             names.add(name)
             if return_data:
@@ -309,10 +447,12 @@ class CollisionManager:
         return _answer(bool(hits), names, data, return_names, return_data)
 
     def in_collision_internal(self, return_names: bool = False, return_data: bool = False) -> Any:
-        """Checks every pair of objects.
+        """Checks every pair of objects, and each object added with self_collision=True against
+        itself (antcd.self_intersections of its current mesh).
 
         Returns is_collision, plus (return_names) a set of 2-tuples of names in alphabetical order
-        and (return_data) a list of ContactData, one per colliding triangle pair.
+        (a self-intersecting object: (name, name)) and (return_data) a list of ContactData, one per
+        colliding triangle pair.
         """
         hits = self._world.collide_internal(_mode(return_names, return_data))
         return self._pairs(hits, self, return_names, return_data, sort_names=True)
@@ -399,12 +539,12 @@ class CollisionManager:
                sort_names: bool) -> Any:
         names: set = set()
         data: list = []
-        for id_a, id_b, result, model_a, pose_a in hits:
+        for id_a, id_b, result, model_a, pose_a, model_b, pose_b in hits:
             pair = (self._names[id_a], other._names[id_b])
             names.add(tuple(sorted(pair)) if sort_names else pair)
             if return_data:
-                model_b, pose_b = other._posed[pair[1]]
-                data.extend(_contacts(pair, model_a, pose_a, model_b, pose_b, result))
+                self_pair = sort_names and id_a == id_b  # internal only: other's (b, b) is not
+                data.extend(_contacts(pair, model_a, pose_a, model_b, pose_b, result, self_pair))
         return _answer(bool(hits), names, data, return_names, return_data)
 
     def __len__(self) -> int:

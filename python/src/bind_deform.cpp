@@ -20,19 +20,6 @@ namespace antcd::python {
 
 namespace {
 
-/// Positions for one end of a deforming mesh: to_positions' checks (shape, row count, finite),
-/// then the header's coordinate range (|x| <= kDeformMaxCoordinate), each naming `name`.
-std::vector<Vec3> to_deform_positions(py::handle v, std::string_view name, const Model& model) {
-  std::vector<Vec3> out = to_positions(v, name, model.mesh().vertices.size());
-  for (std::size_t i = 0; i < out.size(); ++i) {
-    if (out[i].cwiseAbs().maxCoeff() > kDeformMaxCoordinate) {
-      throw py::value_error(std::string(name) + "[" + std::to_string(i) +
-                            "] has a coordinate beyond the deforming sweep's range (|x| <= 1e150)");
-    }
-  }
-  return out;
-}
-
 DeformSweepRequest to_request(double min_separation, double time_tolerance, bool all_pairs,
                               double pose_path_tolerance) {
   DeformSweepRequest r;
@@ -160,8 +147,8 @@ void bind_deform(py::module_& m) {
         }
         const DeformSweepRequest request =
             to_request(min_separation, time_tolerance, all_pairs, pose_path_tolerance);
-        const std::vector<Vec3> a0 = to_deform_positions(a0_in, "a0", a);
-        const std::vector<Vec3> a1 = to_deform_positions(a1_in, "a1", a);
+        const std::vector<Vec3> a0 = to_deform_positions(a0_in, "a0", a.mesh().vertices.size());
+        const std::vector<Vec3> a1 = to_deform_positions(a1_in, "a1", a.mesh().vertices.size());
         if (b_in.is_none()) {
           py::gil_scoped_release release;
           const ModelReadLock lock(a);
@@ -169,8 +156,8 @@ void bind_deform(py::module_& m) {
         }
         const Model& b = b_in.cast<const Model&>();
         if (deforming_b) {
-          const std::vector<Vec3> b0 = to_deform_positions(b0_in, "b0", b);
-          const std::vector<Vec3> b1 = to_deform_positions(b1_in, "b1", b);
+          const std::vector<Vec3> b0 = to_deform_positions(b0_in, "b0", b.mesh().vertices.size());
+          const std::vector<Vec3> b1 = to_deform_positions(b1_in, "b1", b.mesh().vertices.size());
           py::gil_scoped_release release;
           const ModelReadLock lock(a, b);
           return deform_sweep(a, a0, a1, b, b0, b1, request);
@@ -207,8 +194,8 @@ void bind_deform(py::module_& m) {
       [](const Model& model, const py::handle v0_in, const py::handle v1_in, double min_separation,
          double time_tolerance) {
         const DeformSweepRequest request = to_request(min_separation, time_tolerance, false, 0.0);
-        const std::vector<Vec3> v0 = to_deform_positions(v0_in, "v0", model);
-        const std::vector<Vec3> v1 = to_deform_positions(v1_in, "v1", model);
+        const std::vector<Vec3> v0 = to_deform_positions(v0_in, "v0", model.mesh().vertices.size());
+        const std::vector<Vec3> v1 = to_deform_positions(v1_in, "v1", model.mesh().vertices.size());
         py::gil_scoped_release release;
         const ModelReadLock lock(model);
         return collision_free_step(model, v0, v1, request.min_separation, request.time_tolerance);

@@ -1,6 +1,7 @@
 // python/src/convert.cpp — see convert.hpp.
 #include "convert.hpp"
 
+#include <antcd/deform_ccd.hpp>
 #include <antcd/pose.hpp>
 #include <antcd/tolerances.hpp>
 
@@ -255,6 +256,18 @@ std::vector<Vec3> to_positions(py::handle vertices_in, std::string_view name, st
   std::vector<Vec3> out(n);
   const double* v = vertices.data();
   for (std::size_t i = 0; i < n; ++i) out[i] = Vec3(v[3 * i], v[3 * i + 1], v[3 * i + 2]);
+  return out;
+}
+
+std::vector<Vec3> to_deform_positions(py::handle vertices, std::string_view name,
+                                      std::size_t count) {
+  std::vector<Vec3> out = to_positions(vertices, name, count);
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    if (out[i].cwiseAbs().maxCoeff() > kDeformMaxCoordinate) {
+      throw py::value_error(str(name) + "[" + std::to_string(i) +
+                            "] has a coordinate beyond the deforming sweep's range (|x| <= 1e150)");
+    }
+  }
   return out;
 }
 

@@ -45,6 +45,11 @@ Mesh to_mesh(py::handle vertices, py::handle faces);
 /// naming `name` for a wrong shape or dtype, a row count other than `count`, a non-finite entry.
 std::vector<Vec3> to_positions(py::handle vertices, std::string_view name, std::size_t count);
 
+/// Positions for one end of a deforming motion (deform_ccd.hpp, World::sweep_motion):
+/// to_positions' checks, then every |coordinate| <= kDeformMaxCoordinate, each naming `name`.
+std::vector<Vec3> to_deform_positions(py::handle vertices, std::string_view name,
+                                      std::size_t count);
+
 /// "area" (area-weighted centroid, the paper's Eq. 3; default) or "vertex" (Eqs. 1-2).
 CovarianceMethod parse_covariance(std::string_view name);
 std::string_view covariance_name(CovarianceMethod method);

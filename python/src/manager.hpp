@@ -9,13 +9,24 @@
 // Ids: an ObjectId packed into 64 bits (slot << 32 | generation). The World never hands out the
 // same (slot, generation) twice, so an id is never reused, even after removal.
 //
-// Thread safety: the World forbids mutations concurrent with anything else, so queries take a
-// shared lock and add / remove / set_pose an exclusive one: Python threads may query one manager
-// while another moves its objects. Every Model added is pinned (model_guard.hpp) until its object
-// is removed or the manager destroyed: the broad phase keeps boxes of its positions at add time, so
-// Model.set_vertices refuses it meanwhile. Lock order: this manager's lock, then a Model's
-// (model_guard.hpp) — add() and the *_single queries take them so, set_vertices takes a Model's
-// alone — so a set_vertices waiting at a Model's gate cannot close a cycle with them.
+// Deforming objects: set_vertices and set_motion_continuous give an object new vertex positions
+// through World::set_vertices, which copies the object's Model into a private one on the first call
+// (the Model given to add() is shared and never changed) and afterwards refits that copy in place,
+// unless a pointer to it is held (a Python Model object of a query's result: it then copies again,
+// so a held Model never changes under its holder). An object's current Model is world_.model_ptr().
+//
+// Thread safety: the World forbids mutations concurrent with anything else, so queries (and
+// sweep_motion) take a shared lock and add / remove / set_pose / set_vertices /
+// set_motion_continuous an exclusive one: Python threads may query one manager while another moves
+// or deforms its objects. Pins (model_guard.hpp): the Model each object currently uses is pinned,
+// from add() (or from the set_vertices that made it the object's) until its object is removed, the
+// object's next copy replaces it, or the manager is destroyed: the broad phase keeps boxes of its
+// positions, so Model.set_vertices refuses it meanwhile (a result's Model too: it is the World's).
+// A Model the object no longer uses is unpinned (the one given to add(), after the first
+// set_vertices, is again the caller's to change). Lock order: this manager's lock, then a Model's
+// (model_guard.hpp) — add(), set_vertices and the *_single queries take them so, Model.set_vertices
+// takes a Model's alone — so a Model.set_vertices waiting at a Model's gate cannot close a cycle
+// with them.
 #pragma once
 
 #include <antcd/collide.hpp>
@@ -24,7 +35,11 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <shared_mutex>
+#include <span>
+#include <unordered_set>
+#include <utility>
 #include <vector>
 
 namespace antcd::python {
@@ -42,11 +57,34 @@ class ManagedWorld {
 
   struct Hit {
     Id a = 0;  ///< this world's object (collide_single: the object touched)
-    Id b = 0;  ///< the other object (collide_internal: a later-added one; collide_other: the other
-               ///< world's; collide_single: 0)
-    CollisionResult result;  ///< A = object a's model, B = object b's (collide_single: the query's)
+    Id b = 0;  ///< the other object (collide_internal: a later-added one, or a itself for a self
+               ///< pair; collide_other: the other world's; collide_single: 0)
+    /// A = object a's model, B = object b's (collide_single: the query's). A self pair (a == b,
+    /// an object added with self_collision): one contact per intersecting triangle pair (i, j),
+    /// i < j, as World::collide_all's self_pairs, with a common point (world frame), distance 0,
+    /// and the pair's triangle_penetration depth and normal (Mode::Contacts only).
+    CollisionResult result;
     std::shared_ptr<const Model> model_a;  ///< object a's model and pose at query time
     Transform pose_a;
+    std::shared_ptr<const Model> model_b;  ///< object b's (null for collide_single)
+    Transform pose_b;
+  };
+
+  /// The arguments of sweep_motion / set_motion_continuous: objects given new poses, objects
+  /// given new model-frame vertices (World::sweep_motion's ids / new_poses / deforming).
+  struct Motion {
+    std::vector<Id> pose_ids;
+    std::vector<Transform> poses;
+    std::vector<Id> vertex_ids;
+    std::vector<std::vector<Vec3>> vertices;
+    SweepRequest request;
+  };
+
+  /// One pair of a continuous motion: World::sweep_motion's MotionToi with packed ids.
+  struct MotionHit {
+    Id a = 0;  ///< a added before b; a == b: a self pair
+    Id b = 0;
+    MotionToi toi;  ///< its a / b left as the World gave them
   };
 
   /// The closest pair of a minimum-distance query.
@@ -63,12 +101,29 @@ class ManagedWorld {
   /// Unpins every object's Model.
   ~ManagedWorld();
 
-  /// Adds an object and pins its Model (under the Model's shared lock).
-  Id add(std::shared_ptr<const Model> model, const Transform& pose);
+  /// Adds an object and pins its Model (under the Model's shared lock). options as World::add's
+  /// (name: how the World's errors name it; self_collision; rebuild_above).
+  Id add(std::shared_ptr<const Model> model, const Transform& pose, ObjectOptions options = {});
   /// False if there is no such object. Unpins its Model.
   bool remove(Id id);
   bool set_pose(Id id, const Transform& pose);
+  /// World::set_vertices (model-frame positions), then the pins moved to the Model the object uses
+  /// now. False if there is no such object; ArgumentError as World::set_vertices (nothing changed).
+  bool set_vertices(Id id, std::span<const Vec3> vertices);
   [[nodiscard]] std::size_t size() const;
+  /// The object's current Model (nothing when there is no such object). Holding it makes the next
+  /// set_vertices of the object copy rather than refit in place.
+  [[nodiscard]] std::shared_ptr<const Model> model(Id id) const;
+  /// The object's vertex count (nothing when there is no such object).
+  [[nodiscard]] std::optional<std::size_t> vertex_count(Id id) const;
+
+  /// World::sweep_motion: every pair (and self pair) that comes within
+  /// motion.request.min_separation while the objects move and deform; the world is not changed.
+  /// ArgumentError as World::sweep_motion.
+  [[nodiscard]] std::vector<MotionHit> sweep_motion(const Motion& motion) const;
+  /// World::set_motion_continuous: sweep_motion, then the poses and vertices applied (pins moved as
+  /// in set_vertices). On error nothing is changed.
+  std::vector<MotionHit> set_motion_continuous(const Motion& motion);
 
   /// Colliding pairs among this world's objects, a added before b (ObjectId order). Sorted by (a,
   /// b).
@@ -99,7 +154,14 @@ class ManagedWorld {
   template <class F>
   auto with_both_locked(const ManagedWorld& other, F&& f) const;
 
+  /// Runs mutate() (which calls World::set_vertices on `ids`) and then moves the pins of each of
+  /// those objects whose Model it replaced. The caller holds the exclusive lock.
+  template <class F>
+  auto deform(std::span<const Id> ids, F&& mutate);
+
   World world_;
+  /// Objects whose Model is a private copy of the World's (after their first set_vertices).
+  std::unordered_set<Id> private_models_;
   mutable std::shared_mutex mutex_;
 };
 
