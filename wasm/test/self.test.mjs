@@ -5,32 +5,17 @@ import assert from 'node:assert/strict';
 import { execFileSync } from 'node:child_process';
 import { test } from 'node:test';
 
-import { antcd, cli, writeObj } from './helpers.mjs';
+import { antcd, cli, sheet, writeObj } from './helpers.mjs';
 
 const I = [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1];
 
 // A strip whose cross-section (t^2 - 1, t^3 - t), t in [-1.3, 1.25], passes through itself;
 // folded = false: the same grid flat in z = 0.
 function alphaSheet(nx, ny, folded = true) {
-  const positions = new Float64Array(3 * nx * ny);
-  const indices = [];
-  for (let i = 0; i < nx; ++i) {
-    const t = -1.3 + (2.55 * i) / (nx - 1);
-    for (let j = 0; j < ny; ++j) {
-      const k = 3 * (i * ny + j);
-      positions[k] = folded ? t * t - 1 : t;
-      positions[k + 1] = j / (ny - 1);
-      positions[k + 2] = folded ? t * t * t - t : 0;
-    }
-  }
-  for (let i = 0; i + 1 < nx; ++i) {
-    for (let j = 0; j + 1 < ny; ++j) {
-      const a = i * ny + j;
-      const b = (i + 1) * ny + j;
-      indices.push(a, b, b + 1, a, b + 1, a + 1);
-    }
-  }
-  return { positions, indices: new Uint32Array(indices) };
+  return sheet(nx, ny, (u, v) => {
+    const t = -1.3 + 2.55 * u;
+    return folded ? [t * t - 1, v, t * t * t - t] : [t, v, 0];
+  });
 }
 
 function nativeJson(args) {
