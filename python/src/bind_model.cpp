@@ -83,7 +83,8 @@ void set_vertices(Model& model, const py::handle vertices) {
     throw py::value_error(
         "set_vertices: model '" + model.source() +
         "' is held by a CollisionManager or a Scene, whose broad phase keeps the bounds of its "
-        "current positions; remove it from the manager first (or build a new Model)");
+        "current positions; deform the object with CollisionManager.set_vertices, or remove it "
+        "from the manager first (or build a new Model)");
   }
 }
 
@@ -207,7 +208,8 @@ void bind_model(py::module_& m) {
            "Raises ValueError naming the problem, the model unchanged: a wrong shape, dtype or "
            "row count, a non-finite entry, a triangle of zero area at build time that has an "
            "area now (build a new Model), or a model held by a CollisionManager or a Scene "
-           "(their broad phase keeps its bounds; remove it from the manager first).")
+           "(their broad phase keeps its bounds; use CollisionManager.set_vertices, or remove it "
+           "from the manager first).")
       .def_property_readonly(
           "refit_growth",
           [](const Model& model) {

@@ -11,9 +11,10 @@
 //   queries in turn). Nothing here is held while the GIL is taken. With a Model's lock held, the
 //   only lock taken is the pin table's mutex (nothing is locked under it); a CollisionManager
 //   takes its own lock before a Model's, never after (manager.hpp).
-// - Pins: a Model held by a CollisionManager or a Scene is pinned. Their broad phase keeps boxes
-//   derived from the positions at the time it took the Model, so set_vertices refuses a pinned
-//   Model (ValueError) instead of leaving those boxes stale. Pinning happens under the Model's
+// - Pins: a Model held by a CollisionManager (the Model each object uses now, manager.hpp) or a
+//   Scene is pinned. Their broad phase keeps boxes derived from the positions at the time it took
+//   the Model, so set_vertices refuses a pinned Model (ValueError) instead of leaving those boxes
+//   stale. Pinning happens under the Model's
 //   shared lock, the pin check under its exclusive one: a Model is never refitted while it is
 //   being added.
 #pragma once
