@@ -76,7 +76,7 @@ Deforming check_deforming(const World::Impl& w, const VertexMotion& d, std::size
       if (!(p->cwiseAbs().maxCoeff() <= kDeformMaxCoordinate)) {
         fail("vertex " + std::to_string(i) +
              "'s world position at t = " + (p == &out.v0[i] ? "0" : "1") + " exceeds " +
-             std::to_string(kDeformMaxCoordinate) + " in magnitude (deform_ccd.hpp)");
+             number_text(kDeformMaxCoordinate) + " in magnitude (deform_ccd.hpp)");
       }
     }
   }
