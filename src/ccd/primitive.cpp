@@ -452,15 +452,15 @@ void search_separated(const Setup& s, Scalar t_begin, Scalar t_end, PrimitiveRes
   }
 }
 
-/// At most this many coplanarity windows get a search of their own; then one search covers the
-/// rest of [0, 1] (motions coplanar, or nearly, over a long time).
+/// At most this many coplanarity windows get a search of their own; then one window search covers
+/// the rest of [0, 1] (motions coplanar, or nearly, over a long time).
 constexpr int kMaxWindows = 8;
 
 /// min_separation == 0: the coplanarity cubic (ccd/primitive_cubic.hpp) excludes every time where
 /// it is certifiably nonzero; the windows (<= min_t_width long) where it may vanish are taken in
-/// time order: first a direct check at the window's start (accept_at), then the inclusion
-/// search on that window alone. Where the cubic may vanish all along (Flat), or after
-/// kMaxWindows windows, the inclusion search takes the rest of [0, 1].
+/// time order: first a direct check at the window's start (accept_at), then the window search
+/// (search_separated) on that window alone. Where the cubic may vanish all along (Flat), or after
+/// kMaxWindows windows, the window search takes the rest of [0, 1].
 template <Kind kKind>
 void search_coplanarity_windows(const Setup& s, const coplanar::CubicPiece& whole,
                                 PrimitiveResult& result, Best& best) {
