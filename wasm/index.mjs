@@ -134,6 +134,19 @@ export default async function createAntcd(options = {}) {
     if (positions.length % 3 !== 0) throw new Error(`${fn}: ${name} has ${positions.length} numbers, not a multiple of 3`);
     return f32;
   }
+  // body(pointer, f32) with the positions copied into WebAssembly memory (checked as
+  // positionsType does, freed afterwards); returns body's answer.
+  function withPositions(fn, name, positions, body) {
+    const f32 = positionsType(fn, name, positions);
+    const p = alloc(fn, name, positions.length * (f32 ? 4 : 8));
+    try {
+      if (f32) core.HEAPF32.set(positions, p / 4);
+      else core.HEAPF64.set(positions, p / 8);
+      return body(p, f32);
+    } finally {
+      core.freeBytes(p);
+    }
+  }
   function info(model) {
     check('Model', core.modelInfo(modelOf('Model', 'this', model)));
     return out(5);
@@ -212,19 +225,13 @@ export default async function createAntcd(options = {}) {
     setVertices(positions) {
       const fn = 'Model.setVertices';
       const id = modelOf(fn, 'this', this);
-      const f32 = positionsType(fn, 'positions', positions);
+      positionsType(fn, 'positions', positions);
       const nv = info(this)[1];
       if (positions.length !== 3 * nv) {
         throw new Error(`${fn}: positions has ${positions.length} numbers, the model has ${nv} vertices (${3 * nv})`);
       }
-      const p = alloc(fn, 'positions', positions.length * (f32 ? 4 : 8));
-      try {
-        if (f32) core.HEAPF32.set(positions, p / 4);
-        else core.HEAPF64.set(positions, p / 8);
-        check(fn, core.modelSetVertices(id, p, positions.length, f32));
-      } finally {
-        core.freeBytes(p);
-      }
+      withPositions(fn, 'positions', positions, (p, f32) =>
+        check(fn, core.modelSetVertices(id, p, positions.length, f32)));
     }
     /** { positions: Float64Array, indices: Uint32Array } of the model's mesh. */
     mesh() {
@@ -410,7 +417,7 @@ export default async function createAntcd(options = {}) {
 
   const World = worldApi({
     core, alloc, allocString, check, fail, rethrow, out, outCopy, number, modelOf, optionsOf, writePose, isPose, describe,
-    positionsType, sweepRecord, deformPair, EMPTY,
+    positionsType, withPositions, sweepRecord, deformPair, EMPTY,
   });
 
   return {

@@ -12,7 +12,7 @@ const PAIR_STRIDE = 8;
 export function worldApi(ctx) {
   const {
     core, alloc, allocString, check, fail, rethrow, out, outCopy, number, modelOf, optionsOf, writePose, isPose, describe,
-    positionsType, sweepRecord, deformPair, EMPTY,
+    positionsType, withPositions, sweepRecord, deformPair, EMPTY,
   } = ctx;
   const CONTACT_STRIDE = core.contactStride;
   const MOTION_STRIDE = core.motionStride;
@@ -145,15 +145,8 @@ export function worldApi(ctx) {
       const fn = 'World.setVertices';
       const w = this.#live(fn);
       const h = handleOf(fn, 'handle', handle);
-      const f32 = positionsType(fn, 'positions', positions);
-      const p = alloc(fn, 'positions', positions.length * (f32 ? 4 : 8));
-      try {
-        if (f32) core.HEAPF32.set(positions, p / 4);
-        else core.HEAPF64.set(positions, p / 8);
-        check(fn, w.setVertices(h, p, positions.length, f32));
-      } finally {
-        core.freeBytes(p);
-      }
+      withPositions(fn, 'positions', positions, (p, f32) =>
+        check(fn, w.setVertices(h, p, positions.length, f32)));
     }
     get size() { return this.#live('World.size').size(); }
     /**
