@@ -59,7 +59,10 @@
 // a width w (qa the distance of its position in A's frame from A's axis, grown by w times its
 // speed; yb that of its position in B's frame from B's axis), so spheres whose centre chord stays
 // apart by more than that, and triangles whose B corners stay below a separating plane at both ends
-// by more than that, stay apart over the whole width. The first triangle pair found within
+// by more than that, stay apart over the whole width; a triangle pair whose gap closes at the far
+// end is tried once more over 0.95 of the width at which its two ends' gaps, interpolated, close
+// (a pair nearing its contact then reaches it in a few steps, not in ever shorter ones). The first
+// triangle pair found within
 // min_separation + allowance + mu * time_tolerance / 2 gives toi: every other pair is proven apart
 // until a later time. A traversal that examines 20 000 pairs (a later one of the same sweep twice
 // as many as the last) hands back the time it reached, and the whole-mesh advancement goes on from

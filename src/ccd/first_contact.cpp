@@ -353,8 +353,7 @@ class Search {
       }
       if (best - triangle_margin_ > 0) {
         const Scalar step = pair_step(best - triangle_margin_, axis, 0, f.v, f.rot, m_, x, y);
-        const Scalar w = chord_width(e.t, step);
-        advance(e, e.steps > 0 && w > step && chord_apart(axis, x, y, yb, e.t, w) ? w : step);
+        advance(e, e.steps > 0 ? chord_step(axis, x, y, yb, e.t, step) : step);
         return false;
       }
     }
@@ -375,10 +374,9 @@ class Search {
     const Scalar step = pair_step(gap, (d.pa - d.pb) / d.distance, 2 * allowance_ / d.distance, f.v,
                                   f.rot, m_, x, y);
     // The chord test along the closest-point direction.
-    const Scalar w = chord_width(e.t, step);
-    const bool chord = w > step && d.distance > 4 * allowance_ &&
-                       chord_apart((d.pa - d.pb) / d.distance, x, y, yb, e.t, w);
-    advance(e, chord ? w : step);
+    advance(e, d.distance > 4 * allowance_
+                   ? chord_step((d.pa - d.pb) / d.distance, x, y, yb, e.t, step)
+                   : step);
     return false;
   }
 
@@ -386,9 +384,10 @@ class Search {
   /// lies above the plane n . p = min n . x_i; B's corners (y in B's frame, yb in A's at t) run
   /// within bend() of their chords in A's frame, so B's triangle stays below max(n . y_k at t,
   /// n . y_k at t + w) + bend (a point of the triangle is a fixed combination of its corners).
-  /// True when that leaves more than the margin between them over the whole interval.
-  bool chord_apart(const Vec3& n, const std::array<Vec3, 3>& x, const std::array<Vec3, 3>& y,
-                   const std::array<Vec3, 3>& yb, Scalar t, Scalar w) const {
+  /// Returns the gap that leaves between them over the whole interval, less the margin (> 0: apart
+  /// throughout), and in `end_gap` the same at t + w alone.
+  Scalar chord_gap(const Vec3& n, const std::array<Vec3, 3>& x, const std::array<Vec3, 3>& y,
+                   const std::array<Vec3, 3>& yb, Scalar t, Scalar w, Scalar& end_gap) const {
     const Frame g = frame_at(t + w);
     const std::array<Vec3, 3> y1{g.rot * y[0] + g.trans, g.rot * y[1] + g.trans,
                                  g.rot * y[2] + g.trans};
@@ -396,7 +395,26 @@ class Search {
     for (int k = 0; k < 3; ++k) {
       strayed = std::max(strayed, bend(w, m_.spin_b.reach(y[k]), m_.spin_a.reach(yb[k])));
     }
-    return std::min(axis_gap(n, x, yb), axis_gap(n, x, y1)) - strayed - triangle_margin_ > 0;
+    end_gap = axis_gap(n, x, y1) - strayed - triangle_margin_;
+    return std::min(axis_gap(n, x, yb) - strayed - triangle_margin_, end_gap);
+  }
+
+  /// The step a triangle pair at t takes along the unit axis n when its conservative step is
+  /// `step`: the chord test over kChordSteps such steps; where that fails because the pair's gap
+  /// along n has closed at the far end (a pair approaching its contact, which conservative steps
+  /// reach only in ever shorter steps: each covers a fixed fraction of the time left), once more
+  /// over kSecantShare of the width at which the two ends' gaps, interpolated, close. Each test
+  /// is a proof over its own interval (chord_gap), whatever width it is given.
+  Scalar chord_step(const Vec3& n, const std::array<Vec3, 3>& x, const std::array<Vec3, 3>& y,
+                    const std::array<Vec3, 3>& yb, Scalar t, Scalar step) const {
+    const Scalar w = chord_width(t, step);
+    if (!(w > step)) return step;
+    Scalar end = 0;
+    if (chord_gap(n, x, y, yb, t, w, end) > 0) return w;
+    const Scalar start = axis_gap(n, x, yb) - triangle_margin_;
+    if (!(end < 0 && start > 0)) return step;
+    const Scalar w2 = kSecantShare * w * start / (start - end);
+    return w2 > step && chord_gap(n, x, y, yb, t, w2, end) > 0 ? w2 : step;
   }
 
   /// Advancement steps of a node pair before its children are examined (from where it reached).
@@ -405,6 +423,10 @@ class Search {
   static constexpr std::uint8_t kCheapSteps = 4;
   /// A chord test spans this many conservative steps (or the rest of the motion).
   static constexpr Scalar kChordSteps = 8;
+  /// A failed chord test is tried once more over this share of the width at which the pair's
+  /// gap would close (chord_step). Shares of 0.6 / 0.8 / 0.9 / 0.95 / 0.99 on 133 replayed
+  /// sheet/roller sweeps: 2.34 / 2.21 / 2.14 / 2.09 / 2.07 G instructions (no retry: 2.37 G).
+  static constexpr Scalar kSecantShare = 0.95;
 
   const RigidPair& m_;
   Turn turn_a_, turn_b_;
