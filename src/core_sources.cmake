@@ -37,6 +37,7 @@ set(ANTCD_CORE_SOURCES
   world/continuous.cpp
   world/deform_motion.cpp
   ccd/first_contact.cpp
+  ccd/plane_step.cpp
   ccd/primitive.cpp
   ccd/sweep.cpp
   ccd/swept_proximity.cpp

@@ -39,6 +39,13 @@
 // Each distance query of the advancement starts from the previous query's closest triangle pair,
 // evaluated exactly at the new pose (an upper bound that prunes from the first node pair; the
 // lower bound it returns is certified as before).
+// Convex pairs (both models convex, as penetration.hpp detects it, once per Model): after a costly
+// distance query the step is also tried across the plane through the closest points, held while
+// the two vertex sets stay on their sides of it (their hulls are the surfaces): for a vertex of
+// each, its projection on the plane's normal is linear plus a sinusoid in t, within
+// (theta_a^2 rho_a + theta_b^2 rho_b) w^2 / 8 of its chord over a width w, so the least gap of the
+// two ends less that, above min_separation, proves the width; a sweep stops trying after two
+// steps it did not lengthen.
 // Fine meshes near contact (a query that examined 400 node pairs or more, with a gap below four
 // typical triangle sizes, root radius * sqrt(4 pi / triangles)): the advancement hands over to one
 // traversal of both hierarchies in which every node pair and every triangle pair advances in time

@@ -19,8 +19,10 @@
 #include <antcd/pose.hpp>
 #include "ccd/first_contact.hpp"
 #include "ccd/motion.hpp"
+#include "ccd/plane_step.hpp"
 #include "ccd/swept_proximity.hpp"
 #include "distance/seeded.hpp"
+#include "penetration/convex.hpp"
 #include "util/check.hpp"
 
 namespace antcd {
@@ -66,6 +68,13 @@ constexpr std::uint64_t kMaxTraversalPairs = 1 << 20;
 /// / 7.97 M. With the chord tests and the resumable budget, depth 4 / 5: 1.73 / 1.83 G on the
 /// production line and 6.89 / 7.71 G on the 60-frame assimp scene (see kTraversalGap).
 constexpr int kBisectDepth = 4;
+/// Steps in a row that ccd::plane_step did not lengthen before a sweep of a convex pair stops
+/// trying it (see the loop).
+constexpr int kPlaneMisses = 2;
+/// ... and tries it only after a distance query that examined at least (vertices of both models)
+/// / this many node pairs: a step scans every vertex up to four times, about what a query of that
+/// many node pairs costs.
+constexpr std::size_t kPlanePairsPerVertex = 12;
 /// Node pairs one interval test may examine before giving up: a piece that is apart but close
 /// costs a whole proximity traversal (7 000-15 000 node pairs seen without a cap, more than the
 /// advancement it saves). 300 settled 5888 sweeps, 1000 settled 5919 and was faster.
@@ -198,6 +207,13 @@ SweepResult sweep(const Model& a, const Transform& pose_a0, const Transform& pos
     result.distance = ms + slack;
     return result;
   }
+  // Both models convex (penetration/convex.hpp, derived once per Model): their surfaces are their
+  // hulls' boundaries, so a plane between the vertex sets proves the surfaces apart.
+  const bool convex =
+      detail::convex_polytope(a, pose_a0, nullptr) && detail::convex_polytope(b, pose_b0, nullptr);
+  int plane_misses = convex ? 0 : kPlaneMisses;
+  const std::uint64_t plane_pairs =
+      (a.mesh().vertices.size() + b.mesh().vertices.size()) / kPlanePairsPerVertex;
   // One traversal in which every node pair and triangle pair advances on its own: true when it
   // decided (result filled in); else `reached` is the time it proved free.
   ccd::FirstContactLimits limits;
@@ -286,6 +302,16 @@ SweepResult sweep(const Model& a, const Transform& pose_a0, const Transform& pos
     }
     // No contact before t + gap / mu (rounded down; the allowance covers the sum's rounding).
     Scalar advance = gap / mu * (1 - 1e-15);
+    // Convex pairs: the plane through the closest points, held while both hulls stay on their
+    // sides (ccd::plane_step; a second allowance for its vertex projections). It scans every
+    // vertex, so a sweep stops trying it after kPlaneMisses steps in a row it did not lengthen.
+    if (plane_misses < kPlaneMisses && d.node_pairs >= plane_pairs && d.distance > 0 &&
+        std::isfinite(d.distance)) {
+      const Vec3 n = (d.point_a - d.point_b) / d.distance;
+      const Scalar tau = ccd::plane_step(motion, n, t, ms + 2 * allowance, 1 - t);
+      plane_misses = tau > advance ? 0 : plane_misses + 1;
+      advance = std::max(advance, tau);
+    }
     if (d.node_pairs >= kTraversalNodePairs && gap < near_gap && t + advance < 1 &&
         result.iterations < request.max_iterations) {
       // A query this costly: fine meshes near each other. Every pair advancing on its own costs
