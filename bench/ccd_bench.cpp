@@ -8,6 +8,11 @@
 // microseconds, and (corpus and near misses) the false negatives / positives against the exact
 // truth; the benchmark loop runs the whole set.
 //
+// Wang et al.'s Erleben queries (ccd_erleben/<set>, the part stored in tests/ccd/data/erleben):
+// ns_per_query the mean over the benchmark loop, median_ns the median over the queries of each
+// query's median time (see ccd_erleben below), and the false positives / negatives against the
+// files' truth.
+//
 // Mesh sweeps (sweep/<pair>, collide_end/<pair>, fcl_ca/<pair>): 16 seeded motions per pair, A
 // passing by or through B (which turns a little) while turning up to 2.5 rad, half of them
 // touching. sweep runs antcd::sweep on every motion, sweep_touching on the touching ones;
@@ -35,6 +40,7 @@
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <memory>
@@ -43,6 +49,7 @@
 #include <string>
 #include <vector>
 
+#include "ccd/erleben_queries.hpp"
 #include "ccd/exact_truth.hpp"
 
 #ifdef ANTCD_BENCH_FCL
@@ -135,6 +142,70 @@ void ccd_primitive(benchmark::State& state) {
   }
 }
 BENCHMARK(ccd_primitive)->Arg(0)->Arg(1)->Arg(2)->Arg(3)->Unit(benchmark::kMillisecond);
+
+/// Wang et al.'s Erleben queries as stored in tests/ccd/data/erleben (its README: which part of
+/// the set): /0 all of them, /1 the vertex–face ones, /2 the edge–edge ones.
+std::vector<antcd::test::RationalQuery> erleben_set(int which) {
+  std::vector<antcd::test::RationalQuery> out;
+  for (const auto& f : antcd::test::load_erleben(ANTCD_ERLEBEN_DATA)) {
+    if (which == 0 || (which == 1) == (f.kind == CcdKind::VertexFace)) {
+      out.insert(out.end(), f.queries.begin(), f.queries.end());
+    }
+  }
+  return out;
+}
+
+// The benchmark loop runs every query once per iteration: ns_per_query is the mean over the set.
+// median_ns: each query alone, 7 rounds of 50 back-to-back calls; a query's time is the median
+// of its 7 round means, and median_ns the median of those over the queries (p90_ns, max_ns
+// likewise). false_pos / false_neg against the files' truth (the same counts as
+// tests/ccd/erleben_test.cpp).
+void ccd_erleben(benchmark::State& state) {
+  const auto set = erleben_set(static_cast<int>(state.range(0)));
+  std::vector<double> per_query;
+  per_query.reserve(set.size());
+  for (const auto& rq : set) {
+    constexpr int kRounds = 7, kReps = 50;
+    std::array<double, kRounds> rounds{};
+    for (double& round : rounds) {
+      const auto start = std::chrono::steady_clock::now();
+      int hits = 0;
+      for (int r = 0; r < kReps; ++r) hits += run_query(rq.query) ? 1 : 0;
+      benchmark::DoNotOptimize(hits);
+      round = std::chrono::duration<double, std::nano>(std::chrono::steady_clock::now() - start)
+                  .count() /
+              kReps;
+    }
+    std::nth_element(rounds.begin(), rounds.begin() + kRounds / 2, rounds.end());
+    per_query.push_back(rounds[kRounds / 2]);
+  }
+  std::sort(per_query.begin(), per_query.end());
+  for (auto _ : state) {
+    int hits = 0;
+    for (const auto& rq : set) hits += run_query(rq.query) ? 1 : 0;
+    benchmark::DoNotOptimize(hits);
+  }
+  int false_negatives = 0, false_positives = 0, negatives = 0;
+  for (const auto& rq : set) {
+    const bool hit = run_query(rq.query);
+    negatives += rq.truth ? 0 : 1;
+    false_negatives += rq.truth && !hit ? 1 : 0;
+    false_positives += !rq.truth && hit ? 1 : 0;
+  }
+  state.counters["queries"] = static_cast<double>(set.size());
+  state.counters["ns_per_query"] = benchmark::Counter(
+      static_cast<double>(set.size()),
+      benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+  state.counters["median_ns"] = per_query[per_query.size() / 2];
+  state.counters["p90_ns"] = per_query[per_query.size() * 9 / 10];
+  state.counters["max_ns"] = per_query.back();
+  state.counters["negatives"] = negatives;
+  state.counters["false_pos"] = false_positives;
+  state.counters["false_neg"] = false_negatives;
+  const char* labels[] = {"erleben all", "erleben vf", "erleben ee"};
+  state.SetLabel(labels[state.range(0)]);
+}
+BENCHMARK(ccd_erleben)->Arg(0)->Arg(1)->Arg(2)->Unit(benchmark::kMicrosecond);
 
 // ---- mesh sweeps --------------------------------------------------------------------------
 
