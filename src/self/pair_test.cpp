@@ -69,15 +69,10 @@ std::uint8_t normal_signs(const Vec3& a, const Vec3& b, const Vec3& c) {
 
 namespace {
 
-/// The projection along the dominant axis of the floating-point normal of (a, b, c).
-Projection flattest(const Vec3& a, const Vec3& b, const Vec3& c) {
-  return Projection(geometry::detail::dominant_axis((b - a).cross(c - a)));
-}
-
 /// Triangles (u, v, p) and (u, v, q) sharing the edge uv: proved to meet in uv only by the
 /// floating-point certificates of the header (false: not proved).
-bool edge_pair_apart_certified(const Vec3& u, const Vec3& v, const Vec3& p, const Vec3& q) {
-  const Projection pr = flattest(u, v, p);
+bool edge_pair_apart_certified(const Vec3& u, const Vec3& v, const Vec3& p, const Vec3& q,
+                               const Projection& pr) {
   if (orient2d_sign_if_certain(u, v, p, pr) * orient2d_sign_if_certain(u, v, q, pr) < 0) {
     return true;
   }
@@ -87,8 +82,7 @@ bool edge_pair_apart_certified(const Vec3& u, const Vec3& v, const Vec3& p, cons
 /// Triangles (w, a1, a2) and (w, b1, b2) sharing the vertex w: proved to meet in w only by the
 /// wedge certificate of the header (false: not proved).
 bool vertex_pair_apart_certified(const Vec3& w, const Vec3& a1, const Vec3& a2, const Vec3& b1,
-                                 const Vec3& b2) {
-  const Projection pr = flattest(w, a1, a2);
+                                 const Vec3& b2, const Projection& pr) {
   const int sa = orient2d_sign_if_certain(w, a1, a2, pr);
   if (sa == 0) return false;
   const int sb = orient2d_sign_if_certain(w, b1, b2, pr);
@@ -134,50 +128,53 @@ bool boxes_apart(std::initializer_list<const Vec3*> a, std::initializer_list<con
 
 }  // namespace
 
-bool pair_intersects(const Mesh& mesh, std::uint32_t i, std::uint32_t j, int& shared) {
+int certificate_axis(const Vec3& a, const Vec3& b, const Vec3& c) {
+  return geometry::detail::dominant_axis((b - a).cross(c - a));
+}
+
+bool pair_intersects(const Mesh& mesh, std::uint32_t i, std::uint32_t j, int& shared,
+                     PairHint hint) {
   const TriangleIndices& ti = mesh.triangles[i];
   const TriangleIndices& tj = mesh.triangles[j];
   const auto& v = mesh.vertices;
+  // Corners twice over, so that A[a], A[a + 1], A[a + 2] is a rotation of the triangle.
+  const Vec3* A[5] = {&v[ti[0]], &v[ti[1]], &v[ti[2]], &v[ti[0]], &v[ti[1]]};
+  const Vec3* B[5] = {&v[tj[0]], &v[tj[1]], &v[tj[2]], &v[tj[0]], &v[tj[1]]};
   int ai[3], bj[3];
   shared = 0;
   for (int a = 0; a < 3; ++a) {
-    for (int b = 0; b < 3; ++b) {
-      if (ti[a] == tj[b]) {
-        ai[shared] = a;
-        bj[shared] = b;
-        ++shared;
-      }
+    const std::uint32_t x = ti[static_cast<std::size_t>(a)];
+    const int b = x == tj[0] ? 0 : x == tj[1] ? 1 : x == tj[2] ? 2 : -1;
+    if (b >= 0) {
+      ai[shared] = a;
+      bj[shared] = b;
+      ++shared;
     }
   }
-  const auto pi = [&](int a) -> const Vec3& { return v[ti[static_cast<std::size_t>(a % 3)]]; };
-  const auto pj = [&](int b) -> const Vec3& { return v[tj[static_cast<std::size_t>(b % 3)]]; };
-  switch (shared) {
-    case 0:
-      if (boxes_apart({&pi(0), &pi(1), &pi(2)}, {&pj(0), &pj(1), &pj(2)})) return false;
-      return geometry::triangles_intersect(pi(0), pi(1), pi(2), pj(0), pj(1), pj(2));
-    case 1: {
-      const int a = ai[0], b = bj[0];
-      if (vertex_pair_apart_certified(pi(a), pi(a + 1), pi(a + 2), pj(b + 1), pj(b + 2))) {
-        return false;
-      }
-      const auto edge_meets = [](const Vec3& p, const Vec3& q, const Vec3& t0, const Vec3& t1,
-                                 const Vec3& t2) {
-        return !boxes_apart({&p, &q}, {&t0, &t1, &t2}) &&
-               geometry::detail::segment_meets_triangle(p, q, t0, t1, t2);
-      };
-      return edge_meets(pi(a + 1), pi(a + 2), pj(0), pj(1), pj(2)) ||
-             edge_meets(pj(b + 1), pj(b + 2), pi(0), pi(1), pi(2));
-    }
-    case 2: {
-      // The unshared corners: the one index of each triangle not matched.
-      const int a_free = 3 - ai[0] - ai[1];
-      const int b_free = 3 - bj[0] - bj[1];
-      if (edge_pair_apart_certified(pi(ai[0]), pi(ai[1]), pi(a_free), pj(b_free))) return false;
-      return folded_flat(pi(ai[0]), pi(ai[1]), pi(a_free), pj(b_free));
-    }
-    default:
-      return true;
+  if (shared == 0) {
+    if (!hint.boxes_overlap && boxes_apart({A[0], A[1], A[2]}, {B[0], B[1], B[2]})) return false;
+    return geometry::triangles_intersect(*A[0], *A[1], *A[2], *B[0], *B[1], *B[2]);
   }
+  if (shared == 3) return true;
+  const Projection pr(hint.axis >= 0 ? hint.axis : certificate_axis(*A[0], *A[1], *A[2]));
+  if (shared == 1) {
+    const int a = ai[0], b = bj[0];
+    if (vertex_pair_apart_certified(*A[a], *A[a + 1], *A[a + 2], *B[b + 1], *B[b + 2], pr)) {
+      return false;
+    }
+    const auto edge_meets = [](const Vec3& p, const Vec3& q, const Vec3& t0, const Vec3& t1,
+                               const Vec3& t2) {
+      return !boxes_apart({&p, &q}, {&t0, &t1, &t2}) &&
+             geometry::detail::segment_meets_triangle(p, q, t0, t1, t2);
+    };
+    return edge_meets(*A[a + 1], *A[a + 2], *B[0], *B[1], *B[2]) ||
+           edge_meets(*B[b + 1], *B[b + 2], *A[0], *A[1], *A[2]);
+  }
+  // The unshared corners: the one index of each triangle not matched.
+  const Vec3& p = *A[3 - ai[0] - ai[1]];
+  const Vec3& q = *B[3 - bj[0] - bj[1]];
+  if (edge_pair_apart_certified(*A[ai[0]], *A[ai[1]], p, q, pr)) return false;
+  return folded_flat(*A[ai[0]], *A[ai[1]], p, q);
 }
 
 }  // namespace antcd::self_detail
