@@ -41,6 +41,7 @@
 #include "geometry/predicates.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <initializer_list>
 
 namespace antcd::self_detail {
@@ -69,30 +70,54 @@ std::uint8_t normal_signs(const Vec3& a, const Vec3& b, const Vec3& c) {
 
 namespace {
 
+/// The two coordinates a projection dropping one axis keeps (Projection's u, v), as a table.
+struct Kept {
+  int u;
+  int v;
+};
+constexpr Kept kKept[3] = {{1, 2}, {2, 0}, {0, 1}};
+
+/// x - w in the kept coordinates.
+struct Offset {
+  double u;
+  double v;
+};
+Offset offset(const Vec3& x, const Vec3& w, Kept k) { return {x[k.u] - w[k.u], x[k.v] - w[k.v]}; }
+
+/// orient2d_sign_if_certain(w, x, y) from dx = x - w and dy = y - w: the same floating-point
+/// operations (so the same value and bound), the differences found once for several signs.
+int certain_sign(Offset dx, Offset dy) {
+  const double left = dx.u * dy.v;
+  const double right = dx.v * dy.u;
+  const double value = left - right;
+  const double bound = geometry::detail::kOrient2dBound * (std::abs(left) + std::abs(right));
+  return (value > bound) - (-value > bound);
+}
+
 /// Triangles (u, v, p) and (u, v, q) sharing the edge uv: proved to meet in uv only by the
 /// floating-point certificates of the header (false: not proved).
-bool edge_pair_apart_certified(const Vec3& u, const Vec3& v, const Vec3& p, const Vec3& q,
-                               const Projection& pr) {
-  if (orient2d_sign_if_certain(u, v, p, pr) * orient2d_sign_if_certain(u, v, q, pr) < 0) {
-    return true;
-  }
+bool edge_pair_apart_certified(const Vec3& u, const Vec3& v, const Vec3& p, const Vec3& q, Kept k) {
+  const Offset e = offset(v, u, k);
+  if (certain_sign(e, offset(p, u, k)) * certain_sign(e, offset(q, u, k)) < 0) return true;
   return geometry::detail::orient3d_sign_if_certain(u, v, p, q) != 0;
 }
 
 /// Triangles (w, a1, a2) and (w, b1, b2) sharing the vertex w: proved to meet in w only by the
 /// wedge certificate of the header (false: not proved).
 bool vertex_pair_apart_certified(const Vec3& w, const Vec3& a1, const Vec3& a2, const Vec3& b1,
-                                 const Vec3& b2, const Projection& pr) {
-  const int sa = orient2d_sign_if_certain(w, a1, a2, pr);
+                                 const Vec3& b2, Kept k) {
+  const Offset da1 = offset(a1, w, k), da2 = offset(a2, w, k);
+  const int sa = certain_sign(da1, da2);
   if (sa == 0) return false;
-  const int sb = orient2d_sign_if_certain(w, b1, b2, pr);
+  const Offset db1 = offset(b1, w, k), db2 = offset(b2, w, k);
+  const int sb = certain_sign(db1, db2);
   if (sb == 0) return false;
-  const int c11 = orient2d_sign_if_certain(w, a1, b1, pr);
-  const int c12 = orient2d_sign_if_certain(w, a1, b2, pr);
+  const int c11 = certain_sign(da1, db1);
+  const int c12 = certain_sign(da1, db2);
   if (c11 == -sa && c12 == -sa) return true;
-  const int c21 = orient2d_sign_if_certain(w, a2, b1, pr);
+  const int c21 = certain_sign(da2, db1);
   if (c11 == sb && c21 == sb) return true;
-  const int c22 = orient2d_sign_if_certain(w, a2, b2, pr);
+  const int c22 = certain_sign(da2, db2);
   return (c21 == sa && c22 == sa) || (c12 == -sb && c22 == -sb);
 }
 
@@ -156,7 +181,7 @@ bool pair_intersects(const Mesh& mesh, std::uint32_t i, std::uint32_t j, int& sh
     return geometry::triangles_intersect(*A[0], *A[1], *A[2], *B[0], *B[1], *B[2]);
   }
   if (shared == 3) return true;
-  const Projection pr(hint.axis >= 0 ? hint.axis : certificate_axis(*A[0], *A[1], *A[2]));
+  const Kept pr = kKept[hint.axis >= 0 ? hint.axis : certificate_axis(*A[0], *A[1], *A[2])];
   if (shared == 1) {
     const int a = ai[0], b = bj[0];
     if (vertex_pair_apart_certified(*A[a], *A[a + 1], *A[a + 2], *B[b + 1], *B[b + 2], pr)) {
