@@ -34,6 +34,9 @@ struct Work {
 /// A closed axis-aligned box: the exact minima and maxima of corner coordinates (of a triangle,
 /// or of a subtree's triangles). Point sets in disjoint boxes do not meet.
 struct Box {
+  // User-provided, so that the per-call vectors of boxes are not zero-filled before being set.
+  Box() {}  // NOLINT(modernize-use-equals-default)
+  Box(const Vec3& l, const Vec3& h) : lo(l), hi(h) {}
   Vec3 lo;
   Vec3 hi;
   [[nodiscard]] bool apart(const Box& o) const {
@@ -134,6 +137,13 @@ void step(const Context& cx, const Work& w, Collector& out, const Push& push) {
         if (cx.leaf_signs[l] != 0) out.test_leaf(cx, k, l);
       }
     }
+    return;
+  }
+  if (!na.is_leaf() && !nb.is_leaf()) {
+    push(Work{na.first_or_right, nb.first_or_right, false});
+    push(Work{na.first_or_right, w.b + 1, false});
+    push(Work{w.a + 1, nb.first_or_right, false});
+    push(Work{w.a + 1, w.b + 1, false});
     return;
   }
   if (nb.is_leaf() || (!na.is_leaf() && na.radius >= nb.radius)) {
