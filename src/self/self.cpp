@@ -97,6 +97,15 @@ struct Collector {
 template <class Push>
 void step(const Context& cx, const Work& w, Collector& out, const Push& push) {
   const BvhNode& na = cx.nodes[w.a];
+  // A pair of subtrees is pushed only when their boxes overlap (tested here, once).
+  const auto push_pair = [&](std::uint32_t a, std::uint32_t b) {
+    ++out.stats.node_pairs;
+    if (cx.node_boxes[a].apart(cx.node_boxes[b])) {
+      ++out.stats.volume_rejects;
+      return;
+    }
+    push(Work{a, b, false});
+  };
   if (w.self) {
     if (na.is_leaf()) {
       const std::uint32_t f = na.first_or_right;
@@ -118,17 +127,12 @@ void step(const Context& cx, const Work& w, Collector& out, const Push& push) {
       }
     }
     const std::uint32_t l = w.a + 1, r = na.first_or_right;
-    push(Work{l, r, false});
+    push_pair(l, r);
     push(Work{r, r, true});
     push(Work{l, l, true});
     return;
   }
   const BvhNode& nb = cx.nodes[w.b];
-  ++out.stats.node_pairs;
-  if (cx.node_boxes[w.a].apart(cx.node_boxes[w.b])) {
-    ++out.stats.volume_rejects;
-    return;
-  }
   if (na.is_leaf() && nb.is_leaf()) {
     for (std::uint32_t k = na.first_or_right; k < na.first_or_right + na.count && !out.done; ++k) {
       if (cx.leaf_signs[k] == 0) continue;
@@ -140,18 +144,18 @@ void step(const Context& cx, const Work& w, Collector& out, const Push& push) {
     return;
   }
   if (!na.is_leaf() && !nb.is_leaf()) {
-    push(Work{na.first_or_right, nb.first_or_right, false});
-    push(Work{na.first_or_right, w.b + 1, false});
-    push(Work{w.a + 1, nb.first_or_right, false});
-    push(Work{w.a + 1, w.b + 1, false});
+    push_pair(na.first_or_right, nb.first_or_right);
+    push_pair(na.first_or_right, w.b + 1);
+    push_pair(w.a + 1, nb.first_or_right);
+    push_pair(w.a + 1, w.b + 1);
     return;
   }
   if (nb.is_leaf() || (!na.is_leaf() && na.radius >= nb.radius)) {
-    push(Work{na.first_or_right, w.b, false});
-    push(Work{w.a + 1, w.b, false});
+    push_pair(na.first_or_right, w.b);
+    push_pair(w.a + 1, w.b);
   } else {
-    push(Work{w.a, nb.first_or_right, false});
-    push(Work{w.a, w.b + 1, false});
+    push_pair(w.a, nb.first_or_right);
+    push_pair(w.a, w.b + 1);
   }
 }
 
