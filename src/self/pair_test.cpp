@@ -51,12 +51,19 @@ using geometry::detail::orient2d_sign_if_certain;
 using geometry::detail::Projection;
 using geometry::detail::sign_of;
 
-std::uint8_t normal_signs(const Vec3& a, const Vec3& b, const Vec3& c) {
+std::uint8_t normal_signs(const Vec3& a, const Vec3& b, const Vec3& c, int* axis) {
   // Dropping axis k leaves the cyclic pair (k+1, k+2): the 2-D orientation is n_k. Signs the
   // floating-point filter proves first; the exact ones only when it proves none (a flat sheet's
   // tiny tangential components would otherwise run the expansions for every triangle).
   int s[3];
-  for (int k = 0; k < 3; ++k) s[k] = orient2d_sign_if_certain(a, b, c, Projection(k));
+  double n[3];
+  for (int k = 0; k < 3; ++k) {
+    const geometry::detail::Filtered f = geometry::detail::orient2d_float(a, b, c, Projection(k));
+    const double bound = geometry::detail::kOrient2dBound * f.perm;
+    s[k] = (f.value > bound) - (-f.value > bound);  // orient2d_sign_if_certain
+    n[k] = f.value;  // (b - a) x (c - a), component k, as certificate_axis computes it
+  }
+  if (axis != nullptr) *axis = geometry::detail::dominant_axis(Vec3(n[0], n[1], n[2]));
   if (s[0] == 0 && s[1] == 0 && s[2] == 0) {
     for (int k = 0; k < 3; ++k) s[k] = sign_of(orient2d(a, b, c, Projection(k)));
   }

@@ -11,8 +11,9 @@ namespace antcd::self_detail {
 /// Exact facts about one triangle's normal n = (b - a) x (c - a): bit 2k is set only when n_k > 0
 /// and bit 2k + 1 only when n_k < 0 (k = 0, 1, 2; exact signs). A nonzero n_k may leave its bits
 /// clear when another component's sign is proved in floating point (the cone cull then has fewer
-/// axes, never a wrong one). Zero exactly for a degenerate triangle.
-std::uint8_t normal_signs(const Vec3& a, const Vec3& b, const Vec3& c);
+/// axes, never a wrong one). Zero exactly for a degenerate triangle. When `axis` is not null it
+/// receives certificate_axis(a, b, c), found from the same floating-point components.
+std::uint8_t normal_signs(const Vec3& a, const Vec3& b, const Vec3& c, int* axis = nullptr);
 
 /// What a caller may already know about a pair; only the cost depends on it, never the verdict.
 struct PairHint {

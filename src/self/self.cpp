@@ -45,10 +45,16 @@ struct Box {
 };
 
 /// The box of mesh triangle t.
-Box box_of(const Mesh& mesh, std::uint32_t t) {
+inline Box box_of(const Mesh& mesh, std::uint32_t t) {
   const auto& v = mesh.vertices;
   const TriangleIndices& c = mesh.triangles[t];
-  return {v[c[0]].cwiseMin(v[c[1]]).cwiseMin(v[c[2]]), v[c[0]].cwiseMax(v[c[1]]).cwiseMax(v[c[2]])};
+  const Vec3 &p = v[c[0]], &q = v[c[1]], &r = v[c[2]];
+  Box b;
+  for (int k = 0; k < 3; ++k) {
+    b.lo[k] = std::min({p[k], q[k], r[k]});
+    b.hi[k] = std::max({p[k], q[k], r[k]});
+  }
+  return b;
 }
 
 /// What every task reads: the model, per-node normal-sign masks and the cone data.
@@ -205,26 +211,11 @@ void test_left_out(const Context& cx, const std::vector<std::uint32_t>& left_out
   }
 }
 
-}  // namespace
-
-SelfIntersectionResult self_intersections(const Model& model,
-                                          const SelfIntersectionRequest& request) {
-  SelfIntersectionResult result;
-  const Mesh& mesh = model.mesh();
-  Context cx{model, mesh, model.nodes(), model.leaf_triangles(), {}, {}, {}, {}, {}, nullptr};
-  const auto& v = mesh.vertices;
-  // Exact normal signs of the tree's triangles (zero: exactly degenerate), in leaf order.
-  cx.leaf_signs.resize(cx.leaves.size());
+/// The boxes of the tree's triangles and of its nodes.
+void add_boxes(Context& cx) {
   cx.leaf_boxes.resize(cx.leaves.size());
-  cx.leaf_axes.resize(cx.leaves.size());
   parallel::for_ranges(0, cx.leaves.size(), 4096, [&](std::size_t b, std::size_t e) {
-    for (std::size_t k = b; k < e; ++k) {
-      const TriangleIndices& t = mesh.triangles[cx.leaves[k]];
-      cx.leaf_signs[k] = self_detail::normal_signs(v[t[0]], v[t[1]], v[t[2]]);
-      cx.leaf_axes[k] =
-          static_cast<std::uint8_t>(self_detail::certificate_axis(v[t[0]], v[t[1]], v[t[2]]));
-      cx.leaf_boxes[k] = box_of(mesh, cx.leaves[k]);
-    }
+    for (std::size_t k = b; k < e; ++k) cx.leaf_boxes[k] = box_of(cx.mesh, cx.leaves[k]);
   });
   // The nodes' boxes, children before parents (a node's children follow it).
   cx.node_boxes.resize(cx.nodes.size());
@@ -243,6 +234,34 @@ SelfIntersectionResult self_intersections(const Model& model,
       b = {l.lo.cwiseMin(r.lo), l.hi.cwiseMax(r.hi)};
     }
   }
+}
+
+/// The cone test culls the whole tree (the traversal's first step would stop there).
+bool root_culled(const Context& cx) {
+  if (!cx.cones || cx.nodes[0].is_leaf() || cx.node_signs[0] == 0) return false;
+  const auto* entry = cx.cones->find(0);
+  return entry != nullptr && self_detail::cone_culls(cx.model, *cx.cones, *entry, cx.node_signs[0]);
+}
+
+}  // namespace
+
+SelfIntersectionResult self_intersections(const Model& model,
+                                          const SelfIntersectionRequest& request) {
+  SelfIntersectionResult result;
+  const Mesh& mesh = model.mesh();
+  Context cx{model, mesh, model.nodes(), model.leaf_triangles(), {}, {}, {}, {}, {}, nullptr};
+  const auto& v = mesh.vertices;
+  // Exact normal signs of the tree's triangles (zero: exactly degenerate), in leaf order.
+  cx.leaf_signs.resize(cx.leaves.size());
+  cx.leaf_axes.resize(cx.leaves.size());
+  parallel::for_ranges(0, cx.leaves.size(), 4096, [&](std::size_t b, std::size_t e) {
+    for (std::size_t k = b; k < e; ++k) {
+      const TriangleIndices& t = mesh.triangles[cx.leaves[k]];
+      int axis = 0;
+      cx.leaf_signs[k] = self_detail::normal_signs(v[t[0]], v[t[1]], v[t[2]], &axis);
+      cx.leaf_axes[k] = static_cast<std::uint8_t>(axis);
+    }
+  });
   // The triangles the tree leaves out: degenerate exactly, or thin but with an area.
   std::vector<bool> in_tree(mesh.triangles.size(), false);
   for (std::size_t k = 0; k < cx.leaves.size(); ++k) {
@@ -281,6 +300,14 @@ SelfIntersectionResult self_intersections(const Model& model,
       }
     }
   }
+
+  if (left_out.empty() && root_culled(cx)) {
+    // Nothing to traverse: the boxes are not needed (a deforming sheet's common case).
+    result.stats.cone_tests = 1;
+    result.stats.cone_culled = 1;
+    return result;
+  }
+  add_boxes(cx);
 
   if (request.first_only) {
     Collector out;
