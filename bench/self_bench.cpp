@@ -4,6 +4,10 @@
 // subdivision (the same surface, 4x the triangles per step) and generated sheets and spheres
 // made to pass through themselves. The pairs are checked equal once per mesh before timing (the
 // run aborts otherwise). Each mesh runs antcd then CGAL back to back: quote ratios of one run.
+// What is timed: antcd/ rows are repeat calls on a Model built before timing (prepare()'s check
+// made the first call, which built the cone topology; every call builds its own boxes); cgal/
+// rows are whole PMP::self_intersections calls (its face boxes included); "antcd build+self"
+// rows add the Model build, the fair row for a mesh seen once.
 //
 // Also the deforming sheet of the issue: a 100k-triangle sheet waving without touching itself,
 // each iteration one refit and one self test, both timed inside the iteration (interleaved), so

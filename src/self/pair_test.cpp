@@ -41,6 +41,7 @@
 #include "geometry/predicates.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <initializer_list>
 
 namespace antcd::self_detail {
@@ -50,12 +51,19 @@ using geometry::detail::orient2d_sign_if_certain;
 using geometry::detail::Projection;
 using geometry::detail::sign_of;
 
-std::uint8_t normal_signs(const Vec3& a, const Vec3& b, const Vec3& c) {
+std::uint8_t normal_signs(const Vec3& a, const Vec3& b, const Vec3& c, int* axis) {
   // Dropping axis k leaves the cyclic pair (k+1, k+2): the 2-D orientation is n_k. Signs the
   // floating-point filter proves first; the exact ones only when it proves none (a flat sheet's
   // tiny tangential components would otherwise run the expansions for every triangle).
   int s[3];
-  for (int k = 0; k < 3; ++k) s[k] = orient2d_sign_if_certain(a, b, c, Projection(k));
+  double n[3];
+  for (int k = 0; k < 3; ++k) {
+    const geometry::detail::Filtered f = geometry::detail::orient2d_float(a, b, c, Projection(k));
+    const double bound = geometry::detail::kOrient2dBound * f.perm;
+    s[k] = (f.value > bound) - (-f.value > bound);  // orient2d_sign_if_certain
+    n[k] = f.value;  // (b - a) x (c - a), component k, as certificate_axis computes it
+  }
+  if (axis != nullptr) *axis = geometry::detail::dominant_axis(Vec3(n[0], n[1], n[2]));
   if (s[0] == 0 && s[1] == 0 && s[2] == 0) {
     for (int k = 0; k < 3; ++k) s[k] = sign_of(orient2d(a, b, c, Projection(k)));
   }
@@ -69,36 +77,54 @@ std::uint8_t normal_signs(const Vec3& a, const Vec3& b, const Vec3& c) {
 
 namespace {
 
-/// The projection along the dominant axis of the floating-point normal of (a, b, c).
-Projection flattest(const Vec3& a, const Vec3& b, const Vec3& c) {
-  return Projection(geometry::detail::dominant_axis((b - a).cross(c - a)));
+/// The two coordinates a projection dropping one axis keeps (Projection's u, v), as a table.
+struct Kept {
+  int u;
+  int v;
+};
+constexpr Kept kKept[3] = {{1, 2}, {2, 0}, {0, 1}};
+
+/// x - w in the kept coordinates.
+struct Offset {
+  double u;
+  double v;
+};
+Offset offset(const Vec3& x, const Vec3& w, Kept k) { return {x[k.u] - w[k.u], x[k.v] - w[k.v]}; }
+
+/// orient2d_sign_if_certain(w, x, y) from dx = x - w and dy = y - w: the same floating-point
+/// operations (so the same value and bound), the differences found once for several signs.
+int certain_sign(Offset dx, Offset dy) {
+  const double left = dx.u * dy.v;
+  const double right = dx.v * dy.u;
+  const double value = left - right;
+  const double bound = geometry::detail::kOrient2dBound * (std::abs(left) + std::abs(right));
+  return (value > bound) - (-value > bound);
 }
 
 /// Triangles (u, v, p) and (u, v, q) sharing the edge uv: proved to meet in uv only by the
 /// floating-point certificates of the header (false: not proved).
-bool edge_pair_apart_certified(const Vec3& u, const Vec3& v, const Vec3& p, const Vec3& q) {
-  const Projection pr = flattest(u, v, p);
-  if (orient2d_sign_if_certain(u, v, p, pr) * orient2d_sign_if_certain(u, v, q, pr) < 0) {
-    return true;
-  }
+bool edge_pair_apart_certified(const Vec3& u, const Vec3& v, const Vec3& p, const Vec3& q, Kept k) {
+  const Offset e = offset(v, u, k);
+  if (certain_sign(e, offset(p, u, k)) * certain_sign(e, offset(q, u, k)) < 0) return true;
   return geometry::detail::orient3d_sign_if_certain(u, v, p, q) != 0;
 }
 
 /// Triangles (w, a1, a2) and (w, b1, b2) sharing the vertex w: proved to meet in w only by the
 /// wedge certificate of the header (false: not proved).
 bool vertex_pair_apart_certified(const Vec3& w, const Vec3& a1, const Vec3& a2, const Vec3& b1,
-                                 const Vec3& b2) {
-  const Projection pr = flattest(w, a1, a2);
-  const int sa = orient2d_sign_if_certain(w, a1, a2, pr);
+                                 const Vec3& b2, Kept k) {
+  const Offset da1 = offset(a1, w, k), da2 = offset(a2, w, k);
+  const int sa = certain_sign(da1, da2);
   if (sa == 0) return false;
-  const int sb = orient2d_sign_if_certain(w, b1, b2, pr);
+  const Offset db1 = offset(b1, w, k), db2 = offset(b2, w, k);
+  const int sb = certain_sign(db1, db2);
   if (sb == 0) return false;
-  const int c11 = orient2d_sign_if_certain(w, a1, b1, pr);
-  const int c12 = orient2d_sign_if_certain(w, a1, b2, pr);
+  const int c11 = certain_sign(da1, db1);
+  const int c12 = certain_sign(da1, db2);
   if (c11 == -sa && c12 == -sa) return true;
-  const int c21 = orient2d_sign_if_certain(w, a2, b1, pr);
+  const int c21 = certain_sign(da2, db1);
   if (c11 == sb && c21 == sb) return true;
-  const int c22 = orient2d_sign_if_certain(w, a2, b2, pr);
+  const int c22 = certain_sign(da2, db2);
   return (c21 == sa && c22 == sa) || (c12 == -sb && c22 == -sb);
 }
 
@@ -134,50 +160,53 @@ bool boxes_apart(std::initializer_list<const Vec3*> a, std::initializer_list<con
 
 }  // namespace
 
-bool pair_intersects(const Mesh& mesh, std::uint32_t i, std::uint32_t j, int& shared) {
+int certificate_axis(const Vec3& a, const Vec3& b, const Vec3& c) {
+  return geometry::detail::dominant_axis((b - a).cross(c - a));
+}
+
+bool pair_intersects(const Mesh& mesh, std::uint32_t i, std::uint32_t j, int& shared,
+                     PairHint hint) {
   const TriangleIndices& ti = mesh.triangles[i];
   const TriangleIndices& tj = mesh.triangles[j];
   const auto& v = mesh.vertices;
+  // Corners twice over, so that A[a], A[a + 1], A[a + 2] is a rotation of the triangle.
+  const Vec3* A[5] = {&v[ti[0]], &v[ti[1]], &v[ti[2]], &v[ti[0]], &v[ti[1]]};
+  const Vec3* B[5] = {&v[tj[0]], &v[tj[1]], &v[tj[2]], &v[tj[0]], &v[tj[1]]};
   int ai[3], bj[3];
   shared = 0;
   for (int a = 0; a < 3; ++a) {
-    for (int b = 0; b < 3; ++b) {
-      if (ti[a] == tj[b]) {
-        ai[shared] = a;
-        bj[shared] = b;
-        ++shared;
-      }
+    const std::uint32_t x = ti[static_cast<std::size_t>(a)];
+    const int b = x == tj[0] ? 0 : x == tj[1] ? 1 : x == tj[2] ? 2 : -1;
+    if (b >= 0) {
+      ai[shared] = a;
+      bj[shared] = b;
+      ++shared;
     }
   }
-  const auto pi = [&](int a) -> const Vec3& { return v[ti[static_cast<std::size_t>(a % 3)]]; };
-  const auto pj = [&](int b) -> const Vec3& { return v[tj[static_cast<std::size_t>(b % 3)]]; };
-  switch (shared) {
-    case 0:
-      if (boxes_apart({&pi(0), &pi(1), &pi(2)}, {&pj(0), &pj(1), &pj(2)})) return false;
-      return geometry::triangles_intersect(pi(0), pi(1), pi(2), pj(0), pj(1), pj(2));
-    case 1: {
-      const int a = ai[0], b = bj[0];
-      if (vertex_pair_apart_certified(pi(a), pi(a + 1), pi(a + 2), pj(b + 1), pj(b + 2))) {
-        return false;
-      }
-      const auto edge_meets = [](const Vec3& p, const Vec3& q, const Vec3& t0, const Vec3& t1,
-                                 const Vec3& t2) {
-        return !boxes_apart({&p, &q}, {&t0, &t1, &t2}) &&
-               geometry::detail::segment_meets_triangle(p, q, t0, t1, t2);
-      };
-      return edge_meets(pi(a + 1), pi(a + 2), pj(0), pj(1), pj(2)) ||
-             edge_meets(pj(b + 1), pj(b + 2), pi(0), pi(1), pi(2));
-    }
-    case 2: {
-      // The unshared corners: the one index of each triangle not matched.
-      const int a_free = 3 - ai[0] - ai[1];
-      const int b_free = 3 - bj[0] - bj[1];
-      if (edge_pair_apart_certified(pi(ai[0]), pi(ai[1]), pi(a_free), pj(b_free))) return false;
-      return folded_flat(pi(ai[0]), pi(ai[1]), pi(a_free), pj(b_free));
-    }
-    default:
-      return true;
+  if (shared == 0) {
+    if (!hint.boxes_overlap && boxes_apart({A[0], A[1], A[2]}, {B[0], B[1], B[2]})) return false;
+    return geometry::triangles_intersect(*A[0], *A[1], *A[2], *B[0], *B[1], *B[2]);
   }
+  if (shared == 3) return true;
+  const Kept pr = kKept[hint.axis >= 0 ? hint.axis : certificate_axis(*A[0], *A[1], *A[2])];
+  if (shared == 1) {
+    const int a = ai[0], b = bj[0];
+    if (vertex_pair_apart_certified(*A[a], *A[a + 1], *A[a + 2], *B[b + 1], *B[b + 2], pr)) {
+      return false;
+    }
+    const auto edge_meets = [](const Vec3& p, const Vec3& q, const Vec3& t0, const Vec3& t1,
+                               const Vec3& t2) {
+      return !boxes_apart({&p, &q}, {&t0, &t1, &t2}) &&
+             geometry::detail::segment_meets_triangle(p, q, t0, t1, t2);
+    };
+    return edge_meets(*A[a + 1], *A[a + 2], *B[0], *B[1], *B[2]) ||
+           edge_meets(*B[b + 1], *B[b + 2], *A[0], *A[1], *A[2]);
+  }
+  // The unshared corners: the one index of each triangle not matched.
+  const Vec3& p = *A[3 - ai[0] - ai[1]];
+  const Vec3& q = *B[3 - bj[0] - bj[1]];
+  if (edge_pair_apart_certified(*A[ai[0]], *A[ai[1]], p, q, pr)) return false;
+  return folded_flat(*A[ai[0]], *A[ai[1]], p, q);
 }
 
 }  // namespace antcd::self_detail

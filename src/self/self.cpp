@@ -1,12 +1,13 @@
-// self_intersections (antcd/self.hpp): a self-traversal of the Model's own Sphere-OBB hierarchy,
+// self_intersections (antcd/self.hpp): a self-traversal of the Model's own hierarchy, its
+// subtrees bounded per call by exact axis-aligned boxes of the current corners (the tree's
+// spheres and boxes are not read: between the touching neighbours a self traversal meets they
+// cost more than they cull, and a box of the corners themselves is never loosened by a refit),
 // subtrees culled by their normal cones (cone.cpp), leaf pairs decided by the exact pair test
 // (pair_test.cpp); triangles the hierarchy leaves out (numerically degenerate, yet of non-zero
 // area) are tested against the tree and each other apart.
 #include <antcd/error.hpp>
 #include <antcd/self.hpp>
-#include <antcd/tolerances.hpp>
 
-#include "geometry/obb_sat.hpp"
 #include "self/cone.hpp"
 #include "self/pair_test.hpp"
 #include "util/parallel.hpp"
@@ -30,6 +31,32 @@ struct Work {
   bool self;
 };
 
+/// A closed axis-aligned box: the exact minima and maxima of corner coordinates (of a triangle,
+/// or of a subtree's triangles). Point sets in disjoint boxes do not meet.
+struct Box {
+  // User-provided, so that the per-call vectors of boxes are not zero-filled before being set.
+  Box() {}  // NOLINT(modernize-use-equals-default)
+  Box(const Vec3& l, const Vec3& h) : lo(l), hi(h) {}
+  Vec3 lo;
+  Vec3 hi;
+  [[nodiscard]] bool apart(const Box& o) const {
+    return (hi.array() < o.lo.array()).any() || (o.hi.array() < lo.array()).any();
+  }
+};
+
+/// The box of mesh triangle t.
+inline Box box_of(const Mesh& mesh, std::uint32_t t) {
+  const auto& v = mesh.vertices;
+  const TriangleIndices& c = mesh.triangles[t];
+  const Vec3 &p = v[c[0]], &q = v[c[1]], &r = v[c[2]];
+  Box b;
+  for (int k = 0; k < 3; ++k) {
+    b.lo[k] = std::min({p[k], q[k], r[k]});
+    b.hi[k] = std::max({p[k], q[k], r[k]});
+  }
+  return b;
+}
+
 /// What every task reads: the model, per-node normal-sign masks and the cone data.
 struct Context {
   const Model& model;
@@ -38,40 +65,10 @@ struct Context {
   std::span<const std::uint32_t> leaves;
   std::vector<std::uint8_t> leaf_signs;  ///< normal_signs of leaf_triangles()[k]
   std::vector<std::uint8_t> node_signs;  ///< AND of leaf_signs over the node's triangles
+  std::vector<Box> leaf_boxes;           ///< box of leaf_triangles()[k]
+  std::vector<std::uint8_t> leaf_axes;   ///< self_detail::certificate_axis of leaf_triangles()[k]
+  std::vector<Box> node_boxes;           ///< box of each node's triangles
   std::shared_ptr<const self_detail::ConeTopology> cones;  ///< null: no cone culling
-  Scalar margin = 0;
-};
-
-/// The closed bounding boxes of one leaf's triangles (exact: minima and maxima of corner
-/// coordinates), found once per leaf visit instead of once per triangle pair. A leaf larger than
-/// the buffer (a user's leaf_size above it) gets none: its pairs skip this filter.
-class LeafBoxes {
- public:
-  static constexpr std::uint32_t kCapacity = 16;
-  LeafBoxes(const Context& cx, const BvhNode& leaf) : first_(leaf.first_or_right) {
-    if (leaf.count > kCapacity) return;
-    count_ = leaf.count;
-    const auto& v = cx.mesh.vertices;
-    for (std::uint32_t k = 0; k < count_; ++k) {
-      const TriangleIndices& t = cx.mesh.triangles[cx.leaves[first_ + k]];
-      lo_[k] = v[t[0]].cwiseMin(v[t[1]]).cwiseMin(v[t[2]]);
-      hi_[k] = v[t[0]].cwiseMax(v[t[1]]).cwiseMax(v[t[2]]);
-    }
-  }
-  /// Leaf triangle k (an index into leaf_triangles()) of this leaf and leaf triangle l of
-  /// `other` have disjoint boxes, so they share no vertex and do not meet (false: not known).
-  [[nodiscard]] bool apart(std::uint32_t k, const LeafBoxes& other, std::uint32_t l) const {
-    if (count_ == 0 || other.count_ == 0) return false;
-    const std::uint32_t i = k - first_, j = l - other.first_;
-    return (hi_[i].array() < other.lo_[j].array()).any() ||
-           (other.hi_[j].array() < lo_[i].array()).any();
-  }
-
- private:
-  std::uint32_t first_;
-  std::uint32_t count_ = 0;
-  std::array<Vec3, kCapacity> lo_;
-  std::array<Vec3, kCapacity> hi_;
 };
 
 struct Collector {
@@ -80,20 +77,20 @@ struct Collector {
   bool first_only = false;
   bool done = false;
 
-  /// Leaf triangles k and l (indices into leaf_triangles()), with their leaves' boxes.
-  void test(const Context& cx, std::uint32_t k, std::uint32_t l, const LeafBoxes& bk,
-            const LeafBoxes& bl) {
-    if (bk.apart(k, bl, l)) {
+  /// Leaf triangles k and l (indices into leaf_triangles()).
+  void test_leaf(const Context& cx, std::uint32_t k, std::uint32_t l) {
+    if (cx.leaf_boxes[k].apart(cx.leaf_boxes[l])) {
       ++stats.triangle_pairs;
       return;
     }
-    test(cx, cx.leaves[k], cx.leaves[l]);
+    test(cx, cx.leaves[k], cx.leaves[l], {cx.leaf_axes[k], true});
   }
 
-  void test(const Context& cx, std::uint32_t ti, std::uint32_t tj) {
+  void test(const Context& cx, std::uint32_t ti, std::uint32_t tj,
+            self_detail::PairHint hint = {}) {
     ++stats.triangle_pairs;
     int shared = 0;
-    const bool hit = self_detail::pair_intersects(cx.mesh, ti, tj, shared);
+    const bool hit = self_detail::pair_intersects(cx.mesh, ti, tj, shared, hint);
     if (shared != 0) ++stats.adjacent_pairs;
     if (hit) {
       pairs.push_back({std::min(ti, tj), std::max(ti, tj)});
@@ -102,31 +99,26 @@ struct Collector {
   }
 };
 
-bool volumes_disjoint(const BvhNode& a, const BvhNode& b, Scalar margin) {
-  const Scalar r = Scalar{a.radius} + Scalar{b.radius} + margin;
-  const Vec3 d = b.center - a.center;
-  if (d.squaredNorm() > r * r) return true;
-  const Mat3 ra = a.axes();
-  const Mat3 rot = ra.transpose() * b.axes();
-  // The six face axes only: the nine edge-edge axes rarely separate the touching neighbours a
-  // self traversal meets, and skipping them only costs rejections, never a pair.
-  return geometry::detail::obb_face_separated(a.half_extents().array() + margin, b.half_extents(),
-                                              rot, geometry::detail::obb_abs_rotation(rot),
-                                              ra.transpose() * d);
-}
-
 /// Expands one work item by one step, pushing its children with `push`; tests leaves directly.
 template <class Push>
 void step(const Context& cx, const Work& w, Collector& out, const Push& push) {
   const BvhNode& na = cx.nodes[w.a];
+  // A pair of subtrees is pushed only when their boxes overlap (tested here, once).
+  const auto push_pair = [&](std::uint32_t a, std::uint32_t b) {
+    ++out.stats.node_pairs;
+    if (cx.node_boxes[a].apart(cx.node_boxes[b])) {
+      ++out.stats.volume_rejects;
+      return;
+    }
+    push(Work{a, b, false});
+  };
   if (w.self) {
     if (na.is_leaf()) {
-      const LeafBoxes boxes(cx, na);
       const std::uint32_t f = na.first_or_right;
       for (std::uint32_t k = f; k < f + na.count && !out.done; ++k) {
         if (cx.leaf_signs[k] == 0) continue;  // exactly degenerate
         for (std::uint32_t l = k + 1; l < f + na.count && !out.done; ++l) {
-          if (cx.leaf_signs[l] != 0) out.test(cx, k, l, boxes, boxes);
+          if (cx.leaf_signs[l] != 0) out.test_leaf(cx, k, l);
         }
       }
       return;
@@ -141,34 +133,35 @@ void step(const Context& cx, const Work& w, Collector& out, const Push& push) {
       }
     }
     const std::uint32_t l = w.a + 1, r = na.first_or_right;
-    push(Work{l, r, false});
+    push_pair(l, r);
     push(Work{r, r, true});
     push(Work{l, l, true});
     return;
   }
   const BvhNode& nb = cx.nodes[w.b];
-  ++out.stats.node_pairs;
-  if (volumes_disjoint(na, nb, cx.margin)) {
-    ++out.stats.volume_rejects;
-    return;
-  }
   if (na.is_leaf() && nb.is_leaf()) {
-    const LeafBoxes ba(cx, na), bb(cx, nb);
     for (std::uint32_t k = na.first_or_right; k < na.first_or_right + na.count && !out.done; ++k) {
       if (cx.leaf_signs[k] == 0) continue;
       for (std::uint32_t l = nb.first_or_right; l < nb.first_or_right + nb.count && !out.done;
            ++l) {
-        if (cx.leaf_signs[l] != 0) out.test(cx, k, l, ba, bb);
+        if (cx.leaf_signs[l] != 0) out.test_leaf(cx, k, l);
       }
     }
     return;
   }
+  if (!na.is_leaf() && !nb.is_leaf()) {
+    push_pair(na.first_or_right, nb.first_or_right);
+    push_pair(na.first_or_right, w.b + 1);
+    push_pair(w.a + 1, nb.first_or_right);
+    push_pair(w.a + 1, w.b + 1);
+    return;
+  }
   if (nb.is_leaf() || (!na.is_leaf() && na.radius >= nb.radius)) {
-    push(Work{na.first_or_right, w.b, false});
-    push(Work{w.a + 1, w.b, false});
+    push_pair(na.first_or_right, w.b);
+    push_pair(w.a + 1, w.b);
   } else {
-    push(Work{w.a, nb.first_or_right, false});
-    push(Work{w.a, w.b + 1, false});
+    push_pair(w.a, nb.first_or_right);
+    push_pair(w.a, w.b + 1);
   }
 }
 
@@ -194,23 +187,15 @@ void add(SelfIntersectionStats& to, const SelfIntersectionStats& s) {
 /// Triangles left out of the hierarchy that have a non-zero area, against the tree's triangles
 /// and each other.
 void test_left_out(const Context& cx, const std::vector<std::uint32_t>& left_out, Collector& out) {
-  const auto& v = cx.mesh.vertices;
-  const auto corner = [&](std::uint32_t t, int c) -> const Vec3& {
-    return v[cx.mesh.triangles[t][static_cast<std::size_t>(c)]];
-  };
   for (std::size_t s = 0; s < left_out.size() && !out.done; ++s) {
     const std::uint32_t t = left_out[s];
-    const Vec3 centre = (corner(t, 0) + corner(t, 1) + corner(t, 2)) / 3;
-    Scalar radius = 0;
-    for (int c = 0; c < 3; ++c) radius = std::max(radius, (corner(t, c) - centre).norm());
-    radius = tolerance::widened(radius) + cx.margin;
+    const Box box = box_of(cx.mesh, t);
     std::vector<std::uint32_t> stack{0};
     while (!stack.empty() && !out.done) {
       const BvhNode& n = cx.nodes[stack.back()];
       const std::uint32_t i = stack.back();
       stack.pop_back();
-      const Scalar r = Scalar{n.radius} + radius;
-      if ((n.center - centre).squaredNorm() > r * r) continue;
+      if (cx.node_boxes[i].apart(box)) continue;
       if (n.is_leaf()) {
         for (std::uint32_t k = n.first_or_right; k < n.first_or_right + n.count && !out.done; ++k) {
           if (cx.leaf_signs[k] != 0) out.test(cx, t, cx.leaves[k]);
@@ -226,20 +211,55 @@ void test_left_out(const Context& cx, const std::vector<std::uint32_t>& left_out
   }
 }
 
+/// The boxes of the tree's triangles and of its nodes.
+void add_boxes(Context& cx) {
+  cx.leaf_boxes.resize(cx.leaves.size());
+  parallel::for_ranges(0, cx.leaves.size(), 4096, [&](std::size_t b, std::size_t e) {
+    for (std::size_t k = b; k < e; ++k) cx.leaf_boxes[k] = box_of(cx.mesh, cx.leaves[k]);
+  });
+  // The nodes' boxes, children before parents (a node's children follow it).
+  cx.node_boxes.resize(cx.nodes.size());
+  for (std::size_t i = cx.nodes.size(); i-- > 0;) {
+    const BvhNode& n = cx.nodes[i];
+    Box& b = cx.node_boxes[i];
+    if (n.is_leaf()) {
+      b = cx.leaf_boxes[n.first_or_right];
+      for (std::uint32_t k = n.first_or_right + 1; k < n.first_or_right + n.count; ++k) {
+        b.lo = b.lo.cwiseMin(cx.leaf_boxes[k].lo);
+        b.hi = b.hi.cwiseMax(cx.leaf_boxes[k].hi);
+      }
+    } else {
+      const Box& l = cx.node_boxes[i + 1];
+      const Box& r = cx.node_boxes[n.first_or_right];
+      b = {l.lo.cwiseMin(r.lo), l.hi.cwiseMax(r.hi)};
+    }
+  }
+}
+
+/// The cone test culls the whole tree (the traversal's first step would stop there).
+bool root_culled(const Context& cx) {
+  if (!cx.cones || cx.nodes[0].is_leaf() || cx.node_signs[0] == 0) return false;
+  const auto* entry = cx.cones->find(0);
+  return entry != nullptr && self_detail::cone_culls(cx.model, *cx.cones, *entry, cx.node_signs[0]);
+}
+
 }  // namespace
 
 SelfIntersectionResult self_intersections(const Model& model,
                                           const SelfIntersectionRequest& request) {
   SelfIntersectionResult result;
   const Mesh& mesh = model.mesh();
-  Context cx{model, mesh, model.nodes(), model.leaf_triangles(), {}, {}, nullptr, 0};
+  Context cx{model, mesh, model.nodes(), model.leaf_triangles(), {}, {}, {}, {}, {}, nullptr};
   const auto& v = mesh.vertices;
   // Exact normal signs of the tree's triangles (zero: exactly degenerate), in leaf order.
   cx.leaf_signs.resize(cx.leaves.size());
+  cx.leaf_axes.resize(cx.leaves.size());
   parallel::for_ranges(0, cx.leaves.size(), 4096, [&](std::size_t b, std::size_t e) {
     for (std::size_t k = b; k < e; ++k) {
       const TriangleIndices& t = mesh.triangles[cx.leaves[k]];
-      cx.leaf_signs[k] = self_detail::normal_signs(v[t[0]], v[t[1]], v[t[2]]);
+      int axis = 0;
+      cx.leaf_signs[k] = self_detail::normal_signs(v[t[0]], v[t[1]], v[t[2]], &axis);
+      cx.leaf_axes[k] = static_cast<std::uint8_t>(axis);
     }
   });
   // The triangles the tree leaves out: degenerate exactly, or thin but with an area.
@@ -259,8 +279,6 @@ SelfIntersectionResult self_intersections(const Model& model,
     }
   }
   std::sort(result.degenerate_triangles.begin(), result.degenerate_triangles.end());
-  // The volumes' rounding allowance, as the two-model traversal takes it (bvh/traverse.hpp).
-  cx.margin = tolerance::volume_allowance(Scalar{model.root().radius} + model.root().center.norm());
   if (request.normal_cones) {
     cx.cones = self_detail::cone_topology(model);
     result.stats.cone_cache_bytes = cx.cones->bytes();
@@ -282,6 +300,14 @@ SelfIntersectionResult self_intersections(const Model& model,
       }
     }
   }
+
+  if (left_out.empty() && root_culled(cx)) {
+    // Nothing to traverse: the boxes are not needed (a deforming sheet's common case).
+    result.stats.cone_tests = 1;
+    result.stats.cone_culled = 1;
+    return result;
+  }
+  add_boxes(cx);
 
   if (request.first_only) {
     Collector out;
