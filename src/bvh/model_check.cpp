@@ -359,6 +359,7 @@ std::size_t check_tree(const std::vector<BvhNode>& nodes, std::size_t leaf_count
   std::vector<Visit> stack{{0, 1}};
   std::size_t expected = 0;
   std::size_t next_leaf = 0;
+  std::size_t levels = 0;
   while (!stack.empty()) {
     const Visit visit = stack.back();
     const std::size_t i = visit.node;
@@ -373,6 +374,7 @@ std::size_t check_tree(const std::vector<BvhNode>& nodes, std::size_t leaf_count
                      "), more than the build makes");
     }
     ++expected;
+    levels = std::max<std::size_t>(levels, visit.level);
     const BvhNode& node = nodes[i];
     if (node.is_leaf()) {
       if (node.count > leaf_size || node.first_or_right != next_leaf ||
@@ -399,14 +401,7 @@ std::size_t check_tree(const std::vector<BvhNode>& nodes, std::size_t leaf_count
                    " nodes and " + std::to_string(next_leaf) + " of " + std::to_string(leaf_count) +
                    " leaf triangles");
   }
-  // Children come after their parent: heights from the last node back.
-  std::vector<std::uint32_t> height(n, 1);
-  for (std::size_t i = n; i-- > 0;) {
-    if (!nodes[i].is_leaf()) {
-      height[i] = 1 + std::max(height[i + 1], height[nodes[i].first_or_right]);
-    }
-  }
-  return height[0];
+  return levels;  // the deepest level visited: the tree's depth
 }
 
 void check_volumes(const Model& m, const std::string& name) {
