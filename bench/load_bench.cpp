@@ -17,15 +17,14 @@
 // model_load/<mesh> loads the same model from its .antcd file (Model::load: read, checksum,
 // validation, no build; the file is in the page cache after its first read),
 // model_from_bytes/<mesh> from bytes in memory (what unpickling does). Meshes: torus_5m,
-// make_torus(1, 0.3, 2500, 1000) (5,000,000 triangles, one iteration); torus_100k, make_torus(1,
-// 0.3, 250, 200) (100,000); suzanne, assimp's SuzanneSubdiv_252.blend (251,904; skipped when
-// assimp-testmodels is not installed). The load-vs-build ratio is model_build / model_load. Run
-// them alone with
-// --benchmark_filter='model_'. Instruction counts (a shared machine's wall clock is not a figure):
-// each measured step is one out-of-line function, so that, one thread (oneTBB follows the
-// affinity mask) and one iteration each,
+// make_torus(1, 0.3, 2500, 1000), 5,000,000 triangles, one iteration; torus_100k,
+// make_torus(1, 0.3, 250, 200), 100,000; suzanne, assimp's SuzanneSubdiv_252.blend, 251,904
+// (skipped when assimp-testmodels is not installed). The load-vs-build ratio is model_build /
+// model_load. Run them alone with --benchmark_filter='model_'. Instruction counts (a shared
+// machine's wall clock is no figure): each measured step is one out-of-line function, so that
+// with one thread (oneTBB follows the affinity mask) and one iteration
 //   taskset -c 0 valgrind --tool=callgrind --toggle-collect='*measured_build*'
-//       build/bench/antcd_bench_load --benchmark_filter='model_build/torus_100k'
+//       build/bench/antcd_bench_load --benchmark_filter='model_build/torus_100k/'
 //       --benchmark_min_time=0.000001
 // counts the build alone (measured_load, measured_from_bytes likewise).
 // Medians: --benchmark_repetitions=3 --benchmark_report_aggregates_only=true.
