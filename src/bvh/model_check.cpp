@@ -404,7 +404,7 @@ std::size_t check_tree(const std::vector<BvhNode>& nodes, std::size_t leaf_count
   return levels;  // the deepest level visited: the tree's depth
 }
 
-void check_volumes(const Model& m, const std::string& name) {
+void check_volumes(const Model& m, const std::vector<bool>& in_tree, const std::string& name) {
   const std::span<const BvhNode> nodes = m.nodes();
   const std::size_t n = nodes.size();
   const Mesh& mesh = m.mesh();
@@ -412,8 +412,6 @@ void check_volumes(const Model& m, const std::string& name) {
   // The build leaves out exactly the degenerate triangles (a zero-area triangle in a leaf is a
   // segment or a point the rebuilt model does not have: distance and collide would answer
   // differently).
-  std::vector<bool> in_tree(mesh.triangles.size(), false);
-  for (const std::uint32_t t : leaf) in_tree[t] = true;
   for (std::size_t t = 0; t < in_tree.size(); ++t) {
     const TriangleIndices& tri = mesh.triangles[t];
     const std::vector<Vec3>& v = mesh.vertices;

@@ -27,7 +27,8 @@ std::size_t check_tree(const std::vector<BvhNode>& nodes, std::size_t leaf_count
 /// Checks, on a model whose tree passed check_tree, that the triangles left out of the tree are
 /// exactly the degenerate ones, that every node's axes are orthonormal, and that every node's box
 /// and sphere hold every vertex of its subtree's triangles (up to tolerance::kArithmetic of the
-/// node's size): what every query's pruning relies on.
-void check_volumes(const Model& m, const std::string& name);
+/// node's size): what every query's pruning relies on. `in_tree[t]`: whether mesh triangle t is
+/// one of the model's leaf triangles.
+void check_volumes(const Model& m, const std::vector<bool>& in_tree, const std::string& name);
 
 }  // namespace antcd::detail

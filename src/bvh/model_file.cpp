@@ -316,11 +316,11 @@ struct ModelFile {
     // The closedness recomputed (volume queries rely on it) while the tree is read and checked.
     bool is_closed_now = false;
     const auto closedness = [&] { is_closed_now = antcd::is_closed(m.mesh_); };
+    std::vector<bool> seen(nt, false);  // which triangles the tree holds
     const auto tree = [&] {
       sized(m.nodes_, nn);
       blocks(nn, [&](std::size_t i) { m.nodes_[i] = read_node(pn + i * kNodeBytes); });
       sized(m.leaf_triangles_, nl);
-      std::vector<bool> seen(nt, false);
       for (std::size_t i = 0; i < nl; ++i) {
         const std::uint32_t t = u32_at(pl + 4 * i);
         if (t >= nt || seen[t]) {
@@ -342,7 +342,7 @@ struct ModelFile {
       in.fail("the closed flag disagrees with the mesh's topology");
     }
     m.closed_ = is_closed_now;
-    check_volumes(m, name);
+    check_volumes(m, seen, name);
     m.stats_.degenerate_triangles = nt - nl;
     m.count_stats();
     return m;
