@@ -13,12 +13,20 @@
 // (triangulate, join identical vertices): antcd's conversion to a Mesh is not in it, so it is
 // the lower bound of that path. Each benchmark reports `triangles`.
 //
-// Model files (issue 27): model_build/torus builds the Model of a 5,000,000-triangle torus
-// (make_torus(1, 0.3, 2500, 1000), in memory) and model_load/torus loads the same model from its
-// .antcd file (Model::load: read, checksum, validation, no build; the file is in the page cache
-// after its first read), model_from_bytes/torus from bytes in memory (what unpickling does). The
-// load-vs-build ratio is model_build / model_load. Run them alone with
-// --benchmark_filter='model_'.
+// Model files (issues 27, 41): model_build/<mesh> builds the Model of a mesh (in memory),
+// model_load/<mesh> loads the same model from its .antcd file (Model::load: read, checksum,
+// validation, no build; the file is in the page cache after its first read),
+// model_from_bytes/<mesh> from bytes in memory (what unpickling does). Meshes: torus_5m,
+// make_torus(1, 0.3, 2500, 1000), 5,000,000 triangles, one iteration; torus_100k,
+// make_torus(1, 0.3, 250, 200), 100,000; suzanne, assimp's SuzanneSubdiv_252.blend, 251,904
+// (skipped when assimp-testmodels is not installed). The load-vs-build ratio is model_build /
+// model_load. Run them alone with --benchmark_filter='model_'. Instruction counts (a shared
+// machine's wall clock is no figure): each measured step is one out-of-line function, so that
+// with one thread (oneTBB follows the affinity mask) and one iteration
+//   taskset -c 0 valgrind --tool=callgrind --toggle-collect='*measured_build*'
+//       build/bench/antcd_bench_load --benchmark_filter='model_build/torus_100k/'
+//       --benchmark_min_time=0.000001
+// counts the build alone (measured_load, measured_from_bytes likewise).
 // Medians: --benchmark_repetitions=3 --benchmark_report_aggregates_only=true.
 #include <antcd/bvh.hpp>
 #include <antcd/load.hpp>
@@ -224,22 +232,23 @@ void assimp_import(benchmark::State& state, Format format) {
   state.counters["triangles"] = static_cast<double>(triangles);
 }
 
-/// The 5-million-triangle torus, its Model and that model saved, made once, removed at exit.
-class TorusModel {
+/// A mesh of the model benchmarks, its Model and that model saved, made once, removed at exit.
+class SavedModel {
  public:
-  TorusModel() : mesh_(antcd::make_torus(1.0, 0.3, 2500, 1000)), model_(mesh_, {}, "torus") {
-    dir_ = fs::temp_directory_path() / ("antcd_model_bench_" + std::to_string(::getpid()));
+  SavedModel(antcd::Mesh mesh, const std::string& name) : mesh_(std::move(mesh)), model_(mesh_) {
+    dir_ = fs::temp_directory_path() /
+           ("antcd_model_bench_" + name + "_" + std::to_string(::getpid()));
     fs::create_directories(dir_);
-    path_ = dir_ / "torus.antcd";
+    path_ = dir_ / (name + ".antcd");
     model_.save(path_);
     bytes_ = model_.to_bytes();
   }
-  ~TorusModel() {
+  ~SavedModel() {
     std::error_code ec;
     fs::remove_all(dir_, ec);
   }
-  TorusModel(const TorusModel&) = delete;
-  TorusModel& operator=(const TorusModel&) = delete;
+  SavedModel(const SavedModel&) = delete;
+  SavedModel& operator=(const SavedModel&) = delete;
   [[nodiscard]] const antcd::Mesh& mesh() const { return mesh_; }
   [[nodiscard]] const fs::path& path() const { return path_; }
   [[nodiscard]] const std::vector<std::uint8_t>& bytes() const { return bytes_; }
@@ -252,48 +261,117 @@ class TorusModel {
   std::vector<std::uint8_t> bytes_;
 };
 
-const TorusModel& torus() {
-  static const TorusModel model;
-  return model;
+enum class Saved { Torus5M, Torus100k, Suzanne };
+
+constexpr const char* kSuzanne = "/usr/share/assimp/models/BLEND/SuzanneSubdiv_252.blend";
+
+/// The saved model of `which`, made on first use (nullptr: Suzanne's file is not installed).
+const SavedModel* saved(Saved which) {
+  switch (which) {
+    case Saved::Torus5M: {
+      static const SavedModel torus(antcd::make_torus(1.0, 0.3, 2500, 1000), "torus_5m");
+      return &torus;
+    }
+    case Saved::Torus100k: {
+      static const SavedModel torus(antcd::make_torus(1.0, 0.3, 250, 200), "torus_100k");
+      return &torus;
+    }
+    case Saved::Suzanne:
+      break;
+  }
+  if (!fs::exists(kSuzanne)) return nullptr;
+  static const SavedModel suzanne(antcd::load_mesh(kSuzanne), "suzanne");
+  return &suzanne;
 }
 
-void model_build(benchmark::State& state) {
+// The measured steps alone, out of line, for callgrind's --toggle-collect (see the top).
+[[gnu::noinline]] std::size_t measured_build(antcd::Mesh mesh) {
+  const antcd::Model model(std::move(mesh));
+  benchmark::DoNotOptimize(model.nodes().data());
+  return model.mesh().triangles.size();
+}
+
+[[gnu::noinline]] std::size_t measured_load(const fs::path& path) {
+  const antcd::Model model = antcd::Model::load(path);
+  benchmark::DoNotOptimize(model.nodes().data());
+  return model.mesh().triangles.size();
+}
+
+[[gnu::noinline]] std::size_t measured_from_bytes(const std::vector<std::uint8_t>& bytes) {
+  const antcd::Model model = antcd::Model::from_bytes(bytes);
+  benchmark::DoNotOptimize(model.nodes().data());
+  return model.mesh().triangles.size();
+}
+
+void model_build(benchmark::State& state, Saved which) {
+  const SavedModel* m = saved(which);
+  if (m == nullptr) {
+    state.SkipWithError("the assimp test models are not installed");
+    return;
+  }
   std::size_t triangles = 0;
   for (auto _ : state) {
     state.PauseTiming();
-    antcd::Mesh mesh = torus().mesh();
+    antcd::Mesh mesh = m->mesh();
     state.ResumeTiming();
-    const antcd::Model model(std::move(mesh));
-    triangles = model.mesh().triangles.size();
-    benchmark::DoNotOptimize(model.nodes().data());
+    triangles = measured_build(std::move(mesh));
   }
   state.counters["triangles"] = static_cast<double>(triangles);
 }
 
-void model_load(benchmark::State& state) {
+void model_load(benchmark::State& state, Saved which) {
+  const SavedModel* m = saved(which);
+  if (m == nullptr) {
+    state.SkipWithError("the assimp test models are not installed");
+    return;
+  }
   std::size_t triangles = 0;
-  for (auto _ : state) {
-    const antcd::Model model = antcd::Model::load(torus().path());
-    triangles = model.mesh().triangles.size();
-    benchmark::DoNotOptimize(model.nodes().data());
-  }
+  for (auto _ : state) triangles = measured_load(m->path());
   state.counters["triangles"] = static_cast<double>(triangles);
-  state.counters["file_MiB"] = static_cast<double>(torus().bytes().size()) / (1 << 20);
+  state.counters["file_MiB"] = static_cast<double>(m->bytes().size()) / (1 << 20);
 }
 
-void model_from_bytes(benchmark::State& state) {
+void model_from_bytes(benchmark::State& state, Saved which) {
+  const SavedModel* m = saved(which);
+  if (m == nullptr) {
+    state.SkipWithError("the assimp test models are not installed");
+    return;
+  }
   std::size_t triangles = 0;
-  for (auto _ : state) {
-    const antcd::Model model = antcd::Model::from_bytes(torus().bytes());
-    triangles = model.mesh().triangles.size();
-    benchmark::DoNotOptimize(model.nodes().data());
-  }
+  for (auto _ : state) triangles = measured_from_bytes(m->bytes());
   state.counters["triangles"] = static_cast<double>(triangles);
 }
 
-BENCHMARK(model_build)->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();
-BENCHMARK(model_load)->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();
-BENCHMARK(model_from_bytes)->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();
+BENCHMARK_CAPTURE(model_build, torus_5m, Saved::Torus5M)
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(1)
+    ->UseRealTime();
+BENCHMARK_CAPTURE(model_load, torus_5m, Saved::Torus5M)
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(1)
+    ->UseRealTime();
+BENCHMARK_CAPTURE(model_from_bytes, torus_5m, Saved::Torus5M)
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(1)
+    ->UseRealTime();
+BENCHMARK_CAPTURE(model_build, torus_100k, Saved::Torus100k)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+BENCHMARK_CAPTURE(model_load, torus_100k, Saved::Torus100k)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+BENCHMARK_CAPTURE(model_from_bytes, torus_100k, Saved::Torus100k)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+BENCHMARK_CAPTURE(model_build, suzanne, Saved::Suzanne)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+BENCHMARK_CAPTURE(model_load, suzanne, Saved::Suzanne)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+BENCHMARK_CAPTURE(model_from_bytes, suzanne, Saved::Suzanne)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 BENCHMARK_CAPTURE(load_mesh_double, obj, Format::Obj)
     ->Unit(benchmark::kSecond)
     ->Iterations(1)

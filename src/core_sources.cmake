@@ -18,6 +18,7 @@ set(ANTCD_CORE_SOURCES
   bvh/traverse.cpp
   bvh/refit.cpp
   bvh/model_file.cpp
+  bvh/model_check.cpp
   exact/exact.cpp
   exact/manifold.cpp
   distance/distance.cpp

@@ -8,31 +8,28 @@
 // file never allocates more than a few times its own size), and the contents are validated
 // (finite coordinates, indices in range, the tree's depth-first shape, leaves covering the leaf
 // order, only degenerate triangles left out, volumes that hold their subtrees) before the Model
-// exists.
+// exists; the proofs about the tree and its volumes are bvh/model_check.cpp's.
 //
-// One piece on purpose (about 600 lines): the writer and the reader of one format, field by
-// field, side by side, so that a field changed in one is seen to change in the other; the shared
-// byte layout and checksum are bvh/model_file.hpp's.
+// One piece on purpose: the writer and the reader of one format, field by field, side by side, so
+// that a field changed in one is seen to change in the other; the shared byte layout and checksum
+// are bvh/model_file.hpp's.
 #include <antcd/bvh.hpp>
 #include <antcd/file.hpp>
-#include <antcd/geometry.hpp>
-#include <antcd/tolerances.hpp>
 
 #include "bvh/model_cache.hpp"
+#include "bvh/model_check.hpp"
 #include "bvh/model_file.hpp"
 #include "util/huge_pages.hpp"
 #include "util/parallel.hpp"
 
-#if defined(__SSE2__)
-#include <emmintrin.h>
-#endif
-
 #include <algorithm>
-#include <atomic>
 #include <bit>
 #include <cctype>
 #include <cmath>
 #include <cstring>
+#include <fstream>
+#include <limits>
+#include <memory>
 #include <span>
 #include <string>
 #include <vector>
@@ -52,8 +49,6 @@ constexpr std::size_t kTriangleBytes = 3 * 4;
 constexpr std::size_t kSettingsBytes = 4 * 4 + 8;
 // Models larger than this fail the build's 32-bit node and triangle indices anyway.
 constexpr std::uint64_t kMaxCount = 0xFFFFFFFFULL;
-// Models at least this large check their closedness and their tree in parallel.
-constexpr std::size_t kParallelCheck = 16384;
 
 /// The bits of `from` as a To (std::bit_cast, which the WebAssembly build's libc++ lacks).
 template <class To, class From>
@@ -198,239 +193,6 @@ class Reader {
 /// may too.
 constexpr Scalar kFiniteVolumeCoordinate = 3.4e38 / 8;
 
-/// Checks the nodes' values and the tree's shape (depth-first order: node 0 the root, an internal
-/// node's left child next to it, its right child after the left subtree; the leaves' triangle
-/// ranges consecutive and covering [0, leaf_count); at most kMaxTreeLevels levels, the build's
-/// bound, which every traversal's stack is sized for). Iterative: a crafted chain of a million
-/// nodes is refused at the first node too deep. `finite_volumes`: the build's radii and half
-/// extents would all be finite (see kFiniteVolumeCoordinate), so +inf ones are refused too.
-/// Returns the tree's depth in levels.
-std::size_t check_tree(const std::vector<BvhNode>& nodes, std::size_t leaf_count,
-                       std::uint32_t leaf_size, bool finite_volumes, const Reader& in) {
-  const std::size_t n = nodes.size();
-  for (std::size_t i = 0; i < n; ++i) {
-    const BvhNode& node = nodes[i];
-    const bool finite = node.center.allFinite() && node.axis0.allFinite() && node.axis1.allFinite();
-    const bool sizes = node.radius >= 0 && node.half[0] >= 0 && node.half[1] >= 0 &&
-                       node.half[2] >= 0;  // +inf allowed for huge meshes (float_at_least), NaN not
-    const bool bounded =
-        !finite_volumes || (std::isfinite(node.radius) && std::isfinite(node.half[0]) &&
-                            std::isfinite(node.half[1]) && std::isfinite(node.half[2]));
-    if (!finite || !sizes) {
-      in.fail("node " + std::to_string(i) + " has a non-finite or negative volume");
-    }
-    if (!bounded) {
-      in.fail("node " + std::to_string(i) +
-              " has an infinite radius or half extent, which the build makes only for "
-              "coordinates beyond 4.25e37");
-    }
-  }
-  struct Visit {
-    std::uint32_t node;
-    std::uint32_t level;  // the root is level 1
-  };
-  std::vector<Visit> stack{{0, 1}};
-  std::size_t expected = 0;
-  std::size_t next_leaf = 0;
-  while (!stack.empty()) {
-    const Visit visit = stack.back();
-    const std::size_t i = visit.node;
-    stack.pop_back();
-    if (i != expected) {
-      in.fail("the tree is not in depth-first order: node " + std::to_string(i) +
-              " comes where node " + std::to_string(expected) + " should");
-    }
-    if (visit.level > kMaxTreeLevels) {
-      in.fail("the tree is deeper than " + std::to_string(kMaxTreeLevels) + " levels (node " +
-              std::to_string(i) + " is at level " + std::to_string(visit.level) +
-              "), more than the build makes");
-    }
-    ++expected;
-    const BvhNode& node = nodes[i];
-    if (node.is_leaf()) {
-      if (node.count > leaf_size || node.first_or_right != next_leaf ||
-          node.count > leaf_count - next_leaf) {
-        in.fail("leaf node " + std::to_string(i) + " holds leaf triangles [" +
-                std::to_string(node.first_or_right) + ", +" + std::to_string(node.count) +
-                "), expected " + std::to_string(next_leaf) + " onwards, at most " +
-                std::to_string(leaf_size) + ", of " + std::to_string(leaf_count));
-      }
-      next_leaf += node.count;
-    } else {
-      const std::size_t right = node.first_or_right;
-      if (i + 1 >= n || right <= i + 1 || right >= n) {
-        in.fail("internal node " + std::to_string(i) + " has children " + std::to_string(i + 1) +
-                " and " + std::to_string(right) + ", out of range (" + std::to_string(n) +
-                " nodes)");
-      }
-      stack.push_back({static_cast<std::uint32_t>(right), visit.level + 1});
-      stack.push_back({static_cast<std::uint32_t>(i + 1), visit.level + 1});
-    }
-  }
-  if (expected != n || next_leaf != leaf_count) {
-    in.fail("the tree reaches " + std::to_string(expected) + " of " + std::to_string(n) +
-            " nodes and " + std::to_string(next_leaf) + " of " + std::to_string(leaf_count) +
-            " leaf triangles");
-  }
-  // Children come after their parent: heights from the last node back.
-  std::vector<std::uint32_t> height(n, 1);
-  for (std::size_t i = n; i-- > 0;) {
-    if (!nodes[i].is_leaf()) {
-      height[i] = 1 + std::max(height[i + 1], height[nodes[i].first_or_right]);
-    }
-  }
-  return height[0];
-}
-
-/// Whether the node's axes are orthonormal up to tolerance::kArithmetic.
-bool orthonormal(const BvhNode& node) {
-  const Scalar e = tolerance::kArithmetic;
-  return std::abs(node.axis0.squaredNorm() - 1) <= e &&
-         std::abs(node.axis1.squaredNorm() - 1) <= e && std::abs(node.axis0.dot(node.axis1)) <= e;
-}
-
-/// Whether a node's box and sphere hold the points [first, last) of (x, y, z). The
-/// points are quarter coordinates, which neither overflow nor make a NaN for any finite ones (a
-/// stored +inf extent or radius holds everything along it). The comparison allows
-/// tolerance::kArithmetic of the node's size for the rounding of a fit, far inside the
-/// traversal's own allowance (tolerance::kVolume); with orthonormal axes (checked before) the
-/// offset in the box frame has the point's distance from the centre. Two points at a time with
-/// SSE2, exactly as one at a time.
-bool holds_points(const BvhNode& node, const Scalar* x, const Scalar* y, const Scalar* z,
-                  std::size_t first, std::size_t last) {
-  const Mat3 to_box = node.axes().transpose();
-  const Vec3 center = node.center * 0.25;
-  const Vec3 half = node.half_extents() * 0.25;
-  const Scalar radius = 0.25 * static_cast<Scalar>(node.radius);
-  // A valid node's points lie within its smaller volume's reach of its centre.
-  const Scalar slack =
-      tolerance::kArithmetic * (center.cwiseAbs().maxCoeff() + std::min(radius, half.norm())) +
-      tolerance::kFloor;
-  const Vec3 box_center = to_box * center;
-  const Scalar a00 = to_box(0, 0), a01 = to_box(0, 1), a02 = to_box(0, 2);
-  const Scalar a10 = to_box(1, 0), a11 = to_box(1, 1), a12 = to_box(1, 2);
-  const Scalar a20 = to_box(2, 0), a21 = to_box(2, 1), a22 = to_box(2, 2);
-  const Scalar c0 = box_center[0], c1 = box_center[1], c2 = box_center[2];
-  const Scalar l0 = half[0] + slack, l1 = half[1] + slack, l2 = half[2] + slack;
-  const Scalar reach2 = (radius + slack) * (radius + slack);
-  // Inside: every comparison true (a NaN compares false, so it counts as outside).
-  std::size_t i = first;
-  bool inside = true;
-#if defined(__SSE2__)
-  // Two points at a time, the same operations in the same order as the scalar loop below.
-  const __m128d sign = _mm_set1_pd(-0.0);
-  __m128d all = _mm_castsi128_pd(_mm_set1_epi32(-1));
-  const auto mul_add3 = [](Scalar a, Scalar b, Scalar c, __m128d px, __m128d py, __m128d pz,
-                           Scalar minus) {
-    const __m128d sum =
-        _mm_add_pd(_mm_add_pd(_mm_mul_pd(_mm_set1_pd(a), px), _mm_mul_pd(_mm_set1_pd(b), py)),
-                   _mm_mul_pd(_mm_set1_pd(c), pz));
-    return _mm_sub_pd(sum, _mm_set1_pd(minus));
-  };
-  for (; i + 2 <= last; i += 2) {
-    const __m128d px = _mm_loadu_pd(x + i), py = _mm_loadu_pd(y + i), pz = _mm_loadu_pd(z + i);
-    const __m128d d0 = mul_add3(a00, a01, a02, px, py, pz, c0);
-    const __m128d d1 = mul_add3(a10, a11, a12, px, py, pz, c1);
-    const __m128d d2 = mul_add3(a20, a21, a22, px, py, pz, c2);
-    const __m128d r2 =
-        _mm_add_pd(_mm_add_pd(_mm_mul_pd(d0, d0), _mm_mul_pd(d1, d1)), _mm_mul_pd(d2, d2));
-    all = _mm_and_pd(all, _mm_cmple_pd(_mm_andnot_pd(sign, d0), _mm_set1_pd(l0)));
-    all = _mm_and_pd(all, _mm_cmple_pd(_mm_andnot_pd(sign, d1), _mm_set1_pd(l1)));
-    all = _mm_and_pd(all, _mm_cmple_pd(_mm_andnot_pd(sign, d2), _mm_set1_pd(l2)));
-    all = _mm_and_pd(all, _mm_cmple_pd(r2, _mm_set1_pd(reach2)));
-  }
-  inside = _mm_movemask_pd(all) == 3;
-#endif
-  for (; i < last; ++i) {
-    const Scalar d0 = a00 * x[i] + a01 * y[i] + a02 * z[i] - c0;
-    const Scalar d1 = a10 * x[i] + a11 * y[i] + a12 * z[i] - c1;
-    const Scalar d2 = a20 * x[i] + a21 * y[i] + a22 * z[i] - c2;
-    inside = inside && std::abs(d0) <= l0 && std::abs(d1) <= l1 && std::abs(d2) <= l2 &&
-             d0 * d0 + d1 * d1 + d2 * d2 <= reach2;
-  }
-  return inside;
-}
-
-/// Checks that every triangle left out of the tree is degenerate and every one in it is not, as
-/// the build leaves out exactly those (a zero-area triangle in a leaf is a segment or a point the
-/// rebuilt model does not have: distance and collide would answer differently), that every node's
-/// axes are orthonormal, and that its box and its sphere hold every
-/// vertex of its subtree's triangles: what every query's pruning relies on (a file whose volumes
-/// were shrunk would make collide() miss contacts and sweep() report late times). Each leaf's
-/// distinct vertices are laid out in leaf order, so that every node's are one run of them, tested
-/// in one pass per node (each vertex once per level of the tree), nodes in parallel. The smallest
-/// failing node is reported, at any thread count.
-void check_volumes(const Model& m, const Reader& in) {
-  const std::span<const BvhNode> nodes = m.nodes();
-  const std::size_t n = nodes.size();
-  const Mesh& mesh = m.mesh();
-  std::vector<bool> in_tree(mesh.triangles.size(), false);
-  for (const std::uint32_t t : m.leaf_triangles()) in_tree[t] = true;
-  for (std::size_t t = 0; t < in_tree.size(); ++t) {
-    const TriangleIndices& tri = mesh.triangles[t];
-    const std::vector<Vec3>& v = mesh.vertices;
-    const bool degenerate = geometry::is_degenerate_triangle(v[tri[0]], v[tri[1]], v[tri[2]]);
-    if (!in_tree[t] && !degenerate) {
-      in.fail("triangle " + std::to_string(t) + " is left out of the tree but is not degenerate");
-    }
-    if (in_tree[t] && degenerate) {
-      in.fail("triangle " + std::to_string(t) +
-              " is in the tree but degenerate (zero area): the build leaves such triangles out");
-    }
-  }
-  // Leaves come in depth-first order, so each node's leaves are consecutive: its run of points is
-  // [first[i], last[i]) (children come after their parent).
-  std::vector<Scalar> x, y, z;
-  x.reserve(3 * m.leaf_triangles().size());
-  y.reserve(x.capacity());
-  z.reserve(x.capacity());
-  std::vector<std::size_t> first(n), last(n);
-  std::vector<std::uint32_t> seen;  // the leaf's vertex indices so far
-  for (std::size_t i = 0; i < n; ++i) {
-    const BvhNode& node = nodes[i];
-    if (!node.is_leaf()) continue;
-    first[i] = x.size();
-    seen.clear();
-    for (std::uint32_t k = node.first_or_right; k < node.first_or_right + node.count; ++k) {
-      for (const std::uint32_t v : mesh.triangles[m.leaf_triangles()[k]]) {
-        if (std::find(seen.begin(), seen.end(), v) != seen.end()) continue;
-        seen.push_back(v);
-        x.push_back(mesh.vertices[v].x() * 0.25);
-        y.push_back(mesh.vertices[v].y() * 0.25);
-        z.push_back(mesh.vertices[v].z() * 0.25);
-      }
-    }
-    last[i] = x.size();
-  }
-  for (std::size_t i = n; i-- > 0;) {
-    if (!nodes[i].is_leaf()) {
-      first[i] = first[i + 1];
-      last[i] = last[nodes[i].first_or_right];
-    }
-  }
-  std::atomic<std::size_t> bad{n};
-  const auto range = [&](std::size_t begin, std::size_t end) {
-    for (std::size_t i = begin; i < end && i < bad.load(std::memory_order_relaxed); ++i) {
-      if (!orthonormal(nodes[i]) ||
-          !holds_points(nodes[i], x.data(), y.data(), z.data(), first[i], last[i])) {
-        std::size_t seen_bad = bad.load(std::memory_order_relaxed);
-        while (i < seen_bad && !bad.compare_exchange_weak(seen_bad, i)) {
-        }
-        return;
-      }
-    }
-  };
-  if (m.leaf_triangles().size() < kParallelCheck) {
-    range(0, n);
-  } else {
-    parallel::for_ranges(0, n, 16, range);
-  }
-  if (const std::size_t i = bad.load(); i != n) {
-    in.fail("node " + std::to_string(i) +
-            "'s box or sphere does not hold its triangles (or its axes are not orthonormal)");
-  }
-}
-
 }  // namespace
 
 struct ModelFile {
@@ -554,11 +316,11 @@ struct ModelFile {
     // The closedness recomputed (volume queries rely on it) while the tree is read and checked.
     bool is_closed_now = false;
     const auto closedness = [&] { is_closed_now = antcd::is_closed(m.mesh_); };
+    std::vector<bool> seen(nt, false);  // which triangles the tree holds
     const auto tree = [&] {
       sized(m.nodes_, nn);
       blocks(nn, [&](std::size_t i) { m.nodes_[i] = read_node(pn + i * kNodeBytes); });
       sized(m.leaf_triangles_, nl);
-      std::vector<bool> seen(nt, false);
       for (std::size_t i = 0; i < nl; ++i) {
         const std::uint32_t t = u32_at(pl + 4 * i);
         if (t >= nt || seen[t]) {
@@ -568,7 +330,7 @@ struct ModelFile {
         seen[t] = true;
         m.leaf_triangles_[i] = t;
       }
-      m.stats_.depth = check_tree(m.nodes_, nl, m.options_.leaf_size, finite_volumes, in);
+      m.stats_.depth = check_tree(m.nodes_, nl, m.options_.leaf_size, finite_volumes, name);
     };
     if (nt >= kParallelCheck) {
       parallel::invoke(closedness, tree);
@@ -580,7 +342,7 @@ struct ModelFile {
       in.fail("the closed flag disagrees with the mesh's topology");
     }
     m.closed_ = is_closed_now;
-    check_volumes(m, in);
+    check_volumes(m, seen, name);
     m.stats_.degenerate_triangles = nt - nl;
     m.count_stats();
     return m;
@@ -603,10 +365,52 @@ Model Model::from_bytes(std::span<const std::uint8_t> bytes, std::string_view na
   return detail::ModelFile::read(bytes, std::string(name));
 }
 
+namespace {
+
+/// A whole file's bytes, in a buffer that was not zeroed first.
+struct FileBytes {
+  std::unique_ptr<std::uint8_t[]> data;
+  std::size_t size = 0;
+};
+
+/// The bytes of the regular file at `path`, read in one piece into a buffer that is not zeroed
+/// first (read_file's string is: one more pass over a large model file, 8 % of a 5-million-
+/// triangle load's instructions). No data when anything is unusual (not a regular file, cannot
+/// open, empty, a size that changes while it is read): the caller reads the file with read_file
+/// then, which reads it all the same or names the problem.
+FileBytes read_whole(const std::filesystem::path& path) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec) || ec) return {};
+  const std::uintmax_t size = std::filesystem::file_size(path, ec);
+  if (ec || size == 0 ||
+      size >= static_cast<std::uintmax_t>(std::numeric_limits<std::streamsize>::max())) {
+    return {};
+  }
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return {};
+  FileBytes bytes;
+  bytes.size = static_cast<std::size_t>(size);
+  bytes.data.reset(new std::uint8_t[bytes.size]);  // not value-initialised: the read writes it
+  detail::advise_huge_pages(bytes.data.get(), bytes.size);
+  in.read(reinterpret_cast<char*>(bytes.data.get()), static_cast<std::streamsize>(size));
+  if (static_cast<std::uintmax_t>(in.gcount()) != size ||
+      in.peek() != std::ifstream::traits_type::eof()) {
+    return {};  // shorter or longer than its size said: changing
+  }
+  return bytes;
+}
+
+}  // namespace
+
 Model Model::load(const std::filesystem::path& path) {
-  const std::string bytes = read_file(path);
-  Model m = detail::ModelFile::read(
-      std::span(reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size()), path.string());
+  const FileBytes whole = read_whole(path);
+  std::string text;  // read_file's copy, when the fast read gave up
+  std::span<const std::uint8_t> bytes(whole.data.get(), whole.size);
+  if (whole.data == nullptr) {
+    text = read_file(path);
+    bytes = std::span(reinterpret_cast<const std::uint8_t*>(text.data()), text.size());
+  }
+  Model m = detail::ModelFile::read(bytes, path.string());
   m.source_ = path.string();
   return m;
 }

@@ -1,20 +1,23 @@
 // Crafted model files (issue 41): trees deeper than the build makes (a chain of loose volumes that
 // passes every other check crashed every query with SIGSEGV from depth 601 on), infinite volumes,
-// and zero-area triangles in a leaf are refused with one-line errors; what is accepted answers as
-// the model rebuilt from the same mesh.
+// zero-area triangles in a leaf and a vertex just outside one node's volume are refused with
+// one-line errors; what is accepted answers as the model rebuilt from the same mesh.
 #include <antcd/bvh.hpp>
 #include <antcd/collide.hpp>
 #include <antcd/distance.hpp>
 #include <antcd/error.hpp>
 #include <antcd/mesh.hpp>
 #include <antcd/sweep.hpp>
+#include <antcd/tolerances.hpp>
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <limits>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -230,6 +233,71 @@ TEST(ModelFileCrafted, ZeroAreaTrianglesInALeafAreRefused) {
   EXPECT_TRUE(contains(error, "crafted.antcd: triangle " + std::to_string(n - 1) +
                                   " is in the tree but degenerate (zero area)"))
       << error;
+}
+
+/// One past node i's subtree (depth-first order: the subtree is [i, end)).
+std::size_t subtree_end(std::span<const BvhNode> nodes, std::size_t i) {
+  return nodes[i].is_leaf() ? i + 1 : subtree_end(nodes, nodes[i].first_or_right);
+}
+
+// The volume check descends a node's subtree only where no descendant's volume already holds that
+// node's face or sphere (bvh/model_check.cpp). A vertex of a large subtree moved just outside
+// one face (or the sphere) of its node, by ten times the check's allowance (kArithmetic of the
+// node's size; the traversal's own kVolume is a thousand times that), must still be refused,
+// naming that node, while every other node (grown a little) still holds the moved vertex.
+TEST(ModelFileCrafted, AVertexJustOutsideOneNodesVolumeIsRefused) {
+  const Model m(make_torus(1, 0.3, 64, 32), {}, "torus");  // 4096 triangles
+  const std::span<const BvhNode> tree = m.nodes();
+  const std::vector<std::uint32_t> leaves(m.leaf_triangles().begin(), m.leaf_triangles().end());
+  std::vector<BvhNode> grown(tree.begin(), tree.end());
+  for (BvhNode& n : grown) {
+    n.radius = n.radius * 1.01F + 1e-3F;
+    for (float& h : n.half) h = h * 1.01F + 1e-3F;
+  }
+  std::size_t checked = 0;
+  for (std::size_t a = 0; a < tree.size(); ++a) {
+    const std::size_t end = subtree_end(tree, a);
+    std::size_t lo = leaves.size(), hi = 0;  // the subtree's leaf triangles
+    for (std::size_t i = a; i < end; ++i) {
+      if (!tree[i].is_leaf()) continue;
+      lo = std::min<std::size_t>(lo, tree[i].first_or_right);
+      hi = std::max<std::size_t>(hi, tree[i].first_or_right + tree[i].count);
+    }
+    if (hi - lo < 512) continue;  // small subtrees are point-tested whole
+    const BvhNode& node = tree[a];
+    std::vector<BvhNode> nodes = grown;
+    nodes[a] = node;
+    ASSERT_EQ(load_error(Crafter::file(m.mesh(), nodes, leaves, 4)), "") << a;
+    const Mat3 axes = node.axes();
+    const Scalar allowance = tolerance::kArithmetic * (node.center.cwiseAbs().maxCoeff() +
+                                                       std::min(static_cast<Scalar>(node.radius),
+                                                                node.half_extents().norm()));
+    // Directions: +-axis k (to the face at half[k]), then the sphere (radially, to the radius).
+    for (int side = 0; side < 7; ++side) {
+      const Vec3 dir = side < 6 ? Vec3(axes.col(side % 3) * (side < 3 ? 1.0 : -1.0)) : Vec3::Zero();
+      std::uint32_t far = 0;
+      Scalar reach = -1;
+      for (std::size_t k = lo; k < hi; ++k) {
+        for (const std::uint32_t v : m.mesh().triangles[leaves[k]]) {
+          const Vec3 d = m.mesh().vertices[v] - node.center;
+          const Scalar r = side < 6 ? dir.dot(d) : d.norm();
+          if (r > reach) reach = r, far = v;
+        }
+      }
+      Mesh moved = m.mesh();
+      const Vec3 d = moved.vertices[far] - node.center;
+      const Scalar bound =
+          side < 6 ? static_cast<Scalar>(node.half[side % 3]) : static_cast<Scalar>(node.radius);
+      const Vec3 out = side < 6 ? dir : Vec3(d.normalized());
+      moved.vertices[far] += out * (bound - reach + 10 * allowance);
+      const std::string error = load_error(Crafter::file(moved, nodes, leaves, 4));
+      EXPECT_TRUE(contains(error, "crafted.antcd: node " + std::to_string(a) +
+                                      "'s box or sphere does not hold its triangles"))
+          << "node " << a << ", side " << side << ": " << error;
+      ++checked;
+    }
+  }
+  EXPECT_GE(checked, 7U * 7U);  // the root and the nodes of its first levels
 }
 
 }  // namespace
