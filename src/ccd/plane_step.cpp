@@ -14,8 +14,8 @@ namespace antcd::ccd {
 
 namespace {
 
-/// Least (sign +1) or greatest (sign -1, returned negated back) of n . (R p + T) over the model's
-/// vertices at pose `pose`: sign * min over p of sign * n . (R p + T).
+/// The least (sign +1) or the greatest (sign -1) of n . (R p + T) over the model's vertices p at
+/// pose `pose` (R, T): sign times the least of sign n . (R p + T).
 Scalar extreme(const Model& model, const Transform& pose, const Vec3& n, Scalar sign) {
   const Vec3 u = sign * (pose.rotation.transpose() * n);
   Scalar least = std::numeric_limits<Scalar>::infinity();
