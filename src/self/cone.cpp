@@ -49,7 +49,7 @@ using geometry::detail::orient2d;
 using geometry::detail::Projection;
 
 bool cone_culls(const Model& model, const ConeTopology& topology, const ConeTopology::Entry& entry,
-                std::uint8_t signs) {
+                std::uint8_t signs, std::vector<detail::EdgeBox>& boxes) {
   if (signs == 0) return false;
   int bit = 0;
   while ((signs >> bit & 1u) == 0) ++bit;
@@ -59,7 +59,7 @@ bool cone_culls(const Model& model, const ConeTopology& topology, const ConeTopo
   const auto& v = m.vertices;
   const std::span<const std::uint32_t> cycle = topology.cycle(entry);
   const std::size_t n = cycle.size();
-  std::vector<detail::EdgeBox> boxes(n);
+  boxes.resize(n);
   for (std::size_t k = 0; k < n; ++k) {
     const Vec3& a = v[edge_tail(m, cycle[k])];
     const Vec3& b = v[edge_head(m, cycle[k])];

@@ -5,6 +5,7 @@
 #include <antcd/bvh.hpp>
 
 #include <cstdint>
+#include <vector>
 
 #include "ccd/normal_cone.hpp"
 
@@ -16,8 +17,9 @@ using detail::kConeMinTriangles;
 
 /// Whether the subtree of `entry` is culled: `signs` is the AND of normal_signs (pair_test.hpp)
 /// over its triangles; the boundary cycle, projected along the axis of one set bit, must be a
-/// simple polygon (tested exactly).
+/// simple polygon (tested exactly). `boxes` is room reused between calls (no allocation once it
+/// has grown to the longest boundary).
 bool cone_culls(const Model& model, const ConeTopology& topology, const ConeTopology::Entry& entry,
-                std::uint8_t signs);
+                std::uint8_t signs, std::vector<detail::EdgeBox>& boxes);
 
 }  // namespace antcd::self_detail

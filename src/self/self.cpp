@@ -76,6 +76,7 @@ struct Collector {
   SelfIntersectionStats stats;
   bool first_only = false;
   bool done = false;
+  std::vector<detail::EdgeBox> edge_boxes;  ///< room of the cone tests, reused
 
   /// Leaf triangles k and l (indices into leaf_triangles()).
   void test_leaf(const Context& cx, std::uint32_t k, std::uint32_t l) {
@@ -126,7 +127,8 @@ void step(const Context& cx, const Work& w, Collector& out, const Push& push) {
     if (cx.cones && na.count == 0 && cx.node_signs[w.a] != 0) {
       if (const auto* entry = cx.cones->find(w.a)) {
         ++out.stats.cone_tests;
-        if (self_detail::cone_culls(cx.model, *cx.cones, *entry, cx.node_signs[w.a])) {
+        if (self_detail::cone_culls(cx.model, *cx.cones, *entry, cx.node_signs[w.a],
+                                    out.edge_boxes)) {
           ++out.stats.cone_culled;
           return;
         }
@@ -240,7 +242,9 @@ void add_boxes(Context& cx) {
 bool root_culled(const Context& cx) {
   if (!cx.cones || cx.nodes[0].is_leaf() || cx.node_signs[0] == 0) return false;
   const auto* entry = cx.cones->find(0);
-  return entry != nullptr && self_detail::cone_culls(cx.model, *cx.cones, *entry, cx.node_signs[0]);
+  std::vector<detail::EdgeBox> boxes;
+  return entry != nullptr &&
+         self_detail::cone_culls(cx.model, *cx.cones, *entry, cx.node_signs[0], boxes);
 }
 
 }  // namespace
