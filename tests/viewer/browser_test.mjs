@@ -56,7 +56,7 @@ try {
   for (const [n, k] of frames.entries()) {
     if (n === 0) {
       await page.goto(`${url}#frame=${k}`);
-      await page.waitForSelector('#antcd-viewer[data-ready="true"], #antcd-viewer[data-error]', { timeout: 30000 });
+      await page.waitForSelector('#antcd-viewer[data-ready="true"], #antcd-viewer[data-error]', { timeout: 60000 });
     } else {
       await page.evaluate((hash) => { window.location.hash = hash; }, `#frame=${k}`);
       await page.waitForFunction((f) => document.getElementById('antcd-viewer').dataset.frame === String(f), k);
@@ -157,7 +157,7 @@ try {
   page2.on('console', (m) => { if (m.type() === 'error') problems.push(`console (served): ${m.text()}`); });
   page2.on('pageerror', (e) => problems.push(`page error (served): ${e.message}`));
   await page2.goto(`${served}#frame=${busiest}`);
-  await page2.waitForSelector('#antcd-viewer[data-ready="true"]', { timeout: 30000 });
+  await page2.waitForSelector('#antcd-viewer[data-ready="true"]', { timeout: 60000 });
   const d2 = await page2.locator('#antcd-viewer').evaluate((e) => ({ ...e.dataset }));
   assert.equal(Number(d2.objects), scene.objects.length, 'served: data-objects');
   assert.deepEqual(JSON.parse(d2.colliding), sortPairs(frameOf(exact, busiest).pairs), 'served: data-colliding');
@@ -174,7 +174,7 @@ try {
   assert.ok(touched.pairs.length > 0, 'the continuous run reports a pair');
   const page3 = await watchedPage(browser, problems);
   await page3.goto(`${pathToFileURL(join(work, 'continuous.html')).href}#frame=${touched.frame}`);
-  await page3.waitForSelector('#antcd-viewer[data-ready="true"]', { timeout: 30000 });
+  await page3.waitForSelector('#antcd-viewer[data-ready="true"]', { timeout: 60000 });
   const d3 = await page3.locator('#antcd-viewer').evaluate((e) => ({ ...e.dataset }));
   const wantTouches = touched.pairs
     .map(([a, b], n) => [...sortPairs([[a, b]])[0], touched.toi[n]])
@@ -206,7 +206,7 @@ try {
   const flat = flexExact.frames.find((f) => !f.pairs.some(([a, b]) => a === b) && f.pairs.length > 0);
   const page4 = await watchedPage(browser, problems);
   await page4.goto(`${pathToFileURL(join(work, 'flex.html')).href}#frame=${folded.frame}`);
-  await page4.waitForSelector('#antcd-viewer[data-ready="true"], #antcd-viewer[data-error]', { timeout: 30000 });
+  await page4.waitForSelector('#antcd-viewer[data-ready="true"], #antcd-viewer[data-error]', { timeout: 60000 });
   for (const f of [folded, flat]) {
     if (f !== folded) {
       await page4.evaluate((hash) => { window.location.hash = hash; }, `#frame=${f.frame}`);
