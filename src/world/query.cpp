@@ -373,7 +373,7 @@ std::vector<PairContacts> collide_pairs(const World::Impl& w, const CollisionReq
     if (m != kNoMemo) {
       r.intersecting = memo.selves[m].hit;
       r.pairs = memo.selves[m].self_pairs;
-      new_selves.push_back(std::move(memo.selves[m]));
+      new_selves.push_back(memo.selves[m]);  // a copy: a later throw leaves the memo whole
     } else {
       SelfIntersectionRequest self_request;
       self_request.first_only = !request.all_contacts;
@@ -394,8 +394,10 @@ std::vector<PairContacts> collide_pairs(const World::Impl& w, const CollisionReq
     selves.push_back(std::move(p));
   }
   // The memo for the next query: the pairs of unchanged objects tested or reused now (a reused
-  // answer moves over; a new one is copied). Every other answer is dropped.
+  // answer moves over; a new one is copied). Every other answer is dropped. Unfilled while the
+  // answers move, so that a throw (an allocation) cannot leave a moved-from answer to be reused.
   if (hold.held()) {
+    memo.filled = false;
     std::vector<PairMemo> kept;
     for (std::size_t k = 0; k < candidates.size(); ++k) {
       if (use[k] == MemoUse::Reused) {
