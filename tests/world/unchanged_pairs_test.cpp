@@ -187,6 +187,11 @@ TEST(UnchangedPairs, RemovedIdsSlotNeverMeetsItsOldAnswers) {
   const ObjectId again = row.world.add(other, pose, options);
   EXPECT_EQ(again.slot, row.ids[2].slot) << "the slot was not reused: the test is weaker";
   expect_fresh(row.world, all_contacts(), "object 2 replaced in its slot");
+  // Removed and replaced with no query between: the kept answers still hold the slot's pairs.
+  row.world.remove(again);
+  const ObjectId third = row.world.add(row.world.model_ptr(row.ids[0]), pose, options);
+  EXPECT_EQ(third.slot, row.ids[2].slot);
+  expect_fresh(row.world, all_contacts(), "object 2 replaced again, no query between");
 }
 
 TEST(UnchangedPairs, AnotherRequestIsAnsweredAfresh) {
