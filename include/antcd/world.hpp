@@ -356,9 +356,11 @@ class ANTCD_API World {
   void candidate_pairs(Scalar delta, std::vector<ObjectPair>& out) const;
   /// Every admitted pair that collides under `request` (delta, all contacts or boolean), and the
   /// self pair (id, id) of every object with ObjectOptions::self_collision that intersects itself,
-  /// sorted by (a, b).
+  /// sorted by (a, b). A pair of objects unchanged since the previous call is answered from that
+  /// call's answer under the same request (see "Unchanged pairs" above).
   [[nodiscard]] std::vector<PairContacts> collide_all(const CollisionRequest& request = {}) const;
-  /// The admitted pairs whose meshes come within `distance` >= 0 of each other, sorted.
+  /// The admitted pairs whose meshes come within `distance` >= 0 of each other, sorted (kept
+  /// answers as collide_all with the request {delta = distance}).
   [[nodiscard]] std::vector<ObjectPair> pairs_within(Scalar distance) const;
   /// The objects that `id` collides with (admitted pairs only), sorted by id.
   [[nodiscard]] std::vector<ObjectContacts> collide_object(
