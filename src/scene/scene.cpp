@@ -53,10 +53,10 @@ struct Scene::Broad {
   std::vector<char> fixed;
 
   /// What the exact method keeps of a candidate pair from frame to frame: its PairWitness, and
-  /// for a pair of two fixed objects its verdict under `verdict_request` (-1: none yet). A fixed
-  /// pair is the same in every frame, and so is the verdict of its boolean query: it is computed
-  /// once per request and reused (the answer is bit-identical; the cost of a static x static pair
-  /// drops to a look-up).
+  /// for a pair of two fixed objects its verdict under (verdict_delta, verdict_volume) (-1: none
+  /// yet). A fixed pair is the same in every frame, and so is the verdict of its boolean query:
+  /// it is computed once per request and reused (the answer is bit-identical; a static x static
+  /// pair costs a look-up). 40 bytes per candidate pair (a PairWitness alone: 32).
   struct PairHint {
     PairWitness witness;
     signed char verdict = -1;
