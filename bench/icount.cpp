@@ -13,6 +13,10 @@
 //   pair_distance      antcd::distance on 60 of those poses
 //   world_frame        a World of 40 generated shapes: set_poses + collide_all, 12 frames
 //   scene_exact_frame  Scene::run_frame (exact) over a 20-object scene of real meshes, 24 frames
+//   world_static_frame a World of 32 static touching parts (spheres, boxes, tori on a grid) and 8
+//                      moving shapes: set_poses of the moving ones + collide_all(all contacts),
+//                      12 frames (static x static pairs answered from the World's kept answers,
+//                      world.hpp "Unchanged pairs")
 //   maco_frame         Scene::run_frame (MACO, one SceneMemory) over the generated line, 6 frames
 //   model_load         Model::from_bytes of a saved 20 000-triangle torus and of Wuson (the
 //                      reader's checks, most of all that every volume holds its subtree)
@@ -100,6 +104,9 @@ int run() {
   World world;
   std::vector<ObjectId> ids;
   std::vector<Transform> world_start, world_step;
+  World static_world;
+  std::vector<ObjectId> static_movers;
+  std::vector<Transform> static_start;
   {
     const std::vector<std::shared_ptr<const Model>> shapes = {
         std::make_shared<const Model>(make_sphere(0.5, 24, 12)),
@@ -111,6 +118,19 @@ int run() {
       Transform step = random_pose(rng, 0.65);
       world_step.push_back(step);
       ids.push_back(world.add(shapes[k % shapes.size()], world_start.back()));
+    }
+    // Static parts on a 4 x 4 x 2 grid 0.9 apart (each touching its neighbours), turned at
+    // random, and 8 of the shapes above moving through them with the first 8 steps.
+    for (int k = 0; k < 32; ++k) {
+      Transform pose = random_pose(rng, 0.0);
+      pose.translation = Vec3(0.9 * (k % 4), 0.9 * (k / 4 % 4), 0.9 * (k / 16));
+      static_world.add(shapes[k % 3], pose);
+    }
+    for (std::size_t k = 0; k < 8; ++k) {
+      Transform pose = random_pose(rng, 1.5);
+      pose.translation += Vec3(1.35, 1.35, 0.45);
+      static_start.push_back(pose);
+      static_movers.push_back(static_world.add(shapes[k % shapes.size()], pose));
     }
   }
 
@@ -182,6 +202,21 @@ int run() {
     for (std::size_t f = 0; f < real_scene.description().frames; ++f) {
       s = s * 31 + scene_sum(real_scene.run_frame(f, exact));
     }
+    return s;
+  });
+  section("world_static_frame", [&] {
+    std::uint64_t s = 0;
+    std::vector<Transform> now = static_start;
+    CollisionRequest all;
+    all.all_contacts = true;
+    for (int f = 0; f < 12; ++f) {
+      for (std::size_t k = 0; k < now.size(); ++k) now[k] = now[k] * world_step[k];
+      static_world.set_poses(static_movers, now);
+      for (const PairContacts& p : static_world.collide_all(all)) {
+        s = s * 31 + p.a.slot * 1009u + p.b.slot + p.contacts.size();
+      }
+    }
+    static_world.set_poses(static_movers, static_start);
     return s;
   });
   section("maco_frame", [&] {

@@ -47,6 +47,23 @@
 //   remove() (a copy may replace the Model it refers to). After set_vertices() every query answers
 //   as on a World whose object was added with Model(moved mesh) at the same pose (only costs
 //   differ).
+// - Unchanged pairs: collide_all() and pairs_within() keep, from one call to the next, the
+//   narrow-phase answer (colliding or not, its contacts; a self pair's triangle pairs) of every
+//   pair they tested whose two objects had not changed since the call before, and answer such a
+//   pair from it again while neither object changes and the request is the same (every field of
+//   CollisionRequest equal; pairs_within(d) is the request {delta = d}). An object changes when it
+//   is added, given a pose (set_pose/set_poses/set_poses_continuous, even to the pose it had: poses
+//   are not compared) or new vertices (set_vertices, set_motion_continuous); a removed id's slot
+//   gets new stamps, so a re-added object never meets an old answer. Filters (set_filter,
+//   ignore_pair) are applied before the kept answers are looked at, so they need no invalidation.
+//   The answers are bit-identical to a fresh World's (collide() is deterministic); only the cost
+//   differs: a static pair costs a look-up and a copy of its contacts instead of a traversal. One
+//   request's answers are kept (a call with another request replaces them), only for pairs of
+//   unchanged objects, so a static pair is tested on the first two calls and reused from the third.
+//   Memory: 80 bytes per kept pair (sizeof) plus its contacts (sizeof(Contact) = 80 bytes each; a
+//   boolean request keeps one), counted in memory_bytes(). Threads: the kept answers are taken by
+//   one query at a time (an atomic flag); a concurrent query, or one nested in a oneTBB task of
+//   another, runs without them and gets the same answer.
 // - Self-collision: an object added with ObjectOptions::self_collision = true is also tested
 //   against itself by collide_all(), with antcd::self_intersections (self.hpp: exact; two
 //   triangles sharing a vertex or an edge count only where they meet beyond it). A self pair is
@@ -339,9 +356,11 @@ class ANTCD_API World {
   void candidate_pairs(Scalar delta, std::vector<ObjectPair>& out) const;
   /// Every admitted pair that collides under `request` (delta, all contacts or boolean), and the
   /// self pair (id, id) of every object with ObjectOptions::self_collision that intersects itself,
-  /// sorted by (a, b).
+  /// sorted by (a, b). A pair of objects unchanged since the previous call is answered from that
+  /// call's answer under the same request (see "Unchanged pairs" above).
   [[nodiscard]] std::vector<PairContacts> collide_all(const CollisionRequest& request = {}) const;
-  /// The admitted pairs whose meshes come within `distance` >= 0 of each other, sorted.
+  /// The admitted pairs whose meshes come within `distance` >= 0 of each other, sorted (kept
+  /// answers as collide_all with the request {delta = distance}).
   [[nodiscard]] std::vector<ObjectPair> pairs_within(Scalar distance) const;
   /// The objects that `id` collides with (admitted pairs only), sorted by id.
   [[nodiscard]] std::vector<ObjectContacts> collide_object(

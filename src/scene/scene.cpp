@@ -49,12 +49,35 @@ struct Scene::Broad {
   std::vector<std::vector<Vec3>> end_vertices;
   std::vector<VertexMotion> motions;
 
-  /// The exact method's per-pair hints from frame to frame (PairWitness), one per
-  /// candidate pair of the last frame that used them, sorted by pair. A frame that finds them in
-  /// use by another run_frame call runs without (the hints change no verdict).
+  /// Per object: it has one pose and no vertex frames, so it is the same in every frame.
+  std::vector<char> fixed;
+
+  /// What the exact method keeps of a candidate pair from frame to frame: its PairWitness, and
+  /// for a pair of two fixed objects its verdict under (verdict_delta, verdict_volume) (-1: none
+  /// yet). A fixed pair is the same in every frame, and so is the verdict of its boolean query:
+  /// it is computed once per request and reused (the answer is bit-identical; a static x static
+  /// pair costs a look-up). 40 bytes per candidate pair (a PairWitness alone: 32).
+  struct PairHint {
+    PairWitness witness;
+    signed char verdict = -1;
+  };
+  /// The exact method's per-pair hints, one per candidate pair of the last frame that used them,
+  /// sorted by pair. A frame that finds them in use by another run_frame call runs without (the
+  /// hints change no verdict).
   std::mutex witnesses_mutex;
-  std::vector<std::pair<std::uint64_t, PairWitness>> witnesses;
-  std::vector<std::pair<std::uint64_t, PairWitness>> spare_witnesses;
+  std::vector<std::pair<std::uint64_t, PairHint>> witnesses;
+  std::vector<std::pair<std::uint64_t, PairHint>> spare_witnesses;
+  /// The request (delta, volume) of the verdicts in `witnesses`.
+  Scalar verdict_delta = -1;
+  bool verdict_volume = false;
+
+  /// Drops the kept verdicts unless they are for (delta, volume). Hold witnesses_mutex.
+  void verdicts_for(Scalar delta, bool volume) {
+    if (delta == verdict_delta && volume == verdict_volume) return;
+    for (auto& w : witnesses) w.second.verdict = -1;
+    verdict_delta = delta;
+    verdict_volume = volume;
+  }
 
   /// Lines `witnesses` up with `cand` (sorted pairs): entry k is pair cand[k]'s, kept from the
   /// last frame when the pair was a candidate there, else new. Hold witnesses_mutex.
@@ -67,7 +90,7 @@ struct Scene::Broad {
       if (old < witnesses.size() && witnesses[old].first == key) {
         spare_witnesses.emplace_back(key, witnesses[old].second);
       } else {
-        spare_witnesses.emplace_back(key, PairWitness{});
+        spare_witnesses.emplace_back(key, PairHint{});
       }
     }
     std::swap(witnesses, spare_witnesses);
@@ -283,6 +306,7 @@ Scene::Scene(SceneDescription description,
       broad_->moving_ids.push_back(broad_->ids.back());
     }
     if (o.deforming()) broad_->deforming.push_back(static_cast<std::uint32_t>(i));
+    broad_->fixed.push_back(o.poses.size() <= 1 && !o.deforming() ? 1 : 0);
     if (o.self_collision) broad_->self_objects.push_back(static_cast<std::uint32_t>(i));
   }
   // oneTBB's one-time set-up (its allocator library, the thread's stack bounds read from
@@ -349,12 +373,19 @@ FrameResult Scene::run_frame(std::size_t frame, const SceneQuery& query,
     const std::size_t m = cand.size();
     // Each pair's query starts where the last frame's query of the pair found its contact.
     std::unique_lock<std::mutex> hints(broad_->witnesses_mutex, std::try_to_lock);
-    if (hints.owns_lock()) broad_->align_witnesses(cand);
+    if (hints.owns_lock()) {
+      broad_->verdicts_for(query.delta, query.volume);
+      broad_->align_witnesses(cand);
+    }
     const auto hit = [&](std::size_t k, CollisionResult& scratch) {
       const auto [i, j] = cand[k];
       if (hints.owns_lock()) {
-        return collide(*current[i], pose(i), *current[j], pose(j), request, scratch,
-                       broad_->witnesses[k].second);
+        Broad::PairHint& h = broad_->witnesses[k].second;
+        if (h.verdict >= 0) return h.verdict != 0;
+        const bool v =
+            collide(*current[i], pose(i), *current[j], pose(j), request, scratch, h.witness);
+        if (broad_->fixed[i] != 0 && broad_->fixed[j] != 0) h.verdict = v ? 1 : 0;
+        return v;
       }
       return collide(*current[i], pose(i), *current[j], pose(j), request, scratch);
     };

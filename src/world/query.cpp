@@ -6,11 +6,14 @@
 #include <antcd/world.hpp>
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "util/check.hpp"
 #include "util/parallel.hpp"
@@ -221,15 +224,103 @@ void World::Impl::candidate_slots(Scalar delta, std::vector<SlotPair>& out,
 
 namespace {
 
+using PairMemo = World::Impl::PairMemo;
+
+// Whether two requests are the same field for field (numbers by their bits), so that an answer
+// kept for one is the answer to the other. The size check catches a field added to the request
+// and not compared here.
+struct RequestFields {
+  Scalar delta;
+  bool all_contacts;
+  std::size_t max_contacts;
+  bool volume;
+  bool contact_normals;
+  std::uint32_t manifold_points;
+  Scalar manifold_angle;
+};
+static_assert(sizeof(CollisionRequest) == sizeof(RequestFields),
+              "compare the new CollisionRequest field in same_request");
+bool same_request(const CollisionRequest& x, const CollisionRequest& y) {
+  const auto bits = [](Scalar v) { return std::bit_cast<std::uint64_t>(v); };
+  return bits(x.delta) == bits(y.delta) && x.all_contacts == y.all_contacts &&
+         x.max_contacts == y.max_contacts && x.volume == y.volume &&
+         x.contact_normals == y.contact_normals && x.manifold_points == y.manifold_points &&
+         bits(x.manifold_angle) == bits(y.manifold_angle);
+}
+
+// The query's hold on the World's memo (world.hpp, "Unchanged pairs"): `held` when this query
+// took it; `reuse` when its answers are for this request. Released when the query ends, by a
+// throw too (the memo then keeps its last complete state).
+class MemoHold {
+ public:
+  MemoHold(World::Impl::Memo& memo, const CollisionRequest& request)
+      : memo_(memo), held_(!memo.busy.exchange(true, std::memory_order_acquire)) {
+    reuse_ = held_ && memo_.filled && same_request(memo_.request, request);
+  }
+  MemoHold(const MemoHold&) = delete;
+  MemoHold& operator=(const MemoHold&) = delete;
+  ~MemoHold() {
+    if (held_) memo_.busy.store(false, std::memory_order_release);
+  }
+  [[nodiscard]] bool held() const { return held_; }
+  [[nodiscard]] bool reuse() const { return reuse_; }
+
+ private:
+  World::Impl::Memo& memo_;
+  bool held_;
+  bool reuse_ = false;
+};
+
+constexpr std::size_t kNoMemo = SIZE_MAX;
+
+// The index of the kept answer of pair (a, b) if both objects are as they were when it was
+// computed, else kNoMemo.
+std::size_t find_memo(const std::vector<PairMemo>& memos, std::uint32_t a, std::uint32_t b,
+                      std::uint64_t stamp_a, std::uint64_t stamp_b) {
+  const auto it =
+      std::lower_bound(memos.begin(), memos.end(), std::pair{a, b},
+                       [](const PairMemo& m, const std::pair<std::uint32_t, std::uint32_t>& key) {
+                         return std::pair{m.a, m.b} < key;
+                       });
+  if (it == memos.end() || it->a != a || it->b != b) return kNoMemo;
+  return it->stamp_a == stamp_a && it->stamp_b == stamp_b
+             ? static_cast<std::size_t>(it - memos.begin())
+             : kNoMemo;
+}
+
+std::size_t memo_bytes(const std::vector<PairMemo>& memos) {
+  std::size_t bytes = memos.capacity() * sizeof(PairMemo);
+  for (const PairMemo& m : memos) {
+    bytes += m.contacts.capacity() * sizeof(Contact) +
+             m.self_pairs.capacity() * sizeof(std::array<std::uint32_t, 2>);
+  }
+  return bytes;
+}
+
+// What a query does with pair k and the memo.
+enum class MemoUse : std::uint8_t {
+  None = 0,    // not tested, or not kept (an object changed since the last query)
+  Reused = 1,  // answered from the memo
+  Keep = 2,    // tested now, both objects unchanged since the last query: kept for the next
+};
+
 // collide_all(request), with the self pairs when `with_self`.
 std::vector<PairContacts> collide_pairs(const World::Impl& w, const CollisionRequest& request,
                                         bool with_self) {
   const Scalar delta = request.delta;
+  World::Impl::Memo& memo = w.memo;
+  const MemoHold hold(memo, request);
+  // Objects not changed since the last query that held the memo: only pairs of two of them are
+  // kept (a moving object's pairs would be kept for nothing).
+  const std::uint64_t seen = hold.held() ? memo.seen : 0;
+  const auto unchanged = [&](std::uint32_t s) { return hold.held() && w.stamps[s] <= seen; };
   // Tree boxes contain the objects' boxes grown by their rounding allowances, so every pair whose
   // boxes pass the box test below has tree boxes within delta of each other.
   const std::vector<SlotPair> candidates = self_pairs(w, tolerance::widened(delta));
   std::vector<PairContacts> results(candidates.size());
   std::vector<char> hit(candidates.size(), 0);
+  std::vector<MemoUse> use(hold.held() ? candidates.size() : 0, MemoUse::None);
+  std::vector<std::size_t> from(hold.reuse() ? candidates.size() : 0, kNoMemo);
   for_each_pair(
       candidates.size(),
       [&](std::size_t k) {
@@ -242,6 +333,19 @@ std::vector<PairContacts> collide_pairs(const World::Impl& w, const CollisionReq
         const Object& a = w.objects[i];
         const Object& b = w.objects[j];
         if (spheres_apart(a, b, delta)) return;
+        if (unchanged(i) && unchanged(j)) {
+          if (hold.reuse()) {
+            const std::size_t m = find_memo(memo.pairs, i, j, w.stamps[i], w.stamps[j]);
+            if (m != kNoMemo) {
+              use[k] = MemoUse::Reused;
+              from[k] = m;
+              hit[k] = memo.pairs[m].hit ? 1 : 0;
+              if (memo.pairs[m].hit) results[k].contacts = memo.pairs[m].contacts;
+              return;
+            }
+          }
+          use[k] = MemoUse::Keep;
+        }
         CollisionResult r;
         if (collide(*a.model, a.pose, *b.model, b.pose, request, r)) {
           hit[k] = 1;
@@ -256,22 +360,60 @@ std::vector<PairContacts> collide_pairs(const World::Impl& w, const CollisionReq
         ANTCD_PREFETCH(&w.objects[j].pose.translation);
       });
   // Self pairs, object by object in slot order (each self test spreads its own work over the
-  // workers), merged in: (i, i) comes before every (i, j), j > i.
+  // workers), merged in: (i, i) comes before every (i, j), j > i. An unchanged object's is kept
+  // like a pair's.
   std::vector<PairContacts> selves;
+  std::vector<PairMemo> new_selves;
   for (std::uint32_t s = 0; s < w.objects.size(); ++s) {
     if (!with_self || !w.alive(s) || !w.bounds[s].self_collision) continue;
-    SelfIntersectionRequest self_request;
-    self_request.first_only = !request.all_contacts;
-    SelfIntersectionResult r = self_intersections(*w.objects[s].model, self_request);
-    if (!r.intersecting) continue;
-    if (request.all_contacts && request.max_contacts != 0 &&
-        r.pairs.size() > request.max_contacts) {
-      r.pairs.resize(request.max_contacts);
+    const std::size_t m = hold.reuse() && unchanged(s)
+                              ? find_memo(memo.selves, s, s, w.stamps[s], w.stamps[s])
+                              : kNoMemo;
+    SelfIntersectionResult r;
+    if (m != kNoMemo) {
+      r.intersecting = memo.selves[m].hit;
+      r.pairs = memo.selves[m].self_pairs;
+      new_selves.push_back(memo.selves[m]);  // a copy: a later throw leaves the memo whole
+    } else {
+      SelfIntersectionRequest self_request;
+      self_request.first_only = !request.all_contacts;
+      r = self_intersections(*w.objects[s].model, self_request);
+      if (request.all_contacts && request.max_contacts != 0 &&
+          r.pairs.size() > request.max_contacts) {
+        r.pairs.resize(request.max_contacts);
+      }
+      if (unchanged(s)) {
+        new_selves.push_back({s, s, w.stamps[s], w.stamps[s], r.intersecting, {}, {}});
+        if (r.intersecting) new_selves.back().self_pairs = r.pairs;
+      }
     }
+    if (!r.intersecting) continue;
     PairContacts p;
     p.a = p.b = w.id_of(s);
     p.self_pairs = std::move(r.pairs);
     selves.push_back(std::move(p));
+  }
+  // The memo for the next query: the pairs of unchanged objects tested or reused now (a reused
+  // answer moves over; a new one is copied). Every other answer is dropped. Unfilled while the
+  // answers move, so that a throw (an allocation) cannot leave a moved-from answer to be reused.
+  if (hold.held()) {
+    memo.filled = false;
+    std::vector<PairMemo> kept;
+    for (std::size_t k = 0; k < candidates.size(); ++k) {
+      if (use[k] == MemoUse::Reused) {
+        kept.push_back(std::move(memo.pairs[from[k]]));
+      } else if (use[k] == MemoUse::Keep) {
+        const auto [i, j] = candidates[k];
+        kept.push_back({i, j, w.stamps[i], w.stamps[j], hit[k] != 0, {}, {}});
+        if (hit[k] != 0) kept.back().contacts = results[k].contacts;
+      }
+    }
+    memo.pairs = std::move(kept);
+    memo.selves = std::move(new_selves);
+    memo.request = request;
+    memo.filled = true;
+    memo.seen = w.clock;
+    memo.bytes.store(memo_bytes(memo.pairs) + memo_bytes(memo.selves), std::memory_order_relaxed);
   }
   std::vector<PairContacts> out;
   std::size_t next_self = 0;

@@ -113,6 +113,7 @@ ObjectId World::add(std::shared_ptr<const Model> model, const Transform& pose,
     w.bounds.emplace_back();
     w.roots.emplace_back();
     w.handles.push_back(0);
+    w.stamps.push_back(0);
     w.last_set.push_back(0);
     w.flags.push_back(0);
   }
@@ -123,6 +124,7 @@ ObjectId World::add(std::shared_ptr<const Model> model, const Transform& pose,
   o.options = std::move(options);
   o.ignored.clear();
   w.handles[slot] |= 1;
+  w.stamps[slot] = ++w.clock;
   Impl::Bounds& b = w.bounds[slot];
   b.box = posed_box(*o.model, o.pose, b.tolerance, w.roots[slot]);
   b.group = o.options.group;
@@ -147,6 +149,7 @@ void World::remove(ObjectId id) {
   w.bounds[id.slot] = Impl::Bounds{};
   const std::uint32_t next = id.generation + 1;  // the old id never matches again
   w.handles[id.slot] = std::uint64_t{next} << 1;
+  w.stamps[id.slot] = ++w.clock;
   if (next != 0) w.free_slots.push_back(id.slot);  // a wrapped slot is retired
   --w.live;
 }
@@ -201,7 +204,13 @@ void World::Impl::apply_poses(std::span<const ObjectId> ids, std::span<const Tra
   // its last occurrence is fitted. An object whose new box left its leaf's box gets the new box
   // (grown by the rounding margin the queries rely on, see fattened()) in its leaf at once; its
   // ancestors are fixed below, by a move or by the refit.
-  for (std::size_t k = 0; k < ids.size(); ++k) w.last_set[ids[k].slot] = k;
+  // Every object given a pose counts as changed, even when the pose is the one it had (see
+  // world.hpp, "Unchanged pairs"): comparing poses would cost as much as a frame's box fits.
+  const std::uint64_t now = ++w.clock;
+  for (std::size_t k = 0; k < ids.size(); ++k) {
+    w.last_set[ids[k].slot] = k;
+    w.stamps[ids[k].slot] = now;
+  }
   const auto fit = [&](std::size_t k) {
     const std::uint32_t slot = ids[k].slot;
     if (w.last_set[slot] != k) return;
@@ -381,7 +390,8 @@ std::size_t World::memory_bytes() const {
   std::size_t bytes =
       sizeof(Impl) + w.objects.capacity() * sizeof(Impl::Object) +
       w.bounds.capacity() * sizeof(Impl::Bounds) + w.roots.capacity() * sizeof(Impl::Root) +
-      w.handles.capacity() * sizeof(std::uint64_t) + w.last_set.capacity() * sizeof(std::size_t) +
+      w.handles.capacity() * sizeof(std::uint64_t) + w.stamps.capacity() * sizeof(std::uint64_t) +
+      w.memo.bytes.load(std::memory_order_relaxed) + w.last_set.capacity() * sizeof(std::size_t) +
       w.flags.capacity() + w.free_slots.capacity() * sizeof(std::uint32_t) + w.tree.memory_bytes();
   for (const Impl::Object& o : w.objects) {
     bytes += o.ignored.capacity() * sizeof(std::uint32_t);

@@ -4,6 +4,8 @@
 #include <antcd/world.hpp>
 
 #include <algorithm>
+#include <array>
+#include <atomic>
 #include <cstdint>
 #include <memory>
 #include <span>
@@ -48,8 +50,41 @@ struct World::Impl {
     Scalar radius = 0;  ///< the root sphere's radius
   };
 
+  /// collide_all's (and pairs_within's) narrow-phase answer of one pair of unchanged objects
+  /// (world.hpp, "Unchanged pairs"): slots a < b (a == b: a self pair) and their stamps when it
+  /// was computed. `hit` false: the pair was tested and does not collide.
+  struct PairMemo {
+    std::uint32_t a = 0;
+    std::uint32_t b = 0;
+    std::uint64_t stamp_a = 0;
+    std::uint64_t stamp_b = 0;
+    bool hit = false;
+    std::vector<Contact> contacts;
+    std::vector<std::array<std::uint32_t, 2>> self_pairs;
+  };
+  /// The answers kept from query to query. Taken by one query at a time (`busy`: a query that
+  /// finds it taken, by another thread or by itself through a stolen oneTBB task, runs without
+  /// it, with the same answer); everything but `busy` and `bytes` is read and written only by the
+  /// query holding it.
+  struct Memo {
+    std::atomic<bool> busy{false};
+    bool filled = false;       ///< `request` and `pairs` are from a query that completed
+    CollisionRequest request;  ///< the request the answers are for
+    /// The world's clock when the last query holding the memo started: an object whose stamp is
+    /// not above it was not changed since.
+    std::uint64_t seen = 0;
+    std::vector<PairMemo> pairs;        ///< distinct pairs, sorted by (a, b)
+    std::vector<PairMemo> selves;       ///< self pairs, sorted by slot
+    std::atomic<std::size_t> bytes{0};  ///< heap bytes of the above, for memory_bytes()
+  };
+
   WorldOptions settings;
   std::vector<Object> objects;
+  /// By slot: the world's clock at the object's last change (add, pose, vertices); stamps are
+  /// never reused, so a removed and re-added slot never matches an old one.
+  std::vector<std::uint64_t> stamps;
+  std::uint64_t clock = 0;
+  mutable Memo memo;
   std::vector<Bounds> bounds;  ///< by slot, like objects
   std::vector<Root> roots;     ///< by slot, like objects; set with bounds
   /// By slot: generation << 1 | alive. Dense, so that checking a batch of ids is cheap.

@@ -173,5 +173,68 @@ TEST(Concurrency, WorldDeformingSelfCollisionQueriesFromManyThreads) {
   EXPECT_GT(self_pairs_seen, 0u) << "the sheet never intersects itself: the test would be trivial";
 }
 
+// The answers a World keeps for pairs of unchanged objects (world.hpp, "Unchanged pairs") are
+// shared state behind const queries: many threads ask collide_all (two requests, so the kept
+// answers are taken, replaced and reused under contention) on a world whose static half keeps its
+// poses while the other half moves between rounds, and every answer must be a fresh World's.
+// Under TSan each thread asks in an arena of one thread, so that the pair loop stays on the calling
+// thread (see support/sanitizer.hpp).
+TEST(Concurrency, WorldKeptAnswersOfUnchangedPairsFromManyThreads) {
+  constexpr int kThreads = 6;
+  const auto sphere = std::make_shared<const Model>(make_sphere(0.6, 12, 6));
+  const auto torus = std::make_shared<const Model>(make_torus(0.6, 0.2, 16, 8));
+  std::mt19937_64 rng(9);
+  World world;
+  std::vector<ObjectId> movers;
+  std::vector<std::shared_ptr<const Model>> models;
+  for (int i = 0; i < 24; ++i) {
+    models.push_back(i % 2 ? sphere : torus);
+    const ObjectId id = world.add(models.back(), test::random_pose(rng, 2.5));
+    if (i % 3 == 0) movers.push_back(id);
+  }
+  CollisionRequest all;
+  all.all_contacts = true;
+  using Got = std::vector<std::pair<ObjectPair, std::size_t>>;
+  const auto ask_world = [&](const World& w) {
+    std::pair<Got, Got> out;
+    const auto run = [&] {
+      for (const PairContacts& p : w.collide_all(all)) {
+        out.first.push_back({{p.a, p.b}, p.contacts.size()});
+      }
+      for (const PairContacts& p : w.collide_all()) out.second.push_back({{p.a, p.b}, 0});
+    };
+    if (test::kUnderTsan) {
+      tbb::task_arena(1).execute(run);
+    } else {
+      run();
+    }
+    return out;
+  };
+  std::size_t pairs_seen = 0;
+  for (int round = 0; round < 4; ++round) {
+    for (const ObjectId id : movers) world.set_pose(id, test::random_pose(rng, 2.5));
+    World fresh;  // same objects in the same slots, nothing kept
+    for (const ObjectId id : world.objects()) fresh.add(world.model_ptr(id), world.pose(id));
+    const auto expected = ask_world(fresh);
+    ASSERT_LT(world.candidate_pairs(0).size(), 64u) << "keep the world under oneTBB's threshold";
+    pairs_seen += expected.first.size();
+    std::vector<std::vector<std::pair<Got, Got>>> got(kThreads);
+    std::latch start(kThreads);
+    std::vector<std::thread> threads;
+    for (int t = 0; t < kThreads; ++t) {
+      threads.emplace_back([&, t] {
+        start.arrive_and_wait();
+        for (int call = 0; call < 3; ++call) got[t].push_back(ask_world(world));
+      });
+    }
+    for (std::thread& th : threads) th.join();
+    for (int t = 0; t < kThreads; ++t) {
+      for (const auto& g : got[t]) EXPECT_TRUE(g == expected) << "thread " << t;
+    }
+    EXPECT_GT(world.memory_bytes(), fresh.memory_bytes()) << "no answer was kept";
+  }
+  EXPECT_GT(pairs_seen, 0u);
+}
+
 }  // namespace
 }  // namespace antcd
