@@ -9,6 +9,7 @@
 #include <array>
 #include <bit>
 #include <cmath>
+#include <cstring>
 #include <cstdint>
 #include <limits>
 #include <string>
@@ -241,7 +242,12 @@ struct RequestFields {
 static_assert(sizeof(CollisionRequest) == sizeof(RequestFields),
               "compare the new CollisionRequest field in same_request");
 bool same_request(const CollisionRequest& x, const CollisionRequest& y) {
-  const auto bits = [](Scalar v) { return std::bit_cast<std::uint64_t>(v); };
+  // memcpy, not std::bit_cast: the WebAssembly build's libc++ (Emscripten 3.1.6) has none.
+  const auto bits = [](Scalar v) {
+    std::uint64_t b = 0;
+    std::memcpy(&b, &v, sizeof b);
+    return b;
+  };
   return bits(x.delta) == bits(y.delta) && x.all_contacts == y.all_contacts &&
          x.max_contacts == y.max_contacts && x.volume == y.volume &&
          x.contact_normals == y.contact_normals && x.manifold_points == y.manifold_points &&
