@@ -70,6 +70,32 @@ TEST(LearnedFeatures, InvariantToACommonRigidMotionOfBothObjects) {
   EXPECT_GT(sampled_pairs, 10);
 }
 
+TEST(LearnedFeatures, ShapeFeaturesTellCrossingSurfacesFromAShapeInAHole) {
+  // A sphere in a torus's hole overlaps its bounding volumes without touching it; moved onto the
+  // tube, its surface crosses the torus's. Only the leaf triangles tell the two apart.
+  const Model torus(make_torus(1.0, 0.25, 48, 16));
+  const Model ball(make_sphere(0.5, 24, 12));
+  const auto index = [](std::string_view name) {
+    const auto& n = feature_names();
+    return static_cast<std::size_t>(std::find(n.begin(), n.end(), name) - n.begin());
+  };
+  const std::size_t straddle = index("leaf_straddle");
+  const std::size_t gap = index("straddle_gap");
+  ASSERT_LT(gap, kFeatureCount);
+  std::mt19937_64 rng(3);
+  for (int trial = 0; trial < 5; ++trial) {
+    const Transform m = test::random_pose(rng, 50.0);
+    const Transform in_hole = m * Transform::from_axis_angle(Vec3(1, 1, 0), 0.3, Vec3::Zero());
+    const Transform on_tube = m * Transform::from_axis_angle(Vec3(1, 1, 0), 0.3, Vec3(0.9, 0, 0));
+    const FeatureVector free = pair_features(torus, m, ball, in_hole, 0.0);
+    const FeatureVector crossing = pair_features(torus, m, ball, on_tube, 0.0);
+    EXPECT_EQ(free[straddle], 0.0F) << trial;
+    EXPECT_EQ(free[gap], 4.0F) << trial;
+    EXPECT_GT(crossing[straddle], 0.0F) << trial;
+    EXPECT_LT(crossing[gap], 1.0F) << trial;
+  }
+}
+
 TEST(LearnedFeatures, NamesAreUniqueAndCountMatches) {
   std::vector<std::string_view> names(feature_names().begin(), feature_names().end());
   std::sort(names.begin(), names.end());
