@@ -7,9 +7,9 @@
 // uses window 1; BOX-LSTM a longer window, so that the motion is part of its input.
 //
 // Training data is generated, never taken from the evaluated scene: training_set() builds
-// production-line scenes (antcd scene generate) and pairs of generated shapes from seeds derived
-// from its own seed, writes them to a temporary folder, labels them with the exact method and
-// removes the folder. No torch header here.
+// production-line scenes (antcd scene generate), pairs of generated shapes and, given training
+// mesh files (meshes.hpp: split by mesh), pairs of those meshes, from seeds derived from its own
+// seed, labels them with the exact method and removes its temporary folder. No torch header here.
 #pragma once
 
 #include <antcd/scene.hpp>
