@@ -10,11 +10,15 @@
 #include "shared/run_result.hpp"
 
 #ifdef ANTCD_HAVE_LEARNED
+#include <antcd/rng.hpp>
 #include <antcd_learned/classifier.hpp>
 #include <antcd_learned/dataset.hpp>
 #include <antcd_learned/detector.hpp>
+#include <antcd_learned/meshes.hpp>
 
 #include <chrono>
+#include <filesystem>
+#include <vector>
 #endif
 
 namespace antcd::cli {
@@ -36,35 +40,151 @@ struct TrainCommand {
   std::size_t frames = 150;
   std::size_t epochs = 40;
   std::uint64_t seed = 1;
+  std::vector<std::string> train_meshes;  ///< empty: the assimp catalogue
+  std::vector<std::string> hold_out;      ///< empty: the default held-out meshes
+  bool no_meshes = false;
+  std::size_t folds = 0;
+  bool ablate = false;
 };
 
 #ifdef ANTCD_HAVE_LEARNED
+namespace fs = std::filesystem;
+
+void log_line(const std::string& line) { std::cerr << line << std::endl; }
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+/// Seed of the held-out scene (evaluation) of fold `k`; the held-out check uses k = ~0.
+std::uint64_t evaluation_seed(std::uint64_t seed, std::uint64_t k) {
+  return mix_seed(seed ^ 0x4556414CULL ^ mix_seed(k));
+}
+
+learned::Classifier train_quiet(learned::Kind kind, const learned::Dataset& data,
+                                const TrainCommand& o, bool verbose) {
+  learned::TrainOptions train;
+  train.kind = kind;
+  train.seed = o.seed;
+  train.epochs = o.epochs;
+  if (verbose) train.log = log_line;
+  return learned::Classifier::train(data, train);
+}
+
+std::string scores(const learned::Confusion& c) {
+  char buf[160];
+  std::snprintf(buf, sizeof buf,
+                "recall %.3f, precision %.3f, accuracy %.3f (%zu colliding of %zu)", c.recall(),
+                c.precision(), c.accuracy(), c.tp + c.fn, c.tp + c.fn + c.fp + c.tn);
+  return buf;
+}
+
+/// k-fold cross-validation by mesh: fold i's meshes are kept out of the training scenes and make
+/// the evaluated scene.
+void cross_validate(learned::Kind kind, const TrainCommand& o,
+                    const learned::TrainingSetOptions& set, const std::vector<fs::path>& meshes) {
+  const auto folds = learned::mesh_folds(meshes, o.folds, o.seed);
+  double recall = 0;
+  double precision = 0;
+  for (std::size_t i = 0; i < folds.size(); ++i) {
+    learned::TrainingSetOptions fold_set = set;
+    fold_set.mesh_files.clear();
+    for (std::size_t j = 0; j < folds.size(); ++j) {
+      if (j != i)
+        fold_set.mesh_files.insert(fold_set.mesh_files.end(), folds[j].begin(), folds[j].end());
+    }
+    const learned::Dataset data = learned::training_set(fold_set);
+    const learned::Classifier model = train_quiet(kind, data, o, false);
+    const learned::Dataset test = learned::mesh_scene_samples(
+        folds[i], o.frames, evaluation_seed(o.seed, i), set.window, set.delta);
+    const learned::Confusion c =
+        learned::confusion(model.predict(test.features, test.size()), test.labels);
+    recall += c.recall();
+    precision += c.precision();
+    std::printf("fold %zu/%zu held out {%s}: trained on %zu samples; %s\n", i + 1, folds.size(),
+                learned::mesh_names(folds[i]).c_str(), data.size(), scores(c).c_str());
+    std::fflush(stdout);
+  }
+  const auto k = static_cast<double>(folds.size());
+  std::printf("cross-validation by mesh, %zu folds: mean recall %.3f, mean precision %.3f\n",
+              folds.size(), recall / k, precision / k);
+}
+
+/// Retrains without each feature group (zeroed in training and held-out samples) and reports
+/// the held-out scores: what each group adds.
+void ablate(learned::Kind kind, const TrainCommand& o, const learned::Dataset& data,
+            const learned::Dataset& test) {
+  const auto& groups = learned::feature_groups();
+  for (std::size_t g = 0; g <= groups.size(); ++g) {
+    learned::Dataset d = data;
+    learned::Dataset t = test;
+    std::string what;
+    if (g < groups.size()) {
+      d.zero_features(groups[g].first, groups[g].count);
+      t.zero_features(groups[g].first, groups[g].count);
+      what = "without " + std::string(groups[g].name);
+    } else {  // the version-1 groups alone
+      for (std::size_t h = 2; h < groups.size(); ++h) {
+        d.zero_features(groups[h].first, groups[h].count);
+        t.zero_features(groups[h].first, groups[h].count);
+      }
+      what = "root and levels1-5 only (version 1's groups)";
+    }
+    const learned::Classifier model = train_quiet(kind, d, o, false);
+    const learned::Confusion c = learned::confusion(model.predict(t.features, t.size()), t.labels);
+    std::printf("ablation, %s: held-out %s\n", what.c_str(), scores(c).c_str());
+    std::fflush(stdout);
+  }
+}
+
 int run_train(const TrainCommand& o) {
   const learned::Kind kind = learned::parse_kind(o.method);
+  std::vector<fs::path> meshes;
+  if (!o.no_meshes) {
+    if (o.train_meshes.empty()) {
+      meshes = learned::mesh_catalogue();
+    } else {
+      for (const auto& m : o.train_meshes) meshes.emplace_back(m);
+    }
+  }
+  std::vector<fs::path> held;
+  if (o.hold_out.empty()) {
+    held = learned::default_held_out();
+  } else {
+    for (const auto& m : o.hold_out) held.emplace_back(m);
+  }
+  for (const fs::path& m : held) {
+    if (!fs::exists(m)) throw UsageError("--hold-out: " + m.string() + ": no such file");
+  }
+  meshes = learned::without(meshes, held);
+  if (o.folds > 0 && o.folds > meshes.size()) {
+    throw UsageError("--folds " + std::to_string(o.folds) + ": only " +
+                     std::to_string(meshes.size()) + " training meshes");
+  }
+  if (o.ablate && held.empty()) throw UsageError("--ablate needs held-out meshes");
   learned::TrainingSetOptions set;
   set.scenes = o.scenes;
   set.frames = o.frames;
   set.seed = o.seed;
   set.window = learned::default_window(kind);
-  const auto log = [](const std::string& line) { std::cerr << line << std::endl; };
+  set.mesh_files = meshes;
+  std::cerr << "training meshes (" << meshes.size() << "): " << learned::mesh_names(meshes)
+            << "\nheld out (" << held.size() << "): " << learned::mesh_names(held) << std::endl;
+  if (o.folds > 0) cross_validate(kind, o, set, meshes);
   std::cerr << "generating and labelling " << o.scenes << " training scenes of " << o.frames
             << " frames (exact method)" << std::endl;
   const auto t0 = std::chrono::steady_clock::now();
-  const learned::Dataset data = learned::training_set(set, log);
-  const double data_s =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const learned::Dataset data = learned::training_set(set, log_line);
+  const double data_s = seconds_since(t0);
   std::cerr << "training " << learned::kind_name(kind) << " on " << data.size() << " samples ("
             << data.positives() << " colliding)" << std::endl;
-  learned::TrainOptions train;
-  train.kind = kind;
-  train.seed = o.seed;
-  train.epochs = o.epochs;
-  train.log = log;
-  learned::Classifier model = learned::Classifier::train(data, train);
+  learned::Classifier model = train_quiet(kind, data, o, true);
   learned::TrainingRecord record = model.record();
   record.scenes = o.scenes;
   record.frames = o.frames;
   record.data_seconds = data_s;
+  record.meshes = learned::mesh_names(meshes);
+  record.held_out = learned::mesh_names(held);
   model.set_record(record);
   model.save(o.out);
   std::printf(
@@ -74,6 +194,15 @@ int run_train(const TrainCommand& o) {
       model.window(), static_cast<unsigned long long>(record.samples),
       static_cast<unsigned long long>(record.positives), record.train_accuracy, record.data_seconds,
       record.train_seconds);
+  if (!held.empty()) {
+    // The held-out check: a scene of the held-out meshes only, never seen in training.
+    const learned::Dataset test = learned::mesh_scene_samples(
+        held, o.frames, evaluation_seed(o.seed, ~std::uint64_t{0}), set.window, set.delta);
+    std::printf(
+        "held-out scene {%s}: %s\n", learned::mesh_names(held).c_str(),
+        scores(learned::confusion(model.predict(test.features, test.size()), test.labels)).c_str());
+    if (o.ablate) ablate(kind, o, data, test);
+  }
   return 0;
 }
 #endif
@@ -162,6 +291,27 @@ void add_learn_commands(CLI::App& app, int& code) {
                    "shuffling")
       ->capture_default_str()
       ->check(unsigned_integer());
+  train
+      ->add_option("--train-mesh", o->train_meshes,
+                   "Mesh files for the mesh-pair training scenes (default: the assimp test models "
+                   "of learned/src/meshes.cpp that are installed)")
+      ->check(CLI::ExistingFile)
+      ->type_name("FILE ...");
+  train
+      ->add_option("--hold-out", o->hold_out,
+                   "Mesh files never used in training, judged after it (default: spider.obj, "
+                   "WusonOBJ.obj, 3DSMaxExport.STL, regr01.obj of assimp-testmodels)")
+      ->type_name("FILE ...");
+  train->add_flag("--no-meshes", o->no_meshes,
+                  "Train on generated scenes only (production lines and generated shapes)");
+  train
+      ->add_option("--folds", o->folds,
+                   "Before training: k-fold cross-validation by mesh over the training meshes "
+                   "(fold i's meshes out of training, judged on a scene of them)")
+      ->check(CLI::Range(0, 100));
+  train->add_flag("--ablate", o->ablate,
+                  "After training: retrain without each feature group and judge each on the "
+                  "held-out scene");
   train->callback([o, &code] {
 #ifdef ANTCD_HAVE_LEARNED
     code = run_train(*o);

@@ -283,6 +283,8 @@ void Classifier::save(const std::filesystem::path& path) const {
     a.write("record_train_accuracy", c10::IValue(r.train_accuracy));
     a.write("record_data_seconds", c10::IValue(r.data_seconds));
     a.write("record_train_seconds", c10::IValue(r.train_seconds));
+    a.write("record_meshes", c10::IValue(r.meshes));
+    a.write("record_held_out", c10::IValue(r.held_out));
     torch::serialize::OutputArchive net;
     impl_->net().save(net);
     a.write("net", net);
@@ -373,6 +375,8 @@ Classifier Classifier::load(const std::filesystem::path& path) {
     r.train_accuracy = real("record_train_accuracy");
     r.data_seconds = real("record_data_seconds");
     r.train_seconds = real("record_train_seconds");
+    r.meshes = text("record_meshes");
+    r.held_out = text("record_held_out");
 
     impl->make_net();
     torch::nn::Module& net = impl->net();

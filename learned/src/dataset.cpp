@@ -1,6 +1,7 @@
 // Labelled samples of generated scenes for the learned baselines (see dataset.hpp).
 #include <antcd/rng.hpp>
 #include <antcd_learned/dataset.hpp>
+#include <antcd_learned/meshes.hpp>
 
 #include <stdlib.h>  // mkdtemp
 
@@ -48,7 +49,7 @@ class TempDir {
   fs::path path_;
 };
 
-enum class Layout { ProductionLine, ShapePairs };
+enum class Layout { ProductionLine, ShapePairs, MeshPairs };
 
 struct SceneSpec {
   Layout layout = Layout::ProductionLine;
@@ -57,14 +58,24 @@ struct SceneSpec {
   std::uint64_t seed = 0;
 };
 
+/// A mesh-pair training scene: this many of the training meshes, and two generated shapes, each
+/// pair kMeshRounds times (with other motions).
+constexpr std::size_t kMeshesPerScene = 5;
+constexpr std::size_t kMeshRounds = 8;
+
 SceneSpec scene_spec(const TrainingSetOptions& o, std::size_t k) {
   SceneSpec s;
   s.seed = scene_seed(o.seed, k);
-  s.layout = k % 3 == 2 ? Layout::ShapePairs : Layout::ProductionLine;
+  s.layout = k % 3 == 2                            ? Layout::ShapePairs
+             : k % 3 == 1 && !o.mesh_files.empty() ? Layout::MeshPairs
+                                                   : Layout::ProductionLine;
   const std::uint64_t r = mix_seed(s.seed);
   const std::size_t span = o.max_objects - o.min_objects + 1;
   s.objects = s.layout == Layout::ShapePairs ? 16 + 2 * (r % 8)
                                              : o.min_objects + static_cast<std::size_t>(r % span);
+  if (s.layout == Layout::MeshPairs) {
+    s.objects = 2 * kMeshRounds * (std::min(kMeshesPerScene, o.mesh_files.size()) + 2);
+  }
   s.vertices = 250 + static_cast<std::size_t>((r >> 20) % 1000);
   return s;
 }
@@ -106,6 +117,19 @@ std::vector<fs::path> write_shapes(const fs::path& dir, std::uint64_t seed) {
   return files;
 }
 
+/// The training meshes of a mesh-pair scene: kMeshesPerScene of them (all when fewer), drawn
+/// from `seed`.
+std::vector<fs::path> scene_meshes(const std::vector<fs::path>& meshes, std::uint64_t seed) {
+  std::vector<fs::path> order = meshes;
+  std::uint64_t state = mix_seed(seed ^ 0x4D45534845ULL);
+  for (std::size_t i = order.size(); i > 1; --i) {
+    state = mix_seed(state);
+    std::swap(order[i - 1], order[state % i]);
+  }
+  order.resize(std::min(order.size(), kMeshesPerScene));
+  return order;
+}
+
 }  // namespace
 
 std::size_t Dataset::positives() const {
@@ -139,6 +163,16 @@ Dataset Dataset::last_frame() const {
                         first + static_cast<std::ptrdiff_t>(kFeatureCount));
   }
   return out;
+}
+
+void Dataset::zero_features(std::size_t first, std::size_t count) {
+  if (first > kFeatureCount || count > kFeatureCount - first) {
+    throw std::out_of_range("features " + std::to_string(first) + " + " + std::to_string(count) +
+                            " are past the vector's " + std::to_string(kFeatureCount));
+  }
+  for (std::size_t at = 0; at < features.size(); at += kFeatureCount) {
+    std::fill_n(features.begin() + static_cast<std::ptrdiff_t>(at + first), count, 0.0F);
+  }
 }
 
 std::size_t PairHistory::KeyHash::operator()(const Key& k) const {
@@ -202,6 +236,11 @@ Dataset scene_samples(const Scene& scene, std::size_t first, std::size_t last, s
 
 std::string training_scene_label(const TrainingSetOptions& options, std::size_t k) {
   const SceneSpec s = scene_spec(options, k);
+  if (s.layout == Layout::MeshPairs) {
+    return "mesh pairs (" + mesh_names(scene_meshes(options.mesh_files, s.seed)) +
+           " and 2 generated shapes), " + std::to_string(s.objects) + " objects, seed " +
+           std::to_string(s.seed);
+  }
   return (s.layout == Layout::ProductionLine ? "production line, " : "shape pairs, ") +
          std::to_string(s.objects) + " objects" +
          (s.layout == Layout::ProductionLine ? ", ~" + std::to_string(s.vertices) + " vertices"
@@ -229,6 +268,12 @@ Dataset training_set(const TrainingSetOptions& options,
     line.seed = spec.seed;
     const fs::path dir = tmp.path() / ("scene_" + std::to_string(k));
     if (spec.layout == Layout::ShapePairs) line.mesh_files = write_shapes(tmp.path(), spec.seed);
+    if (spec.layout == Layout::MeshPairs) {
+      std::vector<fs::path> files = scene_meshes(options.mesh_files, spec.seed);
+      const std::vector<fs::path> shapes = write_shapes(tmp.path(), spec.seed);
+      files.insert(files.end(), shapes.begin(), shapes.begin() + 2);
+      line.mesh_files = pairing_order(files);
+    }
     const fs::path file = gen::write_scene(gen::generate_production_line(line), dir);
     const Scene scene(load_scene(file));
     Dataset d = scene_samples(scene, 0, options.frames, options.window, options.delta);

@@ -1,11 +1,14 @@
 // The learned baselines (antcd_learned): feature invariance, learning beyond a constant guess,
-// deterministic training, model files (round trip, refusal of bad ones) and the CLI's errors.
+// deterministic training, model files (round trip, refusal of bad ones), the CLI's errors, and the
+// by-mesh split (meshes.hpp): folds are disjoint sets of meshes, held-out meshes never reach a
+// training scene, a model trained on some meshes beats the constant guess on meshes it never saw.
 #include <gtest/gtest.h>
 #include <antcd/load.hpp>
 #include <antcd/mesh.hpp>
 #include <antcd_learned/classifier.hpp>
 #include <antcd_learned/dataset.hpp>
 #include <antcd_learned/features.hpp>
+#include <antcd_learned/meshes.hpp>
 
 #include <sys/wait.h>
 
@@ -14,6 +17,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <random>
+#include <set>
 #include <string>
 
 #include "support/test_support.hpp"
@@ -32,6 +36,9 @@ TEST(LearnedFeatures, InvariantToACommonRigidMotionOfBothObjects) {
   const Model spider(load_mesh(test::assimp_model("OBJ/spider.obj")));
   std::mt19937_64 rng(7);
   int overlapping_pairs = 0;
+  int sampled_pairs = 0;
+  const std::size_t kSamplesFeature = feature_groups().back().first;
+  ASSERT_EQ(feature_names()[kSamplesFeature], "samples");
   for (const Model* second : {&b, &spider}) {
     const Scalar reach = a.root().radius + second->root().radius;
     for (int trial = 0; trial < 40; ++trial) {
@@ -40,6 +47,7 @@ TEST(LearnedFeatures, InvariantToACommonRigidMotionOfBothObjects) {
       const Transform pb = pa * rel;
       const FeatureVector f = pair_features(a, pa, *second, pb, 0.0);
       if (f[1] > 0) ++overlapping_pairs;  // spheres overlap: the level features are exercised
+      if (f[kSamplesFeature] > 0) ++sampled_pairs;  // leaf pairs read: the shape features too
       for (int motion = 0; motion < 3; ++motion) {
         const Transform m = test::random_pose(rng, 100.0);
         const FeatureVector g = pair_features(a, m * pa, *second, m * pb, 0.0);
@@ -59,6 +67,33 @@ TEST(LearnedFeatures, InvariantToACommonRigidMotionOfBothObjects) {
     }
   }
   EXPECT_GT(overlapping_pairs, 20);
+  EXPECT_GT(sampled_pairs, 10);
+}
+
+TEST(LearnedFeatures, ShapeFeaturesTellCrossingSurfacesFromAShapeInAHole) {
+  // A sphere in a torus's hole overlaps its bounding volumes without touching it; moved onto the
+  // tube, its surface crosses the torus's. Only the leaf triangles tell the two apart.
+  const Model torus(make_torus(1.0, 0.25, 48, 16));
+  const Model ball(make_sphere(0.5, 24, 12));
+  const auto index = [](std::string_view name) {
+    const auto& n = feature_names();
+    return static_cast<std::size_t>(std::find(n.begin(), n.end(), name) - n.begin());
+  };
+  const std::size_t straddle = index("leaf_straddle");
+  const std::size_t gap = index("straddle_gap");
+  ASSERT_LT(gap, kFeatureCount);
+  std::mt19937_64 rng(3);
+  for (int trial = 0; trial < 5; ++trial) {
+    const Transform m = test::random_pose(rng, 50.0);
+    const Transform in_hole = m * Transform::from_axis_angle(Vec3(1, 1, 0), 0.3, Vec3::Zero());
+    const Transform on_tube = m * Transform::from_axis_angle(Vec3(1, 1, 0), 0.3, Vec3(0.9, 0, 0));
+    const FeatureVector free = pair_features(torus, m, ball, in_hole, 0.0);
+    const FeatureVector crossing = pair_features(torus, m, ball, on_tube, 0.0);
+    EXPECT_EQ(free[straddle], 0.0F) << trial;
+    EXPECT_EQ(free[gap], 4.0F) << trial;
+    EXPECT_GT(crossing[straddle], 0.0F) << trial;
+    EXPECT_LT(crossing[gap], 1.0F) << trial;
+  }
 }
 
 TEST(LearnedFeatures, NamesAreUniqueAndCountMatches) {
@@ -307,6 +342,136 @@ TEST(LearnedCli, BadModelsExitTwoWithOneErrorLine) {
   EXPECT_TRUE(fs::exists(dir / "run.json"));
 }
 #endif
+
+}  // namespace
+}  // namespace antcd::learned
+
+// ---- The by-mesh split ----
+
+namespace antcd::learned {
+namespace {
+
+std::vector<fs::path> names(std::size_t n) {
+  std::vector<fs::path> v;
+  for (std::size_t i = 0; i < n; ++i) v.emplace_back("m" + std::to_string(i) + ".obj");
+  return v;
+}
+
+TEST(LearnedMeshSplit, FoldsAreDisjointCoverEveryMeshAndDependOnlyOnTheSeed) {
+  const auto meshes = names(11);
+  const auto folds = mesh_folds(meshes, 4, 9);
+  ASSERT_EQ(folds.size(), 4U);
+  std::set<fs::path> seen;
+  for (const auto& f : folds) {
+    EXPECT_GE(f.size(), 2U);
+    EXPECT_LE(f.size(), 3U);
+    for (const auto& m : f) EXPECT_TRUE(seen.insert(m).second) << m << " in two folds";
+  }
+  EXPECT_EQ(seen.size(), meshes.size());
+  EXPECT_EQ(mesh_folds(meshes, 4, 9), folds);
+  EXPECT_NE(mesh_folds(meshes, 4, 10), folds);
+  EXPECT_THROW((void)mesh_folds(meshes, 0, 1), std::invalid_argument);
+  EXPECT_THROW((void)mesh_folds(meshes, 12, 1), std::invalid_argument);
+}
+
+TEST(LearnedMeshSplit, HeldOutMeshesAreRemovedAndPairingMeetsNeighbours) {
+  const auto meshes = names(5);
+  const auto kept = without(meshes, {fs::path("m1.obj"), fs::path("./m3.obj")});
+  EXPECT_EQ(kept, (std::vector<fs::path>{"m0.obj", "m2.obj", "m4.obj"}));
+  // The file mode pairs objects (2m, 2m+1) cycling over the list: every neighbour pair occurs.
+  for (const std::size_t n : {1U, 2U, 4U, 5U}) {
+    const auto order = pairing_order(names(n));
+    std::set<std::pair<std::string, std::string>> pairs;
+    for (std::size_t m = 0; m < n; ++m) {
+      auto a = order[(2 * m) % order.size()].string();
+      auto b = order[(2 * m + 1) % order.size()].string();
+      if (b < a) std::swap(a, b);
+      pairs.emplace(a, b);
+    }
+    for (std::size_t i = 0; i < n && n > 2; ++i) {
+      auto a = "m" + std::to_string(i) + ".obj";
+      auto b = "m" + std::to_string((i + 1) % n) + ".obj";
+      if (b < a) std::swap(a, b);
+      EXPECT_TRUE(pairs.count({a, b})) << n << " meshes: " << a << "-" << b << " never meet";
+    }
+  }
+  // The default held-out meshes are in the catalogue and not among the training meshes.
+  const auto catalogue = mesh_catalogue();
+  const auto held = default_held_out();
+  ASSERT_EQ(held.size(), 4U) << "assimp-testmodels missing";
+  for (const auto& h : held) {
+    EXPECT_NE(std::find(catalogue.begin(), catalogue.end(), h), catalogue.end());
+    const auto train = without(catalogue, held);
+    EXPECT_EQ(std::find(train.begin(), train.end(), h), train.end());
+  }
+}
+
+TEST(LearnedMeshSplit, ConfusionCounts) {
+  const Confusion c = confusion({1, 1, 0, 0, 1}, {1, 0, 1, 0, 1});
+  EXPECT_EQ(c.tp, 2U);
+  EXPECT_EQ(c.fp, 1U);
+  EXPECT_EQ(c.fn, 1U);
+  EXPECT_EQ(c.tn, 1U);
+  EXPECT_DOUBLE_EQ(c.recall(), 2.0 / 3.0);
+  EXPECT_DOUBLE_EQ(c.precision(), 2.0 / 3.0);
+}
+
+TEST(LearnedMeshSplit, ZeroedFeatureGroupsAreZeroInEveryFrame) {
+  Dataset d;
+  d.window = 2;
+  d.features.assign(3 * 2 * kFeatureCount, 1.0F);
+  d.labels = {0, 1, 0};
+  const FeatureGroup& shape = feature_groups().back();
+  d.zero_features(shape.first, shape.count);
+  for (std::size_t k = 0; k < d.features.size(); ++k) {
+    const std::size_t f = k % kFeatureCount;
+    EXPECT_EQ(d.features[k], f >= shape.first && f < shape.first + shape.count ? 0.0F : 1.0F);
+  }
+  EXPECT_THROW(d.zero_features(kFeatureCount - 1, 2), std::out_of_range);
+  // The groups cover the vector once, in order.
+  std::size_t next = 0;
+  for (const FeatureGroup& g : feature_groups()) {
+    EXPECT_EQ(g.first, next) << g.name;
+    next += g.count;
+  }
+  EXPECT_EQ(next, kFeatureCount);
+}
+
+TEST(LearnedMeshSplit, AModelBeatsTheConstantGuessOnMeshesItNeverSaw) {
+  // Train on generated shapes and two assimp meshes; judge on a scene of two other assimp meshes.
+  const fs::path dir = test::fresh_temp_dir("learned_mesh_split");
+  save_obj(make_torus(0.8, 0.25, 32, 12), dir / "torus.obj");
+  save_obj(make_sphere(0.6, 20, 10), dir / "sphere.obj");
+  TrainingSetOptions o;
+  o.scenes = 2;  // a production line, then mesh pairs
+  o.frames = 60;
+  o.seed = 5;
+  o.min_objects = 20;
+  o.max_objects = 24;
+  o.mesh_files = {dir / "torus.obj", dir / "sphere.obj",
+                  test::assimp_model("STL/sphereWithHole.stl"),
+                  test::assimp_model("FBX/huesitos.fbx")};
+  const Dataset train = training_set(o);
+  ASSERT_GT(train.positives(), 20U);
+  ASSERT_GT(train.size() - train.positives(), 20U);
+  const Dataset held_out = mesh_scene_samples(
+      {test::assimp_model("OBJ/spider.obj"), test::assimp_model("STL/3DSMaxExport.STL")}, 80, 3, 1,
+      0.0);
+  ASSERT_GT(held_out.positives(), 10U);
+  ASSERT_GT(held_out.size() - held_out.positives(), 10U);
+  TrainOptions t;
+  t.epochs = 30;
+  t.seed = 2;
+  const Classifier model = Classifier::train(train, t);
+  const Confusion c = confusion(model.predict(held_out.features, held_out.size()), held_out.labels);
+  const double share =
+      static_cast<double>(held_out.positives()) / static_cast<double>(held_out.size());
+  EXPECT_GT(c.accuracy(), std::max(share, 1 - share) + 0.05)
+      << "held-out samples " << held_out.size() << ", colliding " << held_out.positives()
+      << ", recall " << c.recall() << ", precision " << c.precision();
+  EXPECT_GT(c.recall(), 0.6);
+  EXPECT_GT(c.precision(), 0.6);
+}
 
 }  // namespace
 }  // namespace antcd::learned

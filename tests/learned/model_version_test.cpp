@@ -6,6 +6,7 @@
 #include <torch/torch.h>
 
 #include <string>
+#include <utility>
 
 #include "support/test_support.hpp"
 
@@ -22,18 +23,32 @@ std::string refusal(const std::filesystem::path& file) {
 }
 
 TEST(LearnedModelFile, AnotherFeatureVersionIsRefused) {
+  // Version 1 (58 bounding-volume features, before the shape features) and a future version.
   const auto dir = test::fresh_temp_dir("learned_version");
-  torch::serialize::OutputArchive a;
-  a.write("format", c10::IValue(std::string("antcd-learned/1")));
-  a.write("feature_version", c10::IValue(static_cast<std::int64_t>(kFeatureVersion + 1)));
-  a.write("feature_count", c10::IValue(static_cast<std::int64_t>(kFeatureCount)));
-  a.write("kind", c10::IValue(std::string("box-dnn")));
-  a.save_to((dir / "future.pt").string());
-  const std::string what = refusal(dir / "future.pt");
-  EXPECT_NE(what.find("feature version " + std::to_string(kFeatureVersion + 1)), std::string::npos)
-      << what;
-  EXPECT_NE(what.find((dir / "future.pt").string()), std::string::npos) << what;
-  EXPECT_EQ(what.find('\n'), std::string::npos) << what;
+  ASSERT_EQ(kFeatureVersion, 2);
+  for (const auto& [version, count] :
+       {std::pair<std::int64_t, std::int64_t>{1, 58},
+        std::pair<std::int64_t, std::int64_t>{kFeatureVersion + 1,
+                                              static_cast<std::int64_t>(kFeatureCount)}}) {
+    std::string name = std::to_string(version);  // ("v" + to_string trips GCC 12's -Wrestrict)
+    name.insert(0, 1, 'v');
+    name += ".pt";
+    const auto file = dir / name;
+    torch::serialize::OutputArchive a;
+    a.write("format", c10::IValue(std::string("antcd-learned/1")));
+    a.write("feature_version", c10::IValue(version));
+    a.write("feature_count", c10::IValue(count));
+    a.write("kind", c10::IValue(std::string("box-dnn")));
+    a.save_to(file.string());
+    const std::string what = refusal(file);
+    EXPECT_NE(what.find("model made for feature version " + std::to_string(version) +
+                        ", this antcd computes version " + std::to_string(kFeatureVersion) +
+                        ": train a new one"),
+              std::string::npos)
+        << what;
+    EXPECT_NE(what.find(file.string()), std::string::npos) << what;
+    EXPECT_EQ(what.find('\n'), std::string::npos) << what;
+  }
 }
 
 TEST(LearnedModelFile, ATorchArchiveThatIsNoAntcdModelIsRefused) {

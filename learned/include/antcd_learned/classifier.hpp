@@ -2,7 +2,7 @@
 // over the bounding-volume features of a candidate pair (our construction of the paper's names;
 // see docs/learned-baselines.md).
 //
-// - BOX-DNN: a multilayer perceptron (58 → 64 → 32 → 1, ReLU) on one frame's features.
+// - BOX-DNN: a multilayer perceptron (kFeatureCount → 64 → 32 → 1, ReLU) on one frame's features.
 // - BOX-LSTM: a one-layer LSTM (hidden 32) over the features of the pair's last `window` frames,
 //   its last output through a linear layer.
 // Both are PyTorch modules (libtorch's C++ API); inputs are standardised with the training set's
@@ -75,6 +75,8 @@ struct TrainingRecord {
   double train_accuracy = 0;  ///< on the training samples, after training
   double data_seconds = 0;    ///< generating and labelling the scenes
   double train_seconds = 0;   ///< the optimisation alone
+  std::string meshes;         ///< training mesh files (names, ", "-separated; empty: none)
+  std::string held_out;       ///< the mesh files held out of training (names)
 };
 
 class Classifier {

@@ -7,9 +7,9 @@
 // uses window 1; BOX-LSTM a longer window, so that the motion is part of its input.
 //
 // Training data is generated, never taken from the evaluated scene: training_set() builds
-// production-line scenes (antcd scene generate) and pairs of generated shapes from seeds derived
-// from its own seed, writes them to a temporary folder, labels them with the exact method and
-// removes the folder. No torch header here.
+// production-line scenes (antcd scene generate), pairs of generated shapes and, given training
+// mesh files (meshes.hpp: split by mesh), pairs of those meshes, from seeds derived from its own
+// seed, labels them with the exact method and removes its temporary folder. No torch header here.
 #pragma once
 
 #include <antcd/scene.hpp>
@@ -17,6 +17,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <filesystem>
 #include <functional>
 #include <string>
 #include <unordered_map>
@@ -39,6 +40,10 @@ struct Dataset {
   void append(const Dataset& other);
   /// The same samples with only their last (current) frame: window-1 data for BOX-DNN.
   [[nodiscard]] Dataset last_frame() const;
+  /// Sets features [first, first + count) of every frame of every sample to 0 (to measure what a
+  /// feature group adds: a constant feature carries nothing). Throws std::out_of_range past the
+  /// vector.
+  void zero_features(std::size_t first, std::size_t count);
 };
 
 /// Feature vectors of a scene's object pairs over recent frames, kept so that a run over
@@ -83,6 +88,11 @@ struct TrainingSetOptions {
   /// Production-line scenes get between min_objects and max_objects objects.
   std::size_t min_objects = 40;
   std::size_t max_objects = 90;
+  /// Training meshes (mesh files, meshes.hpp). When not empty, scene k with k % 3 == 1 is a
+  /// row of mesh pairs instead of a production line: five of these meshes (drawn from the
+  /// scene's seed; all when fewer) and two generated shapes, each passing through both of its
+  /// neighbours. No other mesh file is read.
+  std::vector<std::filesystem::path> mesh_files;
 };
 
 /// Describes scene k of a training set (layout, objects, vertices, seed) for the log.
@@ -91,7 +101,8 @@ std::string training_scene_label(const TrainingSetOptions& options, std::size_t 
 /// Generates the training scenes described above and returns their samples. Scene k is a
 /// production line (objects and tessellation drawn from the seed) except every third one, which
 /// is a row of pairs of generated shapes (tori, spheres, boxes, cylinders, compound parts) passing
-/// through each other. `log` (when set) receives one line per scene. Throws std::invalid_argument
+/// through each other, and, with mesh_files, the one after each production line (k % 3 == 1), a
+/// row of mesh pairs. `log` (when set) receives one line per scene. Throws std::invalid_argument
 /// for bad options, Error when the temporary folder cannot be written.
 Dataset training_set(const TrainingSetOptions& options,
                      const std::function<void(const std::string&)>& log = {});

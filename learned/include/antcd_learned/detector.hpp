@@ -1,6 +1,7 @@
 // antcd_learned/detector.hpp — BOX-DNN / BOX-LSTM run over a scene, frame by frame, like the
 // library's own methods: the scene's broad phase (Scene::broad_phase), then the classifier on
-// every candidate pair's bounding-volume features, all candidates of a frame in one batch.
+// every candidate pair's features (features.hpp: bounding volumes, leaf pairs and a few leaves'
+// triangles), all candidates of a frame in one batch.
 //
 // A learned method is not conservative: a pair it calls free may collide (a miss), and the
 // reverse. Measure it against exact (recall, precision) before trusting it.
