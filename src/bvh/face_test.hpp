@@ -1,7 +1,8 @@
 // Private: the six face axes of the node box test (BoxTest::faces, src/bvh/traverse.hpp) in
 // 4-lane single precision (SSE2), a rounding-safe filter at half the instructions of the double
-// test per node pair. Without SSE2 (e.g. the wasm build) FloatFaceAxes::kAvailable is false and
-// the traversal keeps the double test.
+// test per node pair. The WebAssembly build has it too (Emscripten maps these SSE2 intrinsics
+// onto SIMD128, -msse2 in wasm/CMakeLists.txt). Without SSE2 FloatFaceAxes::kAvailable is false
+// and the traversal keeps the double test.
 //
 // What it decides. The double face test (geometry::detail::obb_face_separated) reports A's axis i
 // when |t_i| > ea_i + sum_j q_ij eb_j and B's axis j when |sum_i t_i r_ij| > eb_j + sum_i q_ij
