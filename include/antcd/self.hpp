@@ -66,7 +66,7 @@ struct SelfIntersectionRequest {
 /// Counters of one self_intersections call (same values at any thread count).
 struct SelfIntersectionStats {
   std::uint64_t node_pairs = 0;      ///< pairs of distinct subtrees whose volumes were tested
-  std::uint64_t volume_rejects = 0;  ///< of those, culled by their boxes (exact, of the corners)
+  std::uint64_t volume_rejects = 0;  ///< of those, culled by their boxes (of the corners)
   std::uint64_t triangle_pairs = 0;  ///< triangle pairs given to an exact test
   std::uint64_t adjacent_pairs = 0;  ///< of those, pairs sharing a vertex or an edge
   /// Subtrees skipped whole by the normal-cone test: every triangle of the subtree has a

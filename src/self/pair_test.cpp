@@ -166,8 +166,11 @@ int certificate_axis(const Vec3& a, const Vec3& b, const Vec3& c) {
 
 bool pair_intersects(const Mesh& mesh, std::uint32_t i, std::uint32_t j, int& shared,
                      PairHint hint) {
-  const TriangleIndices& ti = mesh.triangles[i];
-  const TriangleIndices& tj = mesh.triangles[j];
+  return pair_intersects(mesh, mesh.triangles[i], mesh.triangles[j], shared, hint);
+}
+
+bool pair_intersects(const Mesh& mesh, const TriangleIndices& ti, const TriangleIndices& tj,
+                     int& shared, PairHint hint) {
   const auto& v = mesh.vertices;
   // Corners twice over, so that A[a], A[a + 1], A[a + 2] is a rotation of the triangle.
   const Vec3* A[5] = {&v[ti[0]], &v[ti[1]], &v[ti[2]], &v[ti[0]], &v[ti[1]]};
@@ -184,7 +187,7 @@ bool pair_intersects(const Mesh& mesh, std::uint32_t i, std::uint32_t j, int& sh
     }
   }
   if (shared == 0) {
-    if (!hint.boxes_overlap && boxes_apart({A[0], A[1], A[2]}, {B[0], B[1], B[2]})) return false;
+    if (!hint.boxes_tested && boxes_apart({A[0], A[1], A[2]}, {B[0], B[1], B[2]})) return false;
     return geometry::triangles_intersect(*A[0], *A[1], *A[2], *B[0], *B[1], *B[2]);
   }
   if (shared == 3) return true;

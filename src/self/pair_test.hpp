@@ -20,8 +20,9 @@ struct PairHint {
   /// The projection the certificates use for triangle i: the axis (0, 1, 2) a projection along
   /// which drops, any of the three (-1: the dominant axis of i's normal, found here).
   int axis = -1;
-  /// The closed bounding boxes of the two triangles are known to overlap.
-  bool boxes_overlap = false;
+  /// A box filter ran already (the caller's boxes of the two triangles, which hold their exact
+  /// boxes, overlap): the exact box test in front of the triangle test is skipped.
+  bool boxes_tested = false;
 };
 
 /// The dominant axis of the floating-point normal (b - a) x (c - a): the projection the pair
@@ -33,5 +34,10 @@ int certificate_axis(const Vec3& a, const Vec3& b, const Vec3& c);
 /// indices they share (0 to 3).
 bool pair_intersects(const Mesh& mesh, std::uint32_t i, std::uint32_t j, int& shared,
                      PairHint hint = {});
+
+/// The same for triangles with corners ti and tj (vertex indices into mesh.vertices), as a caller
+/// that keeps the corners beside its boxes passes them.
+bool pair_intersects(const Mesh& mesh, const TriangleIndices& ti, const TriangleIndices& tj,
+                     int& shared, PairHint hint = {});
 
 }  // namespace antcd::self_detail

@@ -1,7 +1,8 @@
 // self_intersections (antcd/self.hpp): a self-traversal of the Model's own hierarchy, its
-// subtrees bounded per call by exact axis-aligned boxes of the current corners (the tree's
-// spheres and boxes are not read: between the touching neighbours a self traversal meets they
-// cost more than they cull, and a box of the corners themselves is never loosened by a refit),
+// subtrees bounded per call by axis-aligned float boxes of the current corners, rounded outward
+// (the tree's spheres and boxes are not read: between the touching neighbours a self traversal
+// meets they cost more than they cull, and a box of the corners themselves is never loosened by a
+// refit),
 // subtrees culled by their normal cones (cone.cpp), leaf pairs decided by the exact pair test
 // (pair_test.cpp); triangles the hierarchy leaves out (numerically degenerate, yet of non-zero
 // area) are tested against the tree and each other apart.
@@ -10,7 +11,12 @@
 
 #include "self/cone.hpp"
 #include "self/pair_test.hpp"
+#include "util/float_bounds.hpp"
 #include "util/parallel.hpp"
+
+#if defined(__SSE2__)
+#include <xmmintrin.h>
+#endif
 
 #include <algorithm>
 #include <array>
@@ -31,31 +37,61 @@ struct Work {
   bool self;
 };
 
-/// A closed axis-aligned box: the exact minima and maxima of corner coordinates (of a triangle,
-/// or of a subtree's triangles). Point sets in disjoint boxes do not meet.
-struct Box {
+/// A closed axis-aligned box of floats, rounded outward from the exact minima and maxima of corner
+/// coordinates (of a triangle, or of a subtree's triangles), so that it holds the exact box: point
+/// sets in boxes found apart do not meet. Lane 3 is 0 in both corners (a four-lane comparison then
+/// ignores it). Floats halve the traversal's box traffic against doubles; the boxes only filter,
+/// so the slightly larger ones change counts, never a verdict.
+struct alignas(16) Box {
   // User-provided, so that the per-call vectors of boxes are not zero-filled before being set.
   Box() {}  // NOLINT(modernize-use-equals-default)
-  Box(const Vec3& l, const Vec3& h) : lo(l), hi(h) {}
-  Vec3 lo;
-  Vec3 hi;
+  float lo[4];
+  float hi[4];
   [[nodiscard]] bool apart(const Box& o) const {
-    return (hi.array() < o.lo.array()).any() || (o.hi.array() < lo.array()).any();
+#if defined(__SSE2__)
+    const __m128 below = _mm_cmplt_ps(_mm_load_ps(hi), _mm_load_ps(o.lo));
+    const __m128 above = _mm_cmplt_ps(_mm_load_ps(o.hi), _mm_load_ps(lo));
+    return _mm_movemask_ps(_mm_or_ps(below, above)) != 0;
+#else
+    bool out = false;
+    for (int k = 0; k < 3; ++k) out = out || hi[k] < o.lo[k] || o.hi[k] < lo[k];
+    return out;
+#endif
+  }
+  /// The smallest box holding a and b.
+  [[nodiscard]] static Box merged(const Box& a, const Box& b) {
+    Box m;
+    for (int k = 0; k < 4; ++k) {
+      m.lo[k] = std::min(a.lo[k], b.lo[k]);
+      m.hi[k] = std::max(a.hi[k], b.hi[k]);
+    }
+    return m;
   }
 };
 
-/// The box of mesh triangle t.
-inline Box box_of(const Mesh& mesh, std::uint32_t t) {
+/// The box of the triangle with corners c.
+inline Box box_of(const Mesh& mesh, const TriangleIndices& c) {
   const auto& v = mesh.vertices;
-  const TriangleIndices& c = mesh.triangles[t];
   const Vec3 &p = v[c[0]], &q = v[c[1]], &r = v[c[2]];
   Box b;
   for (int k = 0; k < 3; ++k) {
-    b.lo[k] = std::min({p[k], q[k], r[k]});
-    b.hi[k] = std::max({p[k], q[k], r[k]});
+    b.lo[k] = detail::float_below(std::min({p[k], q[k], r[k]}));
+    b.hi[k] = detail::float_above(std::max({p[k], q[k], r[k]}));
   }
+  b.lo[3] = 0;
+  b.hi[3] = 0;
   return b;
 }
+
+/// What a leaf pair test reads of one tree triangle, side by side: its box, corners, exact
+/// normal signs (self_detail::normal_signs; zero: exactly degenerate) and certificate axis.
+struct Slot {
+  Slot() {}  // NOLINT(modernize-use-equals-default): not zero-filled, as Box
+  Box box;
+  TriangleIndices corners;
+  std::uint8_t sign;
+  std::uint8_t axis;
+};
 
 /// What every task reads: the model, per-node normal-sign masks and the cone data.
 struct Context {
@@ -63,10 +99,8 @@ struct Context {
   const Mesh& mesh;
   std::span<const BvhNode> nodes;
   std::span<const std::uint32_t> leaves;
-  std::vector<std::uint8_t> leaf_signs;  ///< normal_signs of leaf_triangles()[k]
-  std::vector<std::uint8_t> node_signs;  ///< AND of leaf_signs over the node's triangles
-  std::vector<Box> leaf_boxes;           ///< box of leaf_triangles()[k]
-  std::vector<std::uint8_t> leaf_axes;   ///< self_detail::certificate_axis of leaf_triangles()[k]
+  std::vector<Slot> slots;               ///< of leaf_triangles()[k]
+  std::vector<std::uint8_t> node_signs;  ///< AND of the slots' signs over the node's triangles
   std::vector<Box> node_boxes;           ///< box of each node's triangles
   std::shared_ptr<const self_detail::ConeTopology> cones;  ///< null: no cone culling
 };
@@ -80,23 +114,28 @@ struct Collector {
 
   /// Leaf triangles k and l (indices into leaf_triangles()).
   void test_leaf(const Context& cx, std::uint32_t k, std::uint32_t l) {
-    if (cx.leaf_boxes[k].apart(cx.leaf_boxes[l])) {
-      ++stats.triangle_pairs;
-      return;
-    }
-    test(cx, cx.leaves[k], cx.leaves[l], {cx.leaf_axes[k], true});
+    ++stats.triangle_pairs;
+    const Slot& a = cx.slots[k];
+    const Slot& b = cx.slots[l];
+    if (a.box.apart(b.box)) return;
+    int shared = 0;
+    const bool hit =
+        self_detail::pair_intersects(cx.mesh, a.corners, b.corners, shared, {a.axis, true});
+    if (shared != 0) ++stats.adjacent_pairs;
+    if (hit) found(cx.leaves[k], cx.leaves[l]);
   }
 
-  void test(const Context& cx, std::uint32_t ti, std::uint32_t tj,
-            self_detail::PairHint hint = {}) {
+  void test(const Context& cx, std::uint32_t ti, std::uint32_t tj) {
     ++stats.triangle_pairs;
     int shared = 0;
-    const bool hit = self_detail::pair_intersects(cx.mesh, ti, tj, shared, hint);
+    const bool hit = self_detail::pair_intersects(cx.mesh, ti, tj, shared);
     if (shared != 0) ++stats.adjacent_pairs;
-    if (hit) {
-      pairs.push_back({std::min(ti, tj), std::max(ti, tj)});
-      if (first_only) done = true;
-    }
+    if (hit) found(ti, tj);
+  }
+
+  void found(std::uint32_t ti, std::uint32_t tj) {
+    pairs.push_back({std::min(ti, tj), std::max(ti, tj)});
+    if (first_only) done = true;
   }
 };
 
@@ -117,9 +156,9 @@ void step(const Context& cx, const Work& w, Collector& out, const Push& push) {
     if (na.is_leaf()) {
       const std::uint32_t f = na.first_or_right;
       for (std::uint32_t k = f; k < f + na.count && !out.done; ++k) {
-        if (cx.leaf_signs[k] == 0) continue;  // exactly degenerate
+        if (cx.slots[k].sign == 0) continue;  // exactly degenerate
         for (std::uint32_t l = k + 1; l < f + na.count && !out.done; ++l) {
-          if (cx.leaf_signs[l] != 0) out.test_leaf(cx, k, l);
+          if (cx.slots[l].sign != 0) out.test_leaf(cx, k, l);
         }
       }
       return;
@@ -143,10 +182,10 @@ void step(const Context& cx, const Work& w, Collector& out, const Push& push) {
   const BvhNode& nb = cx.nodes[w.b];
   if (na.is_leaf() && nb.is_leaf()) {
     for (std::uint32_t k = na.first_or_right; k < na.first_or_right + na.count && !out.done; ++k) {
-      if (cx.leaf_signs[k] == 0) continue;
+      if (cx.slots[k].sign == 0) continue;
       for (std::uint32_t l = nb.first_or_right; l < nb.first_or_right + nb.count && !out.done;
            ++l) {
-        if (cx.leaf_signs[l] != 0) out.test_leaf(cx, k, l);
+        if (cx.slots[l].sign != 0) out.test_leaf(cx, k, l);
       }
     }
     return;
@@ -191,7 +230,7 @@ void add(SelfIntersectionStats& to, const SelfIntersectionStats& s) {
 void test_left_out(const Context& cx, const std::vector<std::uint32_t>& left_out, Collector& out) {
   for (std::size_t s = 0; s < left_out.size() && !out.done; ++s) {
     const std::uint32_t t = left_out[s];
-    const Box box = box_of(cx.mesh, t);
+    const Box box = box_of(cx.mesh, cx.mesh.triangles[t]);
     std::vector<std::uint32_t> stack{0};
     while (!stack.empty() && !out.done) {
       const BvhNode& n = cx.nodes[stack.back()];
@@ -200,7 +239,7 @@ void test_left_out(const Context& cx, const std::vector<std::uint32_t>& left_out
       if (cx.node_boxes[i].apart(box)) continue;
       if (n.is_leaf()) {
         for (std::uint32_t k = n.first_or_right; k < n.first_or_right + n.count && !out.done; ++k) {
-          if (cx.leaf_signs[k] != 0) out.test(cx, t, cx.leaves[k]);
+          if (cx.slots[k].sign != 0) out.test(cx, t, cx.leaves[k]);
         }
       } else {
         stack.push_back(n.first_or_right);
@@ -215,9 +254,8 @@ void test_left_out(const Context& cx, const std::vector<std::uint32_t>& left_out
 
 /// The boxes of the tree's triangles and of its nodes.
 void add_boxes(Context& cx) {
-  cx.leaf_boxes.resize(cx.leaves.size());
-  parallel::for_ranges(0, cx.leaves.size(), 4096, [&](std::size_t b, std::size_t e) {
-    for (std::size_t k = b; k < e; ++k) cx.leaf_boxes[k] = box_of(cx.mesh, cx.leaves[k]);
+  parallel::for_ranges(0, cx.slots.size(), 4096, [&](std::size_t b, std::size_t e) {
+    for (std::size_t k = b; k < e; ++k) cx.slots[k].box = box_of(cx.mesh, cx.slots[k].corners);
   });
   // The nodes' boxes, children before parents (a node's children follow it).
   cx.node_boxes.resize(cx.nodes.size());
@@ -225,15 +263,12 @@ void add_boxes(Context& cx) {
     const BvhNode& n = cx.nodes[i];
     Box& b = cx.node_boxes[i];
     if (n.is_leaf()) {
-      b = cx.leaf_boxes[n.first_or_right];
+      b = cx.slots[n.first_or_right].box;
       for (std::uint32_t k = n.first_or_right + 1; k < n.first_or_right + n.count; ++k) {
-        b.lo = b.lo.cwiseMin(cx.leaf_boxes[k].lo);
-        b.hi = b.hi.cwiseMax(cx.leaf_boxes[k].hi);
+        b = Box::merged(b, cx.slots[k].box);
       }
     } else {
-      const Box& l = cx.node_boxes[i + 1];
-      const Box& r = cx.node_boxes[n.first_or_right];
-      b = {l.lo.cwiseMin(r.lo), l.hi.cwiseMax(r.hi)};
+      b = Box::merged(cx.node_boxes[i + 1], cx.node_boxes[n.first_or_right]);
     }
   }
 }
@@ -253,24 +288,24 @@ SelfIntersectionResult self_intersections(const Model& model,
                                           const SelfIntersectionRequest& request) {
   SelfIntersectionResult result;
   const Mesh& mesh = model.mesh();
-  Context cx{model, mesh, model.nodes(), model.leaf_triangles(), {}, {}, {}, {}, {}, nullptr};
+  Context cx{model, mesh, model.nodes(), model.leaf_triangles(), {}, {}, {}, nullptr};
   const auto& v = mesh.vertices;
   // Exact normal signs of the tree's triangles (zero: exactly degenerate), in leaf order.
-  cx.leaf_signs.resize(cx.leaves.size());
-  cx.leaf_axes.resize(cx.leaves.size());
+  cx.slots.resize(cx.leaves.size());
   parallel::for_ranges(0, cx.leaves.size(), 4096, [&](std::size_t b, std::size_t e) {
     for (std::size_t k = b; k < e; ++k) {
-      const TriangleIndices& t = mesh.triangles[cx.leaves[k]];
+      Slot& s = cx.slots[k];
+      s.corners = mesh.triangles[cx.leaves[k]];
       int axis = 0;
-      cx.leaf_signs[k] = self_detail::normal_signs(v[t[0]], v[t[1]], v[t[2]], &axis);
-      cx.leaf_axes[k] = static_cast<std::uint8_t>(axis);
+      s.sign = self_detail::normal_signs(v[s.corners[0]], v[s.corners[1]], v[s.corners[2]], &axis);
+      s.axis = static_cast<std::uint8_t>(axis);
     }
   });
   // The triangles the tree leaves out: degenerate exactly, or thin but with an area.
   std::vector<bool> in_tree(mesh.triangles.size(), false);
   for (std::size_t k = 0; k < cx.leaves.size(); ++k) {
     in_tree[cx.leaves[k]] = true;
-    if (cx.leaf_signs[k] == 0) result.degenerate_triangles.push_back(cx.leaves[k]);
+    if (cx.slots[k].sign == 0) result.degenerate_triangles.push_back(cx.leaves[k]);
   }
   std::vector<std::uint32_t> left_out;
   for (std::uint32_t t = 0; t < mesh.triangles.size(); ++t) {
@@ -295,7 +330,7 @@ SelfIntersectionResult self_intersections(const Model& model,
         if (n.is_leaf()) {
           std::uint8_t s = 0x3f;
           for (std::uint32_t k = n.first_or_right; k < n.first_or_right + n.count; ++k) {
-            s &= cx.leaf_signs[k];
+            s &= cx.slots[k].sign;
           }
           cx.node_signs[i] = s;
         } else {

@@ -10,6 +10,7 @@
 
 #include <antcd/tolerances.hpp>
 
+#include "util/float_bounds.hpp"
 #include "util/parallel.hpp"
 
 #include <algorithm>
@@ -21,27 +22,11 @@
 
 namespace antcd::detail {
 
-namespace {
-
-// A float <= x, and a float >= x (boxes rounded outward), at most two units in the last place away;
-// finite x only. The nearest float moved outward by at least one unit in the last place
-// (|f| 2^-23 is one or two of them) plus the smallest normal float (for f = 0; still a step under
-// flush-to-zero): no branch on which way the conversion rounded, which is a coin toss and was
-// mispredicted for every leaf box of a moving world. Beyond the float range: -infinity, or the
-// largest float.
-[[maybe_unused]] float down(Scalar x) {
-  constexpr Scalar kMax = std::numeric_limits<float>::max();
-  const auto f = static_cast<float>(std::min(std::max(x, -kMax), kMax));
-  return f - (std::abs(f) * 0x1p-23F + std::numeric_limits<float>::min());
-}
-[[maybe_unused]] float up(Scalar x) { return -down(-x); }
-
-}  // namespace
-
 void AabbTree::set_node_box(Node& n, const Aabb& b) {
 #if defined(__SSE2__)
-  // down() on the four lanes (min x, min y, min z, -max x) and on (-max y, -max z): the same IEEE
-  // operations lane by lane, so the same floats (this runs for every moved object of a frame).
+  // float_below() (util/float_bounds.hpp) on the four lanes (min x, min y, min z, -max x) and on
+  // (-max y, -max z): the same IEEE operations lane by lane, so the same floats (this runs for
+  // every moved object of a frame).
   const __m128d limit = _mm_set1_pd(std::numeric_limits<float>::max());
   const __m128d sign = _mm_set1_pd(-0.0);
   const auto to_float = [&](__m128d x) {
@@ -71,8 +56,8 @@ void AabbTree::set_node_box(Node& n, const Aabb& b) {
   n.hi[2] = -d2[1];
 #else
   for (int k = 0; k < 3; ++k) {
-    n.lo[k] = down(b.min[k]);
-    n.hi[k] = up(b.max[k]);
+    n.lo[k] = float_below(b.min[k]);
+    n.hi[k] = float_above(b.max[k]);
   }
 #endif
 }
