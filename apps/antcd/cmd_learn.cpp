@@ -4,13 +4,14 @@
 #include <cstdio>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "cli_util.hpp"
 #include "shared/run_result.hpp"
 
 #ifdef ANTCD_HAVE_LEARNED
-#include <antcd/rng.hpp>
+#include <antcd_learned/calibration.hpp>
 #include <antcd_learned/classifier.hpp>
 #include <antcd_learned/dataset.hpp>
 #include <antcd_learned/detector.hpp>
@@ -36,7 +37,7 @@ namespace {
 struct TrainCommand {
   std::string method;
   std::string out;
-  std::size_t scenes = 6;
+  std::size_t scenes = 12;
   std::size_t frames = 150;
   std::size_t epochs = 40;
   std::uint64_t seed = 1;
@@ -44,6 +45,7 @@ struct TrainCommand {
   std::vector<std::string> hold_out;      ///< empty: the default held-out meshes
   bool no_meshes = false;
   std::size_t folds = 0;
+  std::optional<double> threshold;  ///< fixed decision threshold (else 0.5 or cross-validated)
   bool ablate = false;
 };
 
@@ -56,19 +58,18 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-/// Seed of the held-out scene (evaluation) of fold `k`; the held-out check uses k = ~0.
-std::uint64_t evaluation_seed(std::uint64_t seed, std::uint64_t k) {
-  return mix_seed(seed ^ 0x4556414CULL ^ mix_seed(k));
-}
-
-learned::Classifier train_quiet(learned::Kind kind, const learned::Dataset& data,
-                                const TrainCommand& o, bool verbose) {
+learned::TrainOptions train_options(learned::Kind kind, const TrainCommand& o, bool verbose) {
   learned::TrainOptions train;
   train.kind = kind;
   train.seed = o.seed;
   train.epochs = o.epochs;
   if (verbose) train.log = log_line;
-  return learned::Classifier::train(data, train);
+  return train;
+}
+
+learned::Classifier train_quiet(learned::Kind kind, const learned::Dataset& data,
+                                const TrainCommand& o, bool verbose) {
+  return learned::Classifier::train(data, train_options(kind, o, verbose));
 }
 
 std::string scores(const learned::Confusion& c) {
@@ -79,35 +80,51 @@ std::string scores(const learned::Confusion& c) {
   return buf;
 }
 
-/// k-fold cross-validation by mesh: fold i's meshes are kept out of the training scenes and make
-/// the evaluated scene.
-void cross_validate(learned::Kind kind, const TrainCommand& o,
-                    const learned::TrainingSetOptions& set, const std::vector<fs::path>& meshes) {
-  const auto folds = learned::mesh_folds(meshes, o.folds, o.seed);
-  double recall = 0;
-  double precision = 0;
-  for (std::size_t i = 0; i < folds.size(); ++i) {
-    learned::TrainingSetOptions fold_set = set;
-    fold_set.mesh_files.clear();
-    for (std::size_t j = 0; j < folds.size(); ++j) {
-      if (j != i)
-        fold_set.mesh_files.insert(fold_set.mesh_files.end(), folds[j].begin(), folds[j].end());
-    }
-    const learned::Dataset data = learned::training_set(fold_set);
-    const learned::Classifier model = train_quiet(kind, data, o, false);
-    const learned::Dataset test = learned::mesh_scene_samples(
-        folds[i], o.frames, evaluation_seed(o.seed, i), set.window, set.delta);
-    const learned::Confusion c =
-        learned::confusion(model.predict(test.features, test.size()), test.labels);
-    recall += c.recall();
-    precision += c.precision();
-    std::printf("fold %zu/%zu held out {%s}: trained on %zu samples; %s\n", i + 1, folds.size(),
-                learned::mesh_names(folds[i]).c_str(), data.size(), scores(c).c_str());
-    std::fflush(stdout);
+/// k-fold cross-validation by mesh (calibration.hpp): fold i's meshes are kept out of the
+/// training scenes and make the evaluated scene. Prints each fold's scores at 0.5 and at the
+/// threshold chosen on the pooled out-of-fold probabilities, and returns that threshold.
+double cross_validate(learned::Kind kind, const TrainCommand& o,
+                      const learned::TrainingSetOptions& set) {
+  const learned::CrossValidation cv = learned::cross_validate(
+      set, train_options(kind, o, false), o.folds,
+      [&](std::size_t i, const learned::FoldResult& f) {
+        std::printf("fold %zu/%zu held out {%s}: trained on %zu samples; at 0.5: %s\n", i + 1,
+                    o.folds, learned::mesh_names(f.meshes).c_str(), f.train_samples,
+                    scores(learned::confusion_at(f.probabilities, f.labels, 0.5)).c_str());
+        std::fflush(stdout);
+      });
+  std::vector<float> pooled;
+  std::vector<std::uint8_t> labels;
+  for (const learned::FoldResult& f : cv.folds) {
+    pooled.insert(pooled.end(), f.probabilities.begin(), f.probabilities.end());
+    labels.insert(labels.end(), f.labels.begin(), f.labels.end());
   }
-  const auto k = static_cast<double>(folds.size());
-  std::printf("cross-validation by mesh, %zu folds: mean recall %.3f, mean precision %.3f\n",
-              folds.size(), recall / k, precision / k);
+  const double chosen = cv.choice.threshold;
+  for (const double t : {0.5, chosen}) {
+    double recall = 0;
+    double precision = 0;
+    for (std::size_t i = 0; i < cv.folds.size(); ++i) {
+      const learned::FoldResult& f = cv.folds[i];
+      const learned::Confusion c = learned::confusion_at(f.probabilities, f.labels, t);
+      recall += c.recall();
+      precision += c.precision();
+      if (t == chosen) {
+        std::printf("fold %zu/%zu at %.4f: %s\n", i + 1, cv.folds.size(), t, scores(c).c_str());
+      }
+    }
+    const auto n = static_cast<double>(cv.folds.size());
+    std::printf(
+        "cross-validation by mesh, %zu folds, at %.4f: mean recall %.3f, mean precision %.3f; "
+        "pooled %s\n",
+        cv.folds.size(), t, recall / n, precision / n,
+        scores(learned::confusion_at(pooled, labels, t)).c_str());
+  }
+  std::printf(
+      "chosen decision threshold %.4f (max min(recall, precision) over the pooled out-of-fold "
+      "probabilities)\n",
+      chosen);
+  std::fflush(stdout);
+  return chosen;
 }
 
 /// Retrains without each feature group (zeroed in training and held-out samples) and reports
@@ -139,6 +156,10 @@ void ablate(learned::Kind kind, const TrainCommand& o, const learned::Dataset& d
 
 int run_train(const TrainCommand& o) {
   const learned::Kind kind = learned::parse_kind(o.method);
+  if (o.threshold && !(*o.threshold < 1)) {  // > 0 is checked by the option's validator
+    throw UsageError("--threshold: expected a number inside (0, 1), got " +
+                     std::to_string(*o.threshold));
+  }
   std::vector<fs::path> meshes;
   if (!o.no_meshes) {
     if (o.train_meshes.empty()) {
@@ -170,7 +191,19 @@ int run_train(const TrainCommand& o) {
   set.mesh_files = meshes;
   std::cerr << "training meshes (" << meshes.size() << "): " << learned::mesh_names(meshes)
             << "\nheld out (" << held.size() << "): " << learned::mesh_names(held) << std::endl;
-  if (o.folds > 0) cross_validate(kind, o, set, meshes);
+  std::optional<double> threshold = o.threshold;
+  std::string threshold_source;
+  if (o.threshold) threshold_source = "given (--threshold)";
+  if (o.folds > 0) {
+    const double t = cross_validate(kind, o, set);
+    if (!o.threshold) {
+      threshold = t;
+      threshold_source =
+          "max min(recall, precision) over the pooled out-of-fold probabilities of " +
+          std::to_string(o.folds) + "-fold cross-validation by mesh (seed " +
+          std::to_string(o.seed) + ")";
+    }
+  }
   std::cerr << "generating and labelling " << o.scenes << " training scenes of " << o.frames
             << " frames (exact method)" << std::endl;
   const auto t0 = std::chrono::steady_clock::now();
@@ -185,22 +218,29 @@ int run_train(const TrainCommand& o) {
   record.data_seconds = data_s;
   record.meshes = learned::mesh_names(meshes);
   record.held_out = learned::mesh_names(held);
+  record.threshold_source = threshold_source;
   model.set_record(record);
+  if (threshold) model.set_threshold(*threshold);
   model.save(o.out);
   std::printf(
-      "wrote %s (%s, feature version %d, window %zu): %llu samples, %llu colliding, training "
-      "accuracy %.4f; data %.1f s, training %.1f s\n",
+      "wrote %s (%s, feature version %d, window %zu, decision threshold %.4f): %llu samples, "
+      "%llu colliding, training accuracy %.4f; data %.1f s, training %.1f s\n",
       o.out.c_str(), std::string(learned::kind_name(kind)).c_str(), model.feature_version(),
-      model.window(), static_cast<unsigned long long>(record.samples),
+      model.window(), model.threshold(), static_cast<unsigned long long>(record.samples),
       static_cast<unsigned long long>(record.positives), record.train_accuracy, record.data_seconds,
       record.train_seconds);
   if (!held.empty()) {
     // The held-out check: a scene of the held-out meshes only, never seen in training.
     const learned::Dataset test = learned::mesh_scene_samples(
-        held, o.frames, evaluation_seed(o.seed, ~std::uint64_t{0}), set.window, set.delta);
-    std::printf(
-        "held-out scene {%s}: %s\n", learned::mesh_names(held).c_str(),
-        scores(learned::confusion(model.predict(test.features, test.size()), test.labels)).c_str());
+        held, o.frames, learned::evaluation_seed(o.seed, ~std::uint64_t{0}), set.window, set.delta);
+    const std::vector<float> p = model.probabilities(test.features, test.size());
+    std::printf("held-out scene {%s} at %.4f: %s\n", learned::mesh_names(held).c_str(),
+                model.threshold(),
+                scores(learned::confusion_at(p, test.labels, model.threshold())).c_str());
+    if (model.threshold() != 0.5) {  // for the record only: the threshold never sees this scene
+      std::printf("held-out scene at 0.5 (not used): %s\n",
+                  scores(learned::confusion_at(p, test.labels, 0.5)).c_str());
+    }
     if (o.ablate) ablate(kind, o, data, test);
   }
   return 0;
@@ -307,8 +347,15 @@ void add_learn_commands(CLI::App& app, int& code) {
   train
       ->add_option("--folds", o->folds,
                    "Before training: k-fold cross-validation by mesh over the training meshes "
-                   "(fold i's meshes out of training, judged on a scene of them)")
+                   "(fold i's meshes out of training, judged on a scene of them); the model "
+                   "stores the decision threshold chosen on the folds' pooled probabilities")
       ->check(CLI::Range(0, 100));
+  train
+      ->add_option("--threshold", o->threshold,
+                   "Decision threshold stored in the model (default: 0.5, or with --folds the "
+                   "one maximising min(recall, precision) over the out-of-fold probabilities)")
+      ->check(positive_finite())
+      ->type_name("T");
   train->add_flag("--ablate", o->ablate,
                   "After training: retrain without each feature group and judge each on the "
                   "held-out scene");

@@ -20,7 +20,10 @@
 namespace antcd::learned {
 namespace {
 
-constexpr const char* kFormat = "antcd-learned/1";
+/// Format 2 added the decision threshold (covered by the checksum); format 1 files load with 0.5.
+constexpr const char* kFormat = "antcd-learned/2";
+constexpr const char* kFormat1 = "antcd-learned/1";
+constexpr double kDefaultThreshold = 0.5;
 constexpr std::int64_t kF = static_cast<std::int64_t>(kFeatureCount);
 constexpr std::size_t kLstmWindow = 8;
 
@@ -93,6 +96,7 @@ struct Classifier::Impl {
   Scalar delta = 0;
   int feature_version = kFeatureVersion;
   TrainingRecord record;
+  double threshold = kDefaultThreshold;
   torch::Tensor mean;    ///< [F]
   torch::Tensor stddev;  ///< [F]
   Mlp mlp{nullptr};
@@ -105,10 +109,12 @@ struct Classifier::Impl {
       lstm = LstmNet();
     }
   }
-  /// The tensors the checksum covers: standardisation, then the network's parameters.
-  std::vector<torch::Tensor> contents() {
+  /// The tensors the checksum covers: standardisation, the network's parameters, then (from
+  /// format 2) the decision threshold.
+  std::vector<torch::Tensor> contents(bool with_threshold) {
     std::vector<torch::Tensor> v = {mean, stddev};
     for (const torch::Tensor& p : net().parameters()) v.push_back(p.detach());
+    if (with_threshold) v.push_back(torch::tensor({threshold}, torch::kFloat64));
     return v;
   }
   torch::nn::Module& net() {
@@ -149,6 +155,14 @@ Scalar Classifier::delta() const { return impl_->delta; }
 int Classifier::feature_version() const { return impl_->feature_version; }
 const TrainingRecord& Classifier::record() const { return impl_->record; }
 void Classifier::set_record(const TrainingRecord& record) { impl_->record = record; }
+double Classifier::threshold() const { return impl_->threshold; }
+void Classifier::set_threshold(double threshold) {
+  if (!(threshold > 0 && threshold < 1)) {
+    throw std::invalid_argument("decision threshold " + std::to_string(threshold) +
+                                " outside (0, 1)");
+  }
+  impl_->threshold = threshold;
+}
 
 Classifier Classifier::train(const Dataset& data, const TrainOptions& options) {
   if (data.size() == 0) throw std::invalid_argument("no training samples");
@@ -256,7 +270,8 @@ std::vector<std::uint8_t> Classifier::predict(std::span<const float> samples,
                                               std::size_t count) const {
   const std::vector<float> p = probabilities(samples, count);
   std::vector<std::uint8_t> out(p.size());
-  for (std::size_t i = 0; i < p.size(); ++i) out[i] = p[i] >= 0.5F ? 1 : 0;
+  const double t = impl_->threshold;
+  for (std::size_t i = 0; i < p.size(); ++i) out[i] = static_cast<double>(p[i]) >= t ? 1 : 0;
   return out;
 }
 
@@ -285,10 +300,12 @@ void Classifier::save(const std::filesystem::path& path) const {
     a.write("record_train_seconds", c10::IValue(r.train_seconds));
     a.write("record_meshes", c10::IValue(r.meshes));
     a.write("record_held_out", c10::IValue(r.held_out));
+    a.write("record_threshold_source", c10::IValue(r.threshold_source));
+    a.write("threshold", c10::IValue(impl_->threshold));
     torch::serialize::OutputArchive net;
     impl_->net().save(net);
     a.write("net", net);
-    a.write("checksum", c10::IValue(checksum(impl_->contents())));
+    a.write("checksum", c10::IValue(checksum(impl_->contents(true))));
     a.save_to(bytes);
   } catch (const c10::Error& e) {
     throw Error(path.string() +
@@ -335,8 +352,14 @@ Classifier Classifier::load(const std::filesystem::path& path) {
       if (!a.try_read(key, v) || !v.isDouble()) throw fail(std::string("no '") + key + "' entry");
       return v.toDouble();
     };
-    if (!a.try_read("format", v) || !v.isString() || v.toStringRef() != kFormat) {
+    if (!a.try_read("format", v) || !v.isString() ||
+        v.toStringRef().rfind("antcd-learned/", 0) != 0) {
       throw fail(std::string("not an antcd learned model (no format tag ") + kFormat + ")");
+    }
+    const bool format1 = v.toStringRef() == kFormat1;
+    if (!format1 && v.toStringRef() != kFormat) {
+      throw fail("model file format '" + v.toStringRef() + "', this antcd reads " + kFormat +
+                 " and " + kFormat1 + ": train a new one with antcd learn train");
     }
     const std::int64_t version = integer("feature_version");
     if (version != kFeatureVersion || integer("feature_count") != kF) {
@@ -377,6 +400,14 @@ Classifier Classifier::load(const std::filesystem::path& path) {
     r.train_seconds = real("record_train_seconds");
     r.meshes = text("record_meshes");
     r.held_out = text("record_held_out");
+    if (!format1) {
+      r.threshold_source = text("record_threshold_source");
+      impl->threshold = real("threshold");
+      if (!(impl->threshold > 0 && impl->threshold < 1)) {
+        throw fail("invalid decision threshold " + std::to_string(impl->threshold) +
+                   " (expected inside (0, 1))");
+      }
+    }
 
     impl->make_net();
     torch::nn::Module& net = impl->net();
@@ -393,7 +424,7 @@ Classifier Classifier::load(const std::filesystem::path& path) {
                    " model");
       }
     }
-    if (integer("checksum") != checksum(impl->contents())) {
+    if (integer("checksum") != checksum(impl->contents(!format1))) {
       throw fail("corrupt model file (its checksum does not match its contents)");
     }
     net.eval();

@@ -1,16 +1,21 @@
 // The learned baselines (antcd_learned): feature invariance, learning beyond a constant guess,
 // deterministic training, model files (round trip, refusal of bad ones), the CLI's errors, and the
 // by-mesh split (meshes.hpp): folds are disjoint sets of meshes, held-out meshes never reach a
-// training scene, a model trained on some meshes beats the constant guess on meshes it never saw.
+// training scene, a model trained on some meshes beats the constant guess on meshes it never saw;
+// and the decision threshold (calibration.hpp): its choice, its use by predict() and the
+// detector, its place in the model file and its determinism.
 #include <gtest/gtest.h>
 #include <antcd/load.hpp>
 #include <antcd/mesh.hpp>
+#include <antcd_learned/calibration.hpp>
 #include <antcd_learned/classifier.hpp>
 #include <antcd_learned/dataset.hpp>
+#include <antcd_learned/detector.hpp>
 #include <antcd_learned/features.hpp>
 #include <antcd_learned/meshes.hpp>
 
 #include <sys/wait.h>
+#include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -192,7 +197,8 @@ TEST(LearnedTraining, RefusesBadInput) {
 
 // ---- Bad model files ----
 
-std::string one_model_bytes(const fs::path& dir) {
+/// 64 single-frame samples of patterned noise.
+Dataset noise_data() {
   Dataset d;
   d.window = 1;
   for (int i = 0; i < 64; ++i) {
@@ -201,9 +207,40 @@ std::string one_model_bytes(const fs::path& dir) {
     }
     d.labels.push_back(i % 3 == 0 ? 1 : 0);
   }
+  return d;
+}
+
+/// A box-dnn trained for two epochs on noise_data(): its probabilities vary.
+Classifier noise_model() {
   TrainOptions o;
   o.epochs = 2;
-  Classifier::train(d, o).save(dir / "good.pt");
+  return Classifier::train(noise_data(), o);
+}
+
+/// A threshold strictly between two of `p`'s values (a quarter or three quarters up) at which
+/// "p >= t" differs from "p >= 0.5".
+double threshold_unlike_one_half(std::vector<float> p) {
+  std::sort(p.begin(), p.end());
+  for (const std::size_t k : {p.size() / 4, 3 * p.size() / 4}) {
+    for (std::size_t m = k; m + 1 < p.size(); ++m) {
+      if (p[m] == p[m + 1]) continue;
+      // "p >= t" keeps p[m + 1 ..]; "p >= 0.5" the same unless 0.5 lies in (p[m], p[m + 1]].
+      if (!(p[m] < 0.5F && p[m + 1] >= 0.5F)) return (static_cast<double>(p[m]) + p[m + 1]) / 2;
+      break;
+    }
+  }
+  ADD_FAILURE() << "no threshold splits the probabilities unlike 0.5";
+  return 0.5;
+}
+
+std::vector<std::uint8_t> at_least(const std::vector<float>& p, double t) {
+  std::vector<std::uint8_t> out;
+  for (const float v : p) out.push_back(static_cast<double>(v) >= t ? 1 : 0);
+  return out;
+}
+
+std::string one_model_bytes(const fs::path& dir) {
+  noise_model().save(dir / "good.pt");
   std::ifstream in(dir / "good.pt", std::ios::binary);
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
@@ -293,18 +330,20 @@ TEST(LearnedModelFile, DamagedCopiesAreRefusedNeverACrash) {
 #ifdef ANTCD_CLI
 struct CliRun {
   int code = -1;
+  std::string out;
   std::string err;
 };
 
 CliRun cli(const std::string& args, const fs::path& dir) {
-  const std::string err = (dir / "stderr.txt").string();
-  const std::string cmd =
-      std::string("'") + ANTCD_CLI + "' " + args + " > /dev/null 2> '" + err + "'";
+  const fs::path out = dir / "stdout.txt";
+  const fs::path err = dir / "stderr.txt";
+  const std::string cmd = std::string("'") + ANTCD_CLI + "' " + args + " > '" + out.string() +
+                          "' 2> '" + err.string() + "'";
   const int status = std::system(cmd.c_str());
   CliRun r;
   r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  std::ifstream in(err);
-  r.err.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  r.out = test::read_all(out);
+  r.err = test::read_all(err);
   return r;
 }
 
@@ -341,6 +380,91 @@ TEST(LearnedCli, BadModelsExitTwoWithOneErrorLine) {
   EXPECT_EQ(ok.code, 0) << ok.err;
   EXPECT_TRUE(fs::exists(dir / "run.json"));
 }
+
+TEST(LearnedCli, TheDetectorAndAntcdRunUseTheStoredThreshold) {
+  const fs::path dir = test::fresh_temp_dir("learned_cli_threshold");
+  const CliRun gen = cli("scene generate --out '" + (dir / "scene").string() +
+                             "' --objects 24 --frames 6 --vertices 100",
+                         dir);
+  ASSERT_EQ(gen.code, 0) << gen.err;
+  const Scene scene(load_scene(dir / "scene" / "scene.json"));
+  Classifier model = noise_model();
+  // Every frame's candidates and their probabilities, computed apart from the detector.
+  PairHistory history(scene, 1, 0);
+  std::vector<std::vector<std::pair<std::uint32_t, std::uint32_t>>> candidates;
+  std::vector<std::vector<float>> probabilities;
+  std::vector<float> all;
+  for (std::size_t f = 0; f < scene.description().frames; ++f) {
+    candidates.push_back(scene.broad_phase(f, 0));
+    std::vector<float> features(candidates.back().size() * kFeatureCount);
+    for (std::size_t k = 0; k < candidates.back().size(); ++k) {
+      const auto [i, j] = candidates.back()[k];
+      history.window_features(i, j, f, features.data() + k * kFeatureCount);
+    }
+    probabilities.push_back(model.probabilities(features, candidates.back().size()));
+    all.insert(all.end(), probabilities.back().begin(), probabilities.back().end());
+  }
+  ASSERT_GT(all.size(), 20U);
+  const double t = threshold_unlike_one_half(all);
+  model.set_threshold(t);
+  model.save(dir / "t.pt");
+  Detector detector(scene, model);
+  std::vector<std::size_t> counts;
+  for (std::size_t f = 0; f < candidates.size(); ++f) {
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> expected;
+    for (std::size_t k = 0; k < candidates[f].size(); ++k) {
+      if (static_cast<double>(probabilities[f][k]) >= t) expected.push_back(candidates[f][k]);
+    }
+    EXPECT_EQ(detector.run_frame(f).pairs, expected) << "frame " << f;
+    counts.push_back(expected.size());
+  }
+  // antcd run reads the threshold from the file: the same pairs per frame.
+  const CliRun run =
+      cli("run '" + (dir / "scene" / "scene.json").string() + "' --method box-dnn --model '" +
+              (dir / "t.pt").string() + "' --out '" + (dir / "run.json").string() + "'",
+          dir);
+  ASSERT_EQ(run.code, 0) << run.err;
+  const nlohmann::json result = nlohmann::json::parse(test::read_all(dir / "run.json"));
+  ASSERT_EQ(result.at("frames").size(), counts.size());
+  for (std::size_t f = 0; f < counts.size(); ++f) {
+    EXPECT_EQ(result.at("frames")[f].at("pairs").size(), counts[f]) << "frame " << f;
+  }
+}
+
+TEST(LearnedCli, LearnTrainStoresTheCrossValidatedThreshold) {
+  const fs::path dir = test::fresh_temp_dir("learned_cli_calibrate");
+  save_obj(make_torus(0.8, 0.25, 24, 10), dir / "torus.obj");
+  save_obj(make_sphere(0.6, 16, 8), dir / "sphere.obj");
+  const std::string meshes = "--train-mesh '" + (dir / "torus.obj").string() + "' '" +
+                             (dir / "sphere.obj").string() + "' '" +
+                             test::assimp_model("STL/sphereWithHole.stl").string() + "' '" +
+                             test::assimp_model("FBX/huesitos.fbx").string() + "' --hold-out '" +
+                             test::assimp_model("OBJ/spider.obj").string() + "'";
+  const std::string common = "learn train --method box-dnn --scenes 2 --frames 20 --epochs 3 " +
+                             meshes + " --out '" + (dir / "m.pt").string() + "'";
+  const CliRun r = cli(common + " --folds 2", dir);
+  ASSERT_EQ(r.code, 0) << r.err;
+  const std::string tag = "chosen decision threshold ";
+  const auto at = r.out.find(tag);
+  ASSERT_NE(at, std::string::npos) << r.out;
+  const double printed = std::stod(r.out.substr(at + tag.size()));
+  const Classifier model = Classifier::load(dir / "m.pt");
+  EXPECT_NEAR(model.threshold(), printed, 5e-5);
+  EXPECT_NE(model.record().threshold_source.find("2-fold cross-validation by mesh"),
+            std::string::npos)
+      << model.record().threshold_source;
+  // A given threshold wins over the cross-validated one; out of (0, 1) it is refused.
+  const CliRun fixed = cli(common + " --folds 2 --threshold 0.3", dir);
+  ASSERT_EQ(fixed.code, 0) << fixed.err;
+  EXPECT_EQ(Classifier::load(dir / "m.pt").threshold(), 0.3);
+  for (const char* bad : {"1", "0", "1.5", "nan"}) {
+    const CliRun refused = cli(common + " --threshold " + bad, dir);
+    EXPECT_EQ(refused.code, 2) << bad << ": " << refused.err;
+    EXPECT_EQ(refused.err.rfind("error: ", 0), 0U) << refused.err;
+    EXPECT_EQ(std::count(refused.err.begin(), refused.err.end(), '\n'), 1) << refused.err;
+    EXPECT_NE(refused.err.find("--threshold"), std::string::npos) << refused.err;
+  }
+}
 #endif
 
 }  // namespace
@@ -351,9 +475,17 @@ TEST(LearnedCli, BadModelsExitTwoWithOneErrorLine) {
 namespace antcd::learned {
 namespace {
 
+/// "m<i>.obj" ("m" + to_string trips GCC 12's -Wrestrict once inlined).
+std::string mesh_name(std::size_t i) {
+  std::string name = std::to_string(i);
+  name.insert(0, 1, 'm');
+  name += ".obj";
+  return name;
+}
+
 std::vector<fs::path> names(std::size_t n) {
   std::vector<fs::path> v;
-  for (std::size_t i = 0; i < n; ++i) v.emplace_back("m" + std::to_string(i) + ".obj");
+  for (std::size_t i = 0; i < n; ++i) v.emplace_back(mesh_name(i));
   return v;
 }
 
@@ -389,8 +521,8 @@ TEST(LearnedMeshSplit, HeldOutMeshesAreRemovedAndPairingMeetsNeighbours) {
       pairs.emplace(a, b);
     }
     for (std::size_t i = 0; i < n && n > 2; ++i) {
-      auto a = "m" + std::to_string(i) + ".obj";
-      auto b = "m" + std::to_string((i + 1) % n) + ".obj";
+      auto a = mesh_name(i);
+      auto b = mesh_name((i + 1) % n);
       if (b < a) std::swap(a, b);
       EXPECT_TRUE(pairs.count({a, b})) << n << " meshes: " << a << "-" << b << " never meet";
     }
@@ -471,6 +603,127 @@ TEST(LearnedMeshSplit, AModelBeatsTheConstantGuessOnMeshesItNeverSaw) {
       << ", recall " << c.recall() << ", precision " << c.precision();
   EXPECT_GT(c.recall(), 0.6);
   EXPECT_GT(c.precision(), 0.6);
+}
+
+// ---- The decision threshold ----
+
+TEST(LearnedThreshold, ChosenToMaximiseTheSmallerOfRecallAndPrecision) {
+  const std::vector<float> p = {0.9F, 0.8F, 0.7F, 0.6F, 0.4F, 0.3F, 0.2F, 0.1F};
+  // Top 2 exact: recall and precision 1 between 0.7 and 0.8 (0.5 not there: the midpoint).
+  ThresholdChoice c = choose_threshold(p, std::vector<std::uint8_t>{1, 1, 0, 0, 0, 0, 0, 0});
+  EXPECT_NEAR(c.threshold, 0.75, 1e-6);
+  EXPECT_EQ(c.at.tp, 2U);
+  EXPECT_EQ(c.at.fp, 0U);
+  // Top 4 (recall 1, precision 3/4) beats top 2 and 3 (2/3): its interval (0.4, 0.6] holds 0.5.
+  c = choose_threshold(p, std::vector<std::uint8_t>{1, 1, 0, 1, 0, 0, 0, 0});
+  EXPECT_EQ(c.threshold, 0.5);
+  EXPECT_EQ(c.at.tp, 3U);
+  EXPECT_EQ(c.at.fp, 1U);
+  // Low probabilities, positives on top: a threshold far below 0.5.
+  c = choose_threshold(std::vector<float>{0.2F, 0.1F, 0.05F, 0.01F},
+                       std::vector<std::uint8_t>{1, 1, 0, 0});
+  EXPECT_NEAR(c.threshold, 0.075, 1e-6);
+  // Equally good intervals: the one whose threshold is nearest 0.5. Top 1, top 2 and top 4 of
+  // 0.9 (1), 0.7 (0), 0.6 (0), 0.2 (1), 0.1 (0) all give min(recall, precision) 1/2, at 0.8,
+  // 0.65 and 0.15. The samples' order does not matter.
+  const std::vector<std::uint8_t> y = {1, 0, 0, 1, 0};
+  c = choose_threshold(std::vector<float>{0.9F, 0.7F, 0.6F, 0.2F, 0.1F}, y);
+  EXPECT_NEAR(c.threshold, 0.65, 1e-6);
+  EXPECT_EQ(choose_threshold(std::vector<float>{0.6F, 0.1F, 0.9F, 0.2F, 0.7F},
+                             std::vector<std::uint8_t>{0, 0, 1, 1, 0})
+                .threshold,
+            c.threshold);
+  // All equal: nothing splits them, 0.5.
+  EXPECT_EQ(
+      choose_threshold(std::vector<float>{0.3F, 0.3F}, std::vector<std::uint8_t>{1, 0}).threshold,
+      0.5);
+  EXPECT_THROW((void)choose_threshold(std::vector<float>{0.3F}, std::vector<std::uint8_t>{}),
+               std::invalid_argument);
+  EXPECT_THROW((void)choose_threshold(std::vector<float>{}, std::vector<std::uint8_t>{}),
+               std::invalid_argument);
+  EXPECT_THROW(
+      (void)choose_threshold(std::vector<float>{0.3F, 0.6F}, std::vector<std::uint8_t>{0, 0}),
+      std::invalid_argument);
+  // The counts are those of confusion_at.
+  const Confusion at = confusion_at(p, std::vector<std::uint8_t>{1, 1, 0, 1, 0, 0, 0, 0}, 0.65);
+  EXPECT_EQ(at.tp, 2U);
+  EXPECT_EQ(at.fp, 1U);
+  EXPECT_EQ(at.fn, 1U);
+  EXPECT_EQ(at.tn, 4U);
+}
+
+TEST(LearnedThreshold, PredictUsesTheStoredThresholdAndTheFileKeepsIt) {
+  const Dataset d = noise_data();
+  Classifier model = noise_model();
+  EXPECT_EQ(model.threshold(), 0.5);
+  const std::vector<float> p = model.probabilities(d.features, d.size());
+  EXPECT_EQ(model.predict(d.features, d.size()), at_least(p, 0.5));
+  const double t = threshold_unlike_one_half(p);
+  model.set_threshold(t);
+  EXPECT_EQ(model.threshold(), t);
+  const std::vector<std::uint8_t> at_t = model.predict(d.features, d.size());
+  EXPECT_EQ(at_t, at_least(p, t));
+  EXPECT_NE(at_t, at_least(p, 0.5));
+  for (const double bad : {0.0, 1.0, -0.2, 1.5, std::nan("")}) {
+    EXPECT_THROW(model.set_threshold(bad), std::invalid_argument) << bad;
+  }
+  EXPECT_EQ(model.threshold(), t);
+  const fs::path dir = test::fresh_temp_dir("learned_threshold");
+  TrainingRecord r = model.record();
+  r.threshold_source = "a test";
+  model.set_record(r);
+  model.save(dir / "t.pt");
+  const Classifier loaded = Classifier::load(dir / "t.pt");
+  EXPECT_EQ(loaded.threshold(), t);
+  EXPECT_EQ(loaded.record().threshold_source, "a test");
+  EXPECT_EQ(loaded.predict(d.features, d.size()), at_t);
+}
+
+TEST(LearnedThreshold, CrossValidationByMeshIsDeterministicAndPoolsEveryFold) {
+  const fs::path dir = test::fresh_temp_dir("learned_calibration");
+  save_obj(make_torus(0.8, 0.25, 24, 10), dir / "torus.obj");
+  save_obj(make_sphere(0.6, 16, 8), dir / "sphere.obj");
+  TrainingSetOptions o;
+  o.scenes = 2;
+  o.frames = 30;
+  o.seed = 6;
+  o.min_objects = 16;
+  o.max_objects = 20;
+  o.mesh_files = {dir / "torus.obj", dir / "sphere.obj",
+                  test::assimp_model("STL/sphereWithHole.stl"),
+                  test::assimp_model("FBX/huesitos.fbx")};
+  TrainOptions t;
+  t.epochs = 10;
+  t.seed = 2;
+  std::size_t calls = 0;
+  const CrossValidation a =
+      cross_validate(o, t, 2, [&](std::size_t, const FoldResult&) { ++calls; });
+  EXPECT_EQ(calls, 2U);
+  ASSERT_EQ(a.folds.size(), 2U);
+  std::vector<float> pooled;
+  std::vector<std::uint8_t> labels;
+  for (std::size_t i = 0; i < a.folds.size(); ++i) {
+    const FoldResult& f = a.folds[i];
+    EXPECT_EQ(f.meshes, mesh_folds(o.mesh_files, 2, o.seed)[i]);
+    EXPECT_GT(f.train_samples, 0U);
+    ASSERT_EQ(f.probabilities.size(), f.labels.size());
+    EXPECT_GT(f.labels.size(), 10U);
+    pooled.insert(pooled.end(), f.probabilities.begin(), f.probabilities.end());
+    labels.insert(labels.end(), f.labels.begin(), f.labels.end());
+  }
+  const ThresholdChoice c = choose_threshold(pooled, labels);
+  EXPECT_EQ(a.choice.threshold, c.threshold);
+  EXPECT_GT(a.choice.threshold, 0);
+  EXPECT_LT(a.choice.threshold, 1);
+  // Same options, same seed: the same probabilities and threshold, bit for bit.
+  const CrossValidation b = cross_validate(o, t, 2);
+  ASSERT_EQ(b.folds.size(), 2U);
+  for (std::size_t i = 0; i < 2; ++i) EXPECT_EQ(b.folds[i].probabilities, a.folds[i].probabilities);
+  EXPECT_EQ(b.choice.threshold, a.choice.threshold);
+  // Another training seed: other models.
+  t.seed = 3;
+  const CrossValidation other = cross_validate(o, t, 2);
+  EXPECT_NE(other.folds[0].probabilities, a.folds[0].probabilities);
 }
 
 }  // namespace

@@ -7,16 +7,21 @@
 //   its last output through a linear layer.
 // Both are PyTorch modules (libtorch's C++ API); inputs are standardised with the training set's
 // per-feature mean and deviation, stored in the model file. Output: the probability that the pair
-// collides; predict() thresholds it at 0.5.
+// collides; predict() calls a pair colliding when it reaches the model's decision threshold: 0.5
+// unless one was set (antcd learn train --folds K chooses it on out-of-fold probabilities of a
+// cross-validation by mesh, calibration.hpp), stored in the model file.
 //
 // Determinism: train() seeds libtorch (torch::manual_seed), shuffles with its own generator and
 // runs on one intra-op thread, so the same data and seed give the same weights; see
 // docs/learned-baselines.md for what libtorch does not promise.
 //
-// Model file: a libtorch archive (zip) holding the format tag "antcd-learned/1", the feature
-// version, the kind, the window, delta, the standardisation, the training record and the network's
-// parameters. save() writes it atomically; load() refuses any file that is not such an archive,
-// or that was made for another feature version, with ModelError naming the file.
+// Model file: a libtorch archive (zip) holding the format tag "antcd-learned/2", the feature
+// version, the kind, the window, delta, the standardisation, the decision threshold, the training
+// record, the network's parameters and a checksum of the standardisation, the parameters and the
+// threshold. save() writes it atomically; load() refuses any file that is not such an archive,
+// whose checksum does not match, whose threshold is not inside (0, 1), or that was made for
+// another feature version, with ModelError naming the file. Files of format "antcd-learned/1"
+// (before thresholds were stored) load with the threshold 0.5 they were used with.
 //
 // Thread safety: a Classifier is immutable after train()/load(); probabilities() and predict() are
 // const and may be called from several threads. No torch header here (the network lives in the
@@ -77,6 +82,9 @@ struct TrainingRecord {
   double train_seconds = 0;   ///< the optimisation alone
   std::string meshes;         ///< training mesh files (names, ", "-separated; empty: none)
   std::string held_out;       ///< the mesh files held out of training (names)
+  /// How the decision threshold was chosen ("" : the default 0.5), e.g. the criterion and the
+  /// cross-validation it was chosen on.
+  std::string threshold_source;
 };
 
 class Classifier {
@@ -100,11 +108,15 @@ class Classifier {
   [[nodiscard]] const TrainingRecord& record() const;
   /// Sets what the model was trained on (scenes, frames, data time) before save().
   void set_record(const TrainingRecord& record);
+  /// The decision threshold of predict(): a pair collides when its probability is >= it.
+  [[nodiscard]] double threshold() const;
+  /// Sets the decision threshold; throws std::invalid_argument unless 0 < threshold < 1.
+  void set_threshold(double threshold);
 
   /// Collision probabilities of `count` samples laid out as in Dataset::features.
   [[nodiscard]] std::vector<float> probabilities(std::span<const float> samples,
                                                  std::size_t count) const;
-  /// probabilities() >= 0.5, as 0/1.
+  /// probabilities() >= threshold(), as 0/1.
   [[nodiscard]] std::vector<std::uint8_t> predict(std::span<const float> samples,
                                                   std::size_t count) const;
 
