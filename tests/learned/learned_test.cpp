@@ -569,20 +569,28 @@ TEST(LearnedMeshSplit, ZeroedFeatureGroupsAreZeroInEveryFrame) {
   EXPECT_EQ(next, kFeatureCount);
 }
 
+/// Two training scenes (a production line, then mesh pairs) of the torus.obj and sphere.obj saved
+/// in `dir` and two assimp models, `min_objects` to `min_objects` + 4 objects each.
+TrainingSetOptions small_mesh_set(const fs::path& dir, std::size_t frames, std::uint64_t seed,
+                                  std::size_t min_objects) {
+  TrainingSetOptions o;
+  o.scenes = 2;
+  o.frames = frames;
+  o.seed = seed;
+  o.min_objects = min_objects;
+  o.max_objects = min_objects + 4;
+  o.mesh_files = {dir / "torus.obj", dir / "sphere.obj",
+                  test::assimp_model("STL/sphereWithHole.stl"),
+                  test::assimp_model("FBX/huesitos.fbx")};
+  return o;
+}
+
 TEST(LearnedMeshSplit, AModelBeatsTheConstantGuessOnMeshesItNeverSaw) {
   // Train on generated shapes and two assimp meshes; judge on a scene of two other assimp meshes.
   const fs::path dir = test::fresh_temp_dir("learned_mesh_split");
   save_obj(make_torus(0.8, 0.25, 32, 12), dir / "torus.obj");
   save_obj(make_sphere(0.6, 20, 10), dir / "sphere.obj");
-  TrainingSetOptions o;
-  o.scenes = 2;  // a production line, then mesh pairs
-  o.frames = 60;
-  o.seed = 5;
-  o.min_objects = 20;
-  o.max_objects = 24;
-  o.mesh_files = {dir / "torus.obj", dir / "sphere.obj",
-                  test::assimp_model("STL/sphereWithHole.stl"),
-                  test::assimp_model("FBX/huesitos.fbx")};
+  const TrainingSetOptions o = small_mesh_set(dir, 60, 5, 20);
   const Dataset train = training_set(o);
   ASSERT_GT(train.positives(), 20U);
   ASSERT_GT(train.size() - train.positives(), 20U);
@@ -683,15 +691,7 @@ TEST(LearnedThreshold, CrossValidationByMeshIsDeterministicAndPoolsEveryFold) {
   const fs::path dir = test::fresh_temp_dir("learned_calibration");
   save_obj(make_torus(0.8, 0.25, 24, 10), dir / "torus.obj");
   save_obj(make_sphere(0.6, 16, 8), dir / "sphere.obj");
-  TrainingSetOptions o;
-  o.scenes = 2;
-  o.frames = 30;
-  o.seed = 6;
-  o.min_objects = 16;
-  o.max_objects = 20;
-  o.mesh_files = {dir / "torus.obj", dir / "sphere.obj",
-                  test::assimp_model("STL/sphereWithHole.stl"),
-                  test::assimp_model("FBX/huesitos.fbx")};
+  const TrainingSetOptions o = small_mesh_set(dir, 30, 6, 16);
   TrainOptions t;
   t.epochs = 10;
   t.seed = 2;
