@@ -93,12 +93,6 @@ double cross_validate(learned::Kind kind, const TrainCommand& o,
                     scores(learned::confusion_at(f.probabilities, f.labels, 0.5)).c_str());
         std::fflush(stdout);
       });
-  std::vector<float> pooled;
-  std::vector<std::uint8_t> labels;
-  for (const learned::FoldResult& f : cv.folds) {
-    pooled.insert(pooled.end(), f.probabilities.begin(), f.probabilities.end());
-    labels.insert(labels.end(), f.labels.begin(), f.labels.end());
-  }
   const double chosen = cv.choice.threshold;
   for (const double t : {0.5, chosen}) {
     double recall = 0;
@@ -117,7 +111,7 @@ double cross_validate(learned::Kind kind, const TrainCommand& o,
         "cross-validation by mesh, %zu folds, at %.4f: mean recall %.3f, mean precision %.3f; "
         "pooled %s\n",
         cv.folds.size(), t, recall / n, precision / n,
-        scores(learned::confusion_at(pooled, labels, t)).c_str());
+        scores(learned::confusion_at(cv.probabilities, cv.labels, t)).c_str());
   }
   std::printf(
       "chosen decision threshold %.4f (max min(recall, precision) over the pooled out-of-fold "

@@ -70,8 +70,6 @@ CrossValidation cross_validate(const TrainingSetOptions& set, const TrainOptions
                                const std::function<void(std::size_t, const FoldResult&)>& done) {
   const auto folds = mesh_folds(set.mesh_files, k, set.seed);
   CrossValidation cv;
-  std::vector<float> pooled;
-  std::vector<std::uint8_t> pooled_labels;
   for (std::size_t i = 0; i < folds.size(); ++i) {
     TrainingSetOptions fold_set = set;
     fold_set.mesh_files.clear();
@@ -89,12 +87,13 @@ CrossValidation cross_validate(const TrainingSetOptions& set, const TrainOptions
     fold.train_samples = data.size();
     fold.probabilities = model.probabilities(test.features, test.size());
     fold.labels = test.labels;
-    pooled.insert(pooled.end(), fold.probabilities.begin(), fold.probabilities.end());
-    pooled_labels.insert(pooled_labels.end(), fold.labels.begin(), fold.labels.end());
+    cv.probabilities.insert(cv.probabilities.end(), fold.probabilities.begin(),
+                            fold.probabilities.end());
+    cv.labels.insert(cv.labels.end(), fold.labels.begin(), fold.labels.end());
     cv.folds.push_back(std::move(fold));
     if (done) done(i, cv.folds.back());
   }
-  cv.choice = choose_threshold(pooled, pooled_labels);
+  cv.choice = choose_threshold(cv.probabilities, cv.labels);
   return cv;
 }
 

@@ -711,6 +711,8 @@ TEST(LearnedThreshold, CrossValidationByMeshIsDeterministicAndPoolsEveryFold) {
     pooled.insert(pooled.end(), f.probabilities.begin(), f.probabilities.end());
     labels.insert(labels.end(), f.labels.begin(), f.labels.end());
   }
+  EXPECT_EQ(a.probabilities, pooled);
+  EXPECT_EQ(a.labels, labels);
   const ThresholdChoice c = choose_threshold(pooled, labels);
   EXPECT_EQ(a.choice.threshold, c.threshold);
   EXPECT_GT(a.choice.threshold, 0);

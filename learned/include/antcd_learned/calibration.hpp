@@ -57,7 +57,9 @@ struct FoldResult {
 
 struct CrossValidation {
   std::vector<FoldResult> folds;
-  ThresholdChoice choice;  ///< choose_threshold over all folds' samples, pooled
+  std::vector<float> probabilities;  ///< every fold's, pooled in fold order
+  std::vector<std::uint8_t> labels;  ///< likewise
+  ThresholdChoice choice;            ///< choose_threshold over the pooled samples
 };
 
 /// k-fold cross-validation by mesh over set.mesh_files (mesh_folds(set.mesh_files, k,
